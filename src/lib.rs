@@ -1,0 +1,10 @@
+//! muscle_actuator: an antagonistic muscle actuator (Hill and Huxley models) for ROS 2.
+//!
+//! - [`physics`]: the mathematics of MODEL.md, no I/O.
+//! - [`integrator`]: the fixed-tick implicit stepper and the adaptive reference solver.
+//! - [`sim`]: the actuator stepped tick by tick (the facade the node and the CLI use).
+//! - [`config`]: the configuration file.
+
+pub mod config;
+pub mod physics;
+pub mod sim;

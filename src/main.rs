@@ -1,0 +1,3 @@
+fn main() {
+    println!("muscle_actuator");
+}

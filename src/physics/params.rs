@@ -1,0 +1,357 @@
+//! Model parameters (MODEL.md §1, §6, §8), their embedded defaults and their validation.
+//!
+//! Everything is SI: m, s, N, kg. The defaults are the paper's Appendix A, Table 1.
+
+use serde::{Deserialize, Serialize};
+
+/// Shape of the force–length curve f(l_m) (MODEL.md §3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ForceLengthShape {
+    /// `max(0, 1 - ((l/lopt - 1)/w)^2)`: our reading of the paper's eq. (3).
+    #[default]
+    Parabola,
+    /// `exp(-((l/lopt - 1)/w)^2)`: the documented alternative.
+    Gaussian,
+}
+
+/// Parameters of one muscle–tendon unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MuscleParams {
+    /// Muscle mass M carried by the fibre, kg.
+    pub mass: f64,
+    /// Maximum isometric force Fmax, N.
+    pub f_max: f64,
+    /// Optimal fibre length lopt, m.
+    pub l_opt: f64,
+    /// Maximum unloaded shortening velocity vmax, m/s.
+    pub v_max: f64,
+    /// Activation time constant, s.
+    pub t_act: f64,
+    /// Deactivation time constant, s.
+    pub t_deact: f64,
+    /// Width w of the force–length curve (dimensionless).
+    pub fl_width: f64,
+    /// Shape of the force–length curve.
+    pub fl_shape: ForceLengthShape,
+    /// Eccentric force asymptote N of the Hill force–velocity curve (our choice, MODEL.md §3).
+    pub eccentric_asymptote: f64,
+    /// Tendon exponential shape k_te, 1/m.
+    pub k_te: f64,
+    /// Tendon spring constant of the exponential part k_tl, N/m.
+    pub k_tl: f64,
+    /// Tendon spring constant of the linear part k_t, N/m.
+    pub k_t: f64,
+    /// Tendon slack length l_ts, m.
+    pub l_ts: f64,
+    /// Tendon length where it turns linear, m. `None` derives it by force continuity (MODEL.md §4).
+    pub l_tc: Option<f64>,
+    /// Tendon force where it turns linear, N.
+    pub f_tc: f64,
+    /// Parallel element exponential shape k_me, 1/m.
+    pub k_me: f64,
+    /// Parallel spring constant of the exponential part k_ml, N/m.
+    pub k_ml: f64,
+    /// Parallel spring constant of the linear part k_m, N/m.
+    pub k_m: f64,
+    /// Passive muscle slack length l_ms, m.
+    pub l_ms: f64,
+    /// Length where the parallel spring turns linear l_mc, m.
+    pub l_mc: f64,
+    /// Force where the parallel spring turns linear F_mc, N.
+    pub f_mc: f64,
+    /// Parallel damping B_m, N s/m.
+    pub b_m: f64,
+    /// Cross-bridge parameters of the Huxley models.
+    pub crossbridge: CrossBridgeParams,
+}
+
+impl Default for MuscleParams {
+    fn default() -> Self {
+        Self {
+            mass: 0.95,
+            f_max: 3913.0,
+            l_opt: 0.0959,
+            v_max: 0.5179,
+            t_act: 0.0012,
+            t_deact: 0.012,
+            fl_width: 0.643,
+            fl_shape: ForceLengthShape::Parabola,
+            eccentric_asymptote: 1.8,
+            k_te: 3022.0,
+            k_tl: 31140.0,
+            k_t: 635540.0,
+            l_ts: 0.3185,
+            l_tc: None,
+            f_tc: 200.0,
+            k_me: 90.4,
+            k_ml: 487.5,
+            k_m: 6770.0,
+            l_ms: 0.0959,
+            l_mc: 0.125,
+            f_mc: 69.4723,
+            b_m: 257.1,
+            crossbridge: CrossBridgeParams::default(),
+        }
+    }
+}
+
+/// Cross-bridge (Huxley 1957) parameters, MODEL.md §6–7. Rates are Huxley's ratios; one common
+/// factor is chosen at start-up so that the model's unloaded shortening velocity equals vmax.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CrossBridgeParams {
+    /// Attachment rate slope f1 (relative units).
+    pub f1: f64,
+    /// Detachment rate slope g1 on [0, 1] (relative units).
+    pub g1: f64,
+    /// Detachment rate for ξ < 0 (relative units).
+    pub g2: f64,
+    /// Extra detachment slope for ξ > 1 (Huxley: 0).
+    pub g3: f64,
+    /// Attachment range h, m.
+    pub h: f64,
+    /// Optimal half-sarcomere length, m.
+    pub s_hs: f64,
+    /// Grid cells per unit ξ of the full Huxley model (method of characteristics).
+    pub pde_cells: usize,
+}
+
+impl Default for CrossBridgeParams {
+    fn default() -> Self {
+        Self {
+            f1: 43.3,
+            g1: 10.0,
+            g2: 209.0,
+            g3: 0.0,
+            h: 15.6e-9,
+            s_hs: 1.1e-6,
+            pde_cells: 200,
+        }
+    }
+}
+
+/// Geometry and mechanics of the antagonistic joint (MODEL.md §8).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct JointParams {
+    /// Joint name as published on `joint_states`.
+    pub name: String,
+    /// Pulley radius r, m.
+    pub radius: f64,
+    /// Moment of inertia I, kg m².
+    pub inertia: f64,
+    /// Viscous damping c, N m s/rad.
+    pub damping: f64,
+    /// Lower end of the range of motion, rad.
+    pub min_angle: f64,
+    /// Upper end of the range of motion, rad.
+    pub max_angle: f64,
+    /// Stiffness of the end stops, N m/rad.
+    pub limit_stiffness: f64,
+    /// Damping of the end stops, N m s/rad.
+    pub limit_damping: f64,
+    /// Path length of both muscle–tendon units at θ = 0, m. `None`: lopt + l_ts + 0.002 m of the
+    /// agonist (MODEL.md §8).
+    pub path_length: Option<f64>,
+    /// Initial joint angle, rad.
+    pub initial_angle: f64,
+}
+
+impl Default for JointParams {
+    fn default() -> Self {
+        Self {
+            name: "elbow".into(),
+            radius: 0.03,
+            inertia: 0.06,
+            damping: 0.05,
+            min_angle: -std::f64::consts::FRAC_PI_2,
+            max_angle: std::f64::consts::FRAC_PI_2,
+            limit_stiffness: 500.0,
+            limit_damping: 5.0,
+            path_length: None,
+            initial_angle: 0.0,
+        }
+    }
+}
+
+/// One rule that a parameter breaks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamError {
+    /// Dotted path of the parameter, e.g. `muscle.flexor.f_max`.
+    pub parameter: String,
+    /// The value found.
+    pub value: String,
+    /// The rule it breaks.
+    pub rule: &'static str,
+}
+
+impl std::fmt::Display for ParamError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "invalid parameter {} = {}: {}",
+            self.parameter, self.value, self.rule
+        )
+    }
+}
+
+struct Checker<'a> {
+    prefix: &'a str,
+    errors: &'a mut Vec<ParamError>,
+}
+
+impl Checker<'_> {
+    fn fail(&mut self, name: &str, value: impl std::fmt::Display, rule: &'static str) {
+        self.errors.push(ParamError {
+            parameter: format!("{}{}", self.prefix, name),
+            value: value.to_string(),
+            rule,
+        });
+    }
+    fn positive(&mut self, name: &str, v: f64) {
+        if !v.is_finite() {
+            self.fail(name, v, "must be a finite number");
+        } else if v <= 0.0 {
+            self.fail(name, v, "must be > 0");
+        }
+    }
+    fn non_negative(&mut self, name: &str, v: f64) {
+        if !v.is_finite() {
+            self.fail(name, v, "must be a finite number");
+        } else if v < 0.0 {
+            self.fail(name, v, "must be >= 0");
+        }
+    }
+    fn finite(&mut self, name: &str, v: f64) {
+        if !v.is_finite() {
+            self.fail(name, v, "must be a finite number");
+        }
+    }
+}
+
+/// Relative force jump at l_tc above which a configured l_tc is reported as discontinuous.
+pub const TENDON_CONTINUITY_TOLERANCE: f64 = 1e-3;
+
+impl MuscleParams {
+    /// Tendon length where the tendon turns linear, by force continuity (MODEL.md §4):
+    /// `l_tc = l_ts + ln(1 + F_tc k_te / k_tl) / k_te`.
+    pub fn derived_l_tc(&self) -> f64 {
+        self.l_ts + (1.0 + self.f_tc * self.k_te / self.k_tl).ln() / self.k_te
+    }
+
+    /// l_tc in force: the configured one, or the derived one.
+    pub fn l_tc(&self) -> f64 {
+        self.l_tc.unwrap_or_else(|| self.derived_l_tc())
+    }
+
+    /// Appends one error per broken rule; `prefix` names the muscle (e.g. `muscle.flexor.`).
+    pub fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
+        let mut c = Checker { prefix, errors };
+        c.positive("mass", self.mass);
+        c.positive("f_max", self.f_max);
+        c.positive("l_opt", self.l_opt);
+        c.positive("v_max", self.v_max);
+        c.positive("t_act", self.t_act);
+        c.positive("t_deact", self.t_deact);
+        c.positive("fl_width", self.fl_width);
+        c.finite("eccentric_asymptote", self.eccentric_asymptote);
+        if self.eccentric_asymptote.is_finite() && self.eccentric_asymptote <= 1.0 {
+            c.fail(
+                "eccentric_asymptote",
+                self.eccentric_asymptote,
+                "must be > 1",
+            );
+        }
+        c.positive("k_te", self.k_te);
+        c.positive("k_tl", self.k_tl);
+        c.positive("k_t", self.k_t);
+        c.positive("l_ts", self.l_ts);
+        c.positive("f_tc", self.f_tc);
+        c.positive("k_me", self.k_me);
+        c.positive("k_ml", self.k_ml);
+        c.positive("k_m", self.k_m);
+        c.positive("l_ms", self.l_ms);
+        c.positive("l_mc", self.l_mc);
+        c.non_negative("f_mc", self.f_mc);
+        c.non_negative("b_m", self.b_m);
+        if self.l_mc.is_finite() && self.l_ms.is_finite() && self.l_mc <= self.l_ms {
+            c.fail("l_mc", self.l_mc, "must be > l_ms");
+        }
+        if let Some(l_tc) = self.l_tc {
+            c.positive("l_tc", l_tc);
+            if l_tc.is_finite() && self.l_ts.is_finite() && l_tc <= self.l_ts {
+                c.fail("l_tc", l_tc, "must be > l_ts");
+            }
+        }
+        let x = &self.crossbridge;
+        let mut c = Checker {
+            prefix: &format!("{prefix}crossbridge."),
+            errors: c.errors,
+        };
+        c.positive("f1", x.f1);
+        c.positive("g1", x.g1);
+        c.positive("g2", x.g2);
+        c.non_negative("g3", x.g3);
+        c.positive("h", x.h);
+        c.positive("s_hs", x.s_hs);
+        if x.pde_cells < 10 || x.pde_cells > 100_000 {
+            c.fail("pde_cells", x.pde_cells, "must be between 10 and 100000");
+        }
+    }
+
+    /// A warning when a configured l_tc breaks force continuity of the tendon (MODEL.md §4).
+    pub fn continuity_warning(&self, prefix: &str) -> Option<String> {
+        let l_tc = self.l_tc?;
+        let exp_force = self.k_tl / self.k_te * ((self.k_te * (l_tc - self.l_ts)).exp() - 1.0);
+        let jump = (exp_force - self.f_tc).abs();
+        (jump > TENDON_CONTINUITY_TOLERANCE * self.f_tc).then(|| {
+            format!(
+                "{prefix}l_tc = {l_tc} breaks tendon force continuity: the exponential part gives \
+                 {exp_force:.3} N there, F_tc = {} N (jump {jump:.3} N); continuity needs l_tc = {:.7} m",
+                self.f_tc,
+                self.derived_l_tc()
+            )
+        })
+    }
+}
+
+impl JointParams {
+    /// Appends one error per broken rule.
+    pub fn validate(&self, errors: &mut Vec<ParamError>) {
+        let mut c = Checker {
+            prefix: "joint.",
+            errors,
+        };
+        if self.name.trim().is_empty() {
+            c.fail("name", "\"\"", "must not be empty");
+        }
+        c.positive("radius", self.radius);
+        c.positive("inertia", self.inertia);
+        c.non_negative("damping", self.damping);
+        c.finite("min_angle", self.min_angle);
+        c.finite("max_angle", self.max_angle);
+        if self.min_angle.is_finite()
+            && self.max_angle.is_finite()
+            && self.min_angle >= self.max_angle
+        {
+            c.fail("max_angle", self.max_angle, "must be > min_angle");
+        }
+        c.non_negative("limit_stiffness", self.limit_stiffness);
+        c.non_negative("limit_damping", self.limit_damping);
+        if let Some(l0) = self.path_length {
+            c.positive("path_length", l0);
+        }
+        c.finite("initial_angle", self.initial_angle);
+        if self.initial_angle.is_finite()
+            && (self.initial_angle < self.min_angle || self.initial_angle > self.max_angle)
+        {
+            c.fail(
+                "initial_angle",
+                self.initial_angle,
+                "must lie within [min_angle, max_angle]",
+            );
+        }
+    }
+}
