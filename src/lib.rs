@@ -6,5 +6,9 @@
 //! - [`config`]: the configuration file.
 
 pub mod config;
+pub mod csv;
+pub mod figures;
+pub mod integrator;
 pub mod physics;
+pub mod ros;
 pub mod sim;

@@ -1,3 +1,130 @@
-fn main() {
-    println!("muscle_actuator");
+//! The `muscle_actuator` command line.
+
+use clap::{Parser, Subcommand};
+use muscle_actuator::config::ActuatorConfig;
+use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::sim::scenario::Scenario;
+use muscle_actuator::sim::simulation::default_substeps;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "muscle_actuator",
+    version,
+    about = "Antagonistic muscle actuator: Hill and Huxley (Distribution-Moment) models, as a ROS 2 node and offline"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scenario offline (no DDS) and write its ticks as CSV.
+    Simulate {
+        /// A built-in scenario (pulse, energy-10hz, energy-100hz) or a scenario file (.toml).
+        scenario: String,
+        /// Contractile model: hill, huxley or huxley-pde.
+        #[arg(long, default_value = "huxley")]
+        model: String,
+        /// Actuator configuration file (TOML); default: the embedded Table 1 parameters.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Tick rate, Hz.
+        #[arg(long, default_value_t = 1000.0)]
+        rate_hz: f64,
+        /// Implicit sub-steps per tick (default: the model's).
+        #[arg(long)]
+        substeps: Option<usize>,
+        /// CSV output file ('-' for standard output).
+        #[arg(long)]
+        csv: Option<PathBuf>,
+    },
+    /// Run the ROS 2 node; everything after `node` goes to it (`--ros-args ...`, see `node --help`).
+    #[command(disable_help_flag = true)]
+    Node {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Reproduce the paper's Figs. 4-6 and the force-velocity comparison as PNG and SVG.
+    Figures {
+        /// Output directory.
+        #[arg(long, default_value = "figures")]
+        out: PathBuf,
+    },
+}
+
+fn load_config(path: &Option<PathBuf>) -> Result<ActuatorConfig, String> {
+    let cfg = match path {
+        Some(p) => ActuatorConfig::from_file(p).map_err(|e| e.to_string())?,
+        None => ActuatorConfig::default(),
+    };
+    for w in cfg.warnings() {
+        eprintln!("warning: {w}");
+    }
+    Ok(cfg)
+}
+
+fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Simulate {
+            scenario,
+            model,
+            config,
+            rate_hz,
+            substeps,
+            csv,
+        } => {
+            let model: ModelKind = model
+                .parse()
+                .map_err(|e: muscle_actuator::physics::model::UnknownModel| e.to_string())?;
+            let cfg = load_config(&config)?;
+            let sc = Scenario::resolve(&scenario, &cfg.muscles[0].params)?;
+            let run = sc.run(
+                &cfg,
+                model,
+                rate_hz,
+                substeps.unwrap_or(default_substeps(model)),
+            )?;
+            if let Some(path) = csv {
+                let write = |out: &mut dyn std::io::Write| {
+                    let mut buf = std::io::BufWriter::new(out);
+                    muscle_actuator::csv::write_csv(&run, &mut buf)
+                };
+                if path.as_os_str() == "-" {
+                    write(&mut std::io::stdout().lock())
+                } else {
+                    let mut f = std::fs::File::create(&path)
+                        .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+                    write(&mut f)
+                }
+                .map_err(|e| format!("cannot write CSV {}: {e}", path.display()))?;
+            }
+            let last = run.records.last().ok_or("the scenario produced no ticks")?;
+            eprintln!(
+                "{}: {} ticks of {} at {} Hz; final tendon force {:.3} N, fibre length {:.6} m",
+                run.scenario,
+                run.records.len() - 1,
+                run.model,
+                run.rate_hz,
+                last.muscles[0].force,
+                last.muscles[0].fiber_length
+            );
+            Ok(())
+        }
+        Command::Figures { out } => muscle_actuator::figures::write_all(&out),
+        Command::Node { args } => muscle_actuator::ros::run_node(args),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
 }

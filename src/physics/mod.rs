@@ -1,4 +1,13 @@
 //! The muscle physics (MODEL.md): pure functions and plain state, no I/O.
 
+pub mod activation;
+pub mod contractile;
+pub mod joint;
 pub mod model;
+pub mod mtu;
+pub mod parallel_element;
 pub mod params;
+pub mod plant;
+pub mod spring;
+pub mod stiffness;
+pub mod tendon;

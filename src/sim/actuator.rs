@@ -6,26 +6,20 @@
 
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
+use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::sim::simulation::{default_substeps, Simulation, StepError};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 
-/// The state stopped being finite; the caller resets (the actuator is left as it was before).
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("the simulation state became non-finite at tick {tick}; the joint must be reset")]
-pub struct StepError {
-    /// The tick that failed.
-    pub tick: u64,
-}
+/// Extra length of both paths over lopt + l_ts at θ = 0 (MODEL.md §8 default geometry), m.
+pub const DEFAULT_PATH_PRESTRETCH: f64 = 0.002;
 
 /// A simulated antagonistic actuator (one joint, two muscles).
+#[derive(Debug, Clone)]
 pub struct Actuator {
     config: ActuatorConfig,
-    model: ModelKind,
-    rate_hz: f64,
-    tick: u64,
+    sim: Simulation,
     muscle_names: Vec<String>,
     joint_names: Vec<String>,
-    excitation: [f64; 2],
-    external_torque: f64,
     muscles: [MuscleSnapshot; 2],
     joint: JointSnapshot,
 }
@@ -34,37 +28,60 @@ impl Actuator {
     /// Builds the actuator in its initial state (joint at `initial_angle`, at rest, a = 0).
     /// `rate_hz` is the tick rate (> 0, finite).
     pub fn new(config: &ActuatorConfig, model: ModelKind, rate_hz: f64) -> Result<Self, String> {
+        Self::with_substeps(config, model, rate_hz, default_substeps(model))
+    }
+
+    /// As `new`, with a chosen number of implicit sub-steps per tick.
+    pub fn with_substeps(
+        config: &ActuatorConfig,
+        model: ModelKind,
+        rate_hz: f64,
+        substeps: usize,
+    ) -> Result<Self, String> {
         config.validate().map_err(|e| e.to_string())?;
-        if !(rate_hz.is_finite() && rate_hz > 0.0) {
-            return Err(format!(
-                "invalid rate_hz = {rate_hz}: must be a finite number > 0"
-            ));
-        }
-        Ok(Self {
+        let params: Vec<_> = config.muscles.iter().map(|m| m.params.clone()).collect();
+        let path_length = config
+            .joint
+            .path_length
+            .unwrap_or(params[0].l_opt + params[0].l_ts + DEFAULT_PATH_PRESTRETCH);
+        let attachment = Attachment::Joint {
+            params: config.joint.clone(),
+            path_length,
+        };
+        let plant = Plant::new(&params, model, attachment)?;
+        let sim = Simulation::new(plant, rate_hz, substeps, Inputs::default())?;
+        let mut actuator = Self {
             config: config.clone(),
-            model,
-            rate_hz,
-            tick: 0,
+            sim,
             muscle_names: config.muscles.iter().map(|m| m.name.clone()).collect(),
             joint_names: vec![config.joint.name.clone()],
-            excitation: [0.0; 2],
-            external_torque: 0.0,
             muscles: [MuscleSnapshot::default(); 2],
             joint: JointSnapshot::default(),
-        })
+        };
+        actuator.refresh();
+        Ok(actuator)
+    }
+
+    fn refresh(&mut self) {
+        self.muscles = [self.sim.muscle_snapshot(0), self.sim.muscle_snapshot(1)];
+        self.joint = self.sim.joint_snapshot().unwrap_or_default();
     }
 
     /// The model that drives the muscles.
     pub fn model(&self) -> ModelKind {
-        self.model
+        self.sim.plant().model
     }
     /// Tick rate, Hz.
     pub fn rate_hz(&self) -> f64 {
-        self.rate_hz
+        self.sim.rate_hz()
     }
     /// The configuration it was built from.
     pub fn config(&self) -> &ActuatorConfig {
         &self.config
+    }
+    /// The underlying simulation.
+    pub fn simulation(&self) -> &Simulation {
+        &self.sim
     }
     /// Muscle names: agonist, antagonist.
     pub fn muscle_names(&self) -> &[String] {
@@ -76,37 +93,40 @@ impl Actuator {
     }
     /// Ticks done since start or reset.
     pub fn tick(&self) -> u64 {
-        self.tick
+        self.sim.tick()
     }
     /// Simulated time, s (tick / rate).
     pub fn time(&self) -> f64 {
-        self.tick as f64 / self.rate_hz
+        self.sim.time()
     }
     /// Sets muscle `index`'s excitation for the following ticks. The caller validates: the value
     /// is clamped to [0, 1] here, and a non-finite value is ignored.
     pub fn set_excitation(&mut self, index: usize, excitation: f64) {
-        if excitation.is_finite() {
-            if let Some(u) = self.excitation.get_mut(index) {
-                *u = excitation.clamp(0.0, 1.0);
-            }
+        if excitation.is_finite() && index < 2 {
+            let mut inputs = *self.sim.inputs();
+            inputs.excitation[index] = excitation.clamp(0.0, 1.0);
+            self.sim.set_inputs(inputs);
         }
     }
     /// Sets the external torque on joint `index`, N m (positive flexes); non-finite is ignored.
     pub fn set_external_torque(&mut self, index: usize, torque: f64) {
         if index == 0 && torque.is_finite() {
-            self.external_torque = torque;
+            let mut inputs = *self.sim.inputs();
+            inputs.external_torque = torque;
+            self.sim.set_inputs(inputs);
         }
     }
     /// Advances one tick. On a non-finite state it returns an error and leaves the state as it
     /// was; call `reset`.
     pub fn step(&mut self) -> Result<(), StepError> {
-        todo!("physics core lands here")
+        self.sim.step()?;
+        self.refresh();
+        Ok(())
     }
     /// Back to the initial state (inputs zeroed, tick 0).
     pub fn reset(&mut self) {
-        self.tick = 0;
-        self.excitation = [0.0; 2];
-        self.external_torque = 0.0;
+        self.sim.reset(Inputs::default());
+        self.refresh();
     }
     /// Muscle states after the last tick: agonist, antagonist.
     pub fn muscles(&self) -> &[MuscleSnapshot] {

@@ -1,0 +1,95 @@
+//! Start-up calibration of the cross-bridge models to the muscle's Fmax and vmax (MODEL.md §6–7).
+
+use crate::physics::contractile::crossbridge::Rates;
+use crate::physics::contractile::distribution_moment::{self, SteadyStateError};
+use crate::physics::contractile::huxley_exact;
+use crate::physics::params::MuscleParams;
+
+/// Physical scaling of one cross-bridge model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrossBridgeScale {
+    /// Rates in 1/s (Huxley's ratios times the common factor).
+    pub rates: Rates,
+    /// The common rate factor.
+    pub rate_scale: f64,
+    /// The model's own isometric steady moments at r = 1.
+    pub q_iso: [f64; 3],
+    /// Muscle length change per unit ξ, `L_h = lopt h / s_hs`, m.
+    pub l_h: f64,
+    /// `Fmax / Q1_iso`, N.
+    pub force_per_q1: f64,
+}
+
+impl CrossBridgeScale {
+    /// Shortening rate u in h/s from the fibre's lengthening velocity v (m/s): `u = -v / L_h`.
+    pub fn shortening_rate(&self, v: f64) -> f64 {
+        -v / self.l_h
+    }
+    /// `F_CE = Fmax Q1 / Q1_iso`, N.
+    pub fn force(&self, q1: f64) -> f64 {
+        self.force_per_q1 * q1
+    }
+    /// `k_CE = (Fmax / Q1_iso) Q0 / L_h`, N/m.
+    pub fn stiffness(&self, q0: f64) -> f64 {
+        self.force_per_q1 * q0 / self.l_h
+    }
+    /// `E_CE = ½ (Fmax / Q1_iso) L_h Q2`, J.
+    pub fn energy(&self, q2: f64) -> f64 {
+        0.5 * self.force_per_q1 * self.l_h * q2
+    }
+}
+
+fn huxley_rates(p: &MuscleParams) -> Rates {
+    let x = &p.crossbridge;
+    Rates {
+        f1: x.f1,
+        g1: x.g1,
+        g2: x.g2,
+        g3: x.g3,
+    }
+}
+
+fn l_h(p: &MuscleParams) -> f64 {
+    p.l_opt * p.crossbridge.h / p.crossbridge.s_hs
+}
+
+/// Calibrates the DM model from its own steady states: force scale from its isometric Q1, rate
+/// scale so that its unloaded shortening velocity is vmax.
+pub fn calibrate_distribution_moment(
+    p: &MuscleParams,
+) -> Result<CrossBridgeScale, SteadyStateError> {
+    let unit = huxley_rates(p);
+    let q_iso = distribution_moment::isometric_steady_state(&unit)?;
+    let u_max = distribution_moment::unloaded_shortening_rate(&unit)?;
+    let l_h = l_h(p);
+    let rate_scale = p.v_max / l_h / u_max;
+    Ok(CrossBridgeScale {
+        rates: unit.scaled(rate_scale),
+        rate_scale,
+        q_iso,
+        l_h,
+        force_per_q1: p.f_max / q_iso[1],
+    })
+}
+
+/// Calibrates the full Huxley model from its exact steady states (MODEL.md §7).
+pub fn calibrate_exact(p: &MuscleParams) -> CrossBridgeScale {
+    let unit = huxley_rates(p);
+    let q_iso = huxley_exact::isometric_moments(&unit, 1.0);
+    let u_max = huxley_exact::unloaded_shortening_rate(&unit);
+    let l_h = l_h(p);
+    let rate_scale = p.v_max / l_h / u_max;
+    CrossBridgeScale {
+        rates: unit.scaled(rate_scale),
+        rate_scale,
+        q_iso,
+        l_h,
+        force_per_q1: p.f_max / q_iso[1],
+    }
+}
+
+/// The Hill model's short-range stiffness at full activation and optimal length,
+/// `k_iso = (Fmax / Q1_iso) Q0_iso / L_h` with the DM calibration (MODEL.md §8), N/m.
+pub fn hill_isometric_stiffness(dm: &CrossBridgeScale) -> f64 {
+    dm.stiffness(dm.q_iso[0])
+}

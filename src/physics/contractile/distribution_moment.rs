@@ -1,0 +1,197 @@
+//! Zahalak's Distribution-Moment (DM) approximation of the Huxley model (MODEL.md §6,
+//! paper eqs. 9–12): the bond distribution is taken Gaussian with the moments Q0, Q1, Q2.
+
+use crate::physics::contractile::crossbridge::Rates;
+use nalgebra::{Matrix3, Vector3};
+
+/// Below this Q0 there are no bonds to speak of: the closure relaxes the moments linearly.
+pub const Q0_EPSILON: f64 = 1e-12;
+/// Smallest variance q² (in ξ² units) the closure accepts.
+pub const Q_VARIANCE_FLOOR: f64 = 1e-10;
+
+const INV_SQRT_2: f64 = std::f64::consts::FRAC_1_SQRT_2;
+const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
+
+/// Standard normal CDF Φ(x) = erfc(-x/√2)/2.
+pub fn normal_cdf(x: f64) -> f64 {
+    0.5 * libm::erfc(-x * INV_SQRT_2)
+}
+
+/// Standard normal density ϕ(x).
+pub fn normal_pdf(x: f64) -> f64 {
+    INV_SQRT_2PI * (-0.5 * x * x).exp()
+}
+
+/// Partial moments `J_k(τ) = ∫_{-∞}^{p+qτ} ξ^k N(ξ; p, q²) dξ`, k = 0..3 (MODEL.md §6).
+pub fn partial_moments(p: f64, q: f64, tau: f64) -> [f64; 4] {
+    let cdf = normal_cdf(tau);
+    let pdf = normal_pdf(tau);
+    let q2 = q * q;
+    [
+        cdf,
+        p * cdf - q * pdf,
+        (p * p + q2) * cdf - q * (2.0 * p + q * tau) * pdf,
+        (p * p * p + 3.0 * p * q2) * cdf
+            - q * pdf * (3.0 * p * p + 3.0 * p * q * tau + q2 * (2.0 + tau * tau)),
+    ]
+}
+
+/// Full moments of N(p, q²): `(1, p, p² + q², p³ + 3 p q²)`.
+pub fn full_moments(p: f64, q: f64) -> [f64; 4] {
+    let q2 = q * q;
+    [1.0, p, p * p + q2, p * p * p + 3.0 * p * q2]
+}
+
+/// The DM closure `φ_k = ∫ ξ^k (f + g) n dξ` for the Gaussian n with moments `q`, k = 0, 1, 2.
+pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+    let q0 = q[0];
+    if q0 <= Q0_EPSILON {
+        // No bonds: linear relaxation at the [0,1] mean rate keeps the moments decaying smoothly.
+        let k = 0.5 * (rates.f1 + rates.g1);
+        return [k * q[0], k * q[1], k * q[2]];
+    }
+    let p = q[1] / q0;
+    let var = (q[2] / q0 - p * p).max(Q_VARIANCE_FLOOR);
+    let sd = var.sqrt();
+    let tau0 = -p / sd;
+    let tau1 = (1.0 - p) / sd;
+    let j0 = partial_moments(p, sd, tau0);
+    let j1 = partial_moments(p, sd, tau1);
+    let m = full_moments(p, sd);
+    let mut phi = [0.0; 3];
+    for (k, out) in phi.iter_mut().enumerate() {
+        let body = rates.g2 * j0[k]
+            + (rates.f1 + rates.g1) * (j1[k + 1] - j0[k + 1])
+            + rates.g1 * (m[k + 1] - j1[k + 1])
+            + rates.g3 * (m[k + 1] - j1[k + 1] - m[k] + j1[k]);
+        *out = q0 * body;
+    }
+    phi
+}
+
+/// Moment equations (12): `dQ_k/dt = r β_k - φ_k - k u Q_{k-1}`; `u` is the shortening rate in
+/// h/s (u > 0 shortening), `r` the attachment factor a·λ(l_m).
+pub fn moment_rates(rates: &Rates, q: &[f64; 3], r: f64, u: f64) -> [f64; 3] {
+    let phi = closure(rates, q);
+    [
+        r * rates.beta(0) - phi[0],
+        r * rates.beta(1) - phi[1] - u * q[0],
+        r * rates.beta(2) - phi[2] - 2.0 * u * q[1],
+    ]
+}
+
+/// Why a steady state could not be found.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("the Distribution-Moment steady state did not converge ({0})")]
+pub struct SteadyStateError(pub &'static str);
+
+/// The steady state `moment_rates = 0` at attachment factor r and shortening rate u, by damped
+/// Newton from `guess`.
+pub fn steady_state(
+    rates: &Rates,
+    r: f64,
+    u: f64,
+    guess: [f64; 3],
+) -> Result<[f64; 3], SteadyStateError> {
+    let residual = |q: &Vector3<f64>| Vector3::from(moment_rates(rates, &[q[0], q[1], q[2]], r, u));
+    let mut q = Vector3::from(guess);
+    for _ in 0..200 {
+        let f = residual(&q);
+        let scale = rates.f1.max(rates.g2) * r.max(1e-300);
+        if f.norm() <= 1e-14 * scale {
+            return Ok([q[0], q[1], q[2]]);
+        }
+        let mut jac = Matrix3::zeros();
+        for j in 0..3 {
+            let h = 1e-7 * q[j].abs().max(1e-3 * r.max(1e-12));
+            let mut qp = q;
+            qp[j] += h;
+            let mut qm = q;
+            qm[j] -= h;
+            jac.set_column(j, &((residual(&qp) - residual(&qm)) / (2.0 * h)));
+        }
+        let step = jac
+            .lu()
+            .solve(&(-f))
+            .ok_or(SteadyStateError("singular Jacobian"))?;
+        let mut lambda = 1.0;
+        let f_norm = f.norm();
+        loop {
+            let trial = q + step * lambda;
+            let valid = trial[0] > 0.0 && trial[2] / trial[0] > (trial[1] / trial[0]).powi(2);
+            if valid && residual(&trial).norm() < f_norm * (1.0 - 1e-4 * lambda) {
+                q = trial;
+                break;
+            }
+            lambda *= 0.5;
+            if lambda < 1e-10 {
+                // Converged as far as rounding allows.
+                if f_norm <= 1e-10 * scale {
+                    return Ok([q[0], q[1], q[2]]);
+                }
+                return Err(SteadyStateError("line search failed"));
+            }
+        }
+    }
+    Err(SteadyStateError("too many iterations"))
+}
+
+/// The isometric steady state at r = 1 (MODEL.md §6: (0.684179, 0.437663, 0.321696) with
+/// Huxley's rates).
+pub fn isometric_steady_state(rates: &Rates) -> Result<[f64; 3], SteadyStateError> {
+    // The exact isometric distribution (f1/(f1+g1) on [0,1]) is a good start.
+    let n = rates.f1 / (rates.f1 + rates.g1);
+    steady_state(rates, 1.0, 0.0, [n, n / 2.0, n / 3.0])
+}
+
+/// Steady moments at r = 1 for each shortening rate in `us` (ascending from 0 or descending
+/// from 0), by continuation from the isometric state.
+pub fn steady_curve(rates: &Rates, us: &[f64]) -> Result<Vec<[f64; 3]>, SteadyStateError> {
+    let mut q = isometric_steady_state(rates)?;
+    let mut u_prev = 0.0;
+    let mut out = Vec::with_capacity(us.len());
+    for &u in us {
+        // Small continuation steps keep Newton in its basin.
+        let n = ((u - u_prev).abs() / (0.02 * rates.f1)).ceil().max(1.0) as usize;
+        for i in 1..=n {
+            let ui = u_prev + (u - u_prev) * i as f64 / n as f64;
+            q = steady_state(rates, 1.0, ui, q)?;
+        }
+        u_prev = u;
+        out.push(q);
+    }
+    Ok(out)
+}
+
+/// The unloaded shortening rate (h/s): the u at which the steady Q1 is zero.
+pub fn unloaded_shortening_rate(rates: &Rates) -> Result<f64, SteadyStateError> {
+    let mut q = isometric_steady_state(rates)?;
+    let du = 0.05 * rates.f1;
+    let mut u = 0.0;
+    // March until Q1 changes sign, then bisect on the bracket.
+    loop {
+        let next = steady_state(rates, 1.0, u + du, q)?;
+        if next[1] <= 0.0 {
+            let (mut lo, mut hi, mut q_lo) = (u, u + du, q);
+            for _ in 0..100 {
+                let mid = 0.5 * (lo + hi);
+                let qm = steady_state(rates, 1.0, mid, q_lo)?;
+                if qm[1] > 0.0 {
+                    lo = mid;
+                    q_lo = qm;
+                } else {
+                    hi = mid;
+                }
+                if hi - lo <= 1e-13 * hi {
+                    break;
+                }
+            }
+            return Ok(0.5 * (lo + hi));
+        }
+        q = next;
+        u += du;
+        if u > 1e3 * rates.f1 {
+            return Err(SteadyStateError("no unloaded velocity found"));
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! The full Huxley (1957) model, eq. (9), by the method of characteristics (MODEL.md §7).
+//!
+//! Cells of width Δξ ride with the actin: every cell moves by the same shift, so the grid is an
+//! offset plus a run of bond fractions. Over a step each cell's bond fraction is advanced
+//! exactly for rates frozen at the cell's mid-step position:
+//! `n ← n∞ + (n - n∞) exp(-(f + g) Δt)`, `n∞ = r f / (f + g)`.
+//! Empty cells enter on the inflow side and cells leave once their bonds are negligible. The
+//! storage is allocated once; a full grid drops its outermost cell.
+//!
+//! Written by hand: no crate offers a moving-grid characteristic solver for this equation.
+
+use crate::physics::contractile::crossbridge::Rates;
+use std::collections::VecDeque;
+
+/// Bond fraction below which an outer cell is dropped.
+pub const NEGLIGIBLE_BONDS: f64 = 1e-13;
+/// The grid always covers [-COVER_MARGIN, 1 + COVER_MARGIN] (the attachment range and a margin).
+pub const COVER_MARGIN: f64 = 0.05;
+
+/// Bond distribution n(ξ) on a moving uniform grid of cells.
+#[derive(Debug, Clone)]
+pub struct CrossBridgeGrid {
+    dxi: f64,
+    /// Centre of the first cell, in ξ.
+    first_centre: f64,
+    n: VecDeque<f64>,
+    capacity: usize,
+}
+
+impl CrossBridgeGrid {
+    /// An empty distribution (no bonds) with `cells_per_unit` cells per unit ξ and room for
+    /// `max_extent` units of ξ.
+    pub fn new(cells_per_unit: usize, max_extent: f64) -> Self {
+        let dxi = 1.0 / cells_per_unit as f64;
+        let capacity = (max_extent / dxi).ceil() as usize + 8;
+        let mut grid = Self {
+            dxi,
+            first_centre: 0.5 * dxi,
+            n: VecDeque::with_capacity(capacity),
+            capacity,
+        };
+        grid.reset();
+        grid
+    }
+
+    /// Back to no bonds, cells aligned with ξ = 0 and ξ = 1.
+    pub fn reset(&mut self) {
+        self.n.clear();
+        let margin_cells = (COVER_MARGIN / self.dxi).ceil() as usize;
+        self.first_centre = (0.5 - margin_cells as f64) * self.dxi;
+        let cells = (1.0 / self.dxi).round() as usize + 2 * margin_cells;
+        self.n.extend(std::iter::repeat_n(0.0, cells));
+    }
+
+    /// Sets every cell to `n(ξ_centre)`.
+    pub fn fill(&mut self, n: impl Fn(f64) -> f64) {
+        let (c0, dxi) = (self.first_centre, self.dxi);
+        for (i, v) in self.n.iter_mut().enumerate() {
+            *v = n(c0 + i as f64 * dxi);
+        }
+    }
+
+    /// Cell width Δξ.
+    pub fn cell_width(&self) -> f64 {
+        self.dxi
+    }
+
+    /// Number of live cells.
+    pub fn len(&self) -> usize {
+        self.n.len()
+    }
+
+    /// Whether the grid has no cells (never, after construction).
+    pub fn is_empty(&self) -> bool {
+        self.n.is_empty()
+    }
+
+    /// Moments `Q_k = ∫ ξ^k n dξ`, k = 0, 1, 2, exact for n constant on each cell.
+    pub fn moments(&self) -> [f64; 3] {
+        let (c0, dxi) = (self.first_centre, self.dxi);
+        let w2 = dxi * dxi / 12.0;
+        let mut q = [0.0; 3];
+        for (i, &v) in self.n.iter().enumerate() {
+            let c = c0 + i as f64 * dxi;
+            q[0] += v;
+            q[1] += v * c;
+            q[2] += v * (c * c + w2);
+        }
+        [q[0] * dxi, q[1] * dxi, q[2] * dxi]
+    }
+
+    /// The rate integrals `φ_k = ∫ ξ^k (f + g) n dξ`, k = 0, 1, 2 (cell-centre rates).
+    pub fn closure(&self, rates: &Rates) -> [f64; 3] {
+        let (c0, dxi) = (self.first_centre, self.dxi);
+        let mut phi = [0.0; 3];
+        for (i, &v) in self.n.iter().enumerate() {
+            if v == 0.0 {
+                continue;
+            }
+            let c = c0 + i as f64 * dxi;
+            let k = (rates.attach(c) + rates.detach(c)) * v;
+            phi[0] += k;
+            phi[1] += k * c;
+            phi[2] += k * c * c;
+        }
+        [phi[0] * dxi, phi[1] * dxi, phi[2] * dxi]
+    }
+
+    /// Advances by `dt` seconds while every cell moves by `shift` (in ξ; `-∫u dt`, negative when
+    /// shortening) at attachment factor `r`.
+    pub fn advance(&mut self, rates: &Rates, r: f64, dt: f64, shift: f64) {
+        let (c0, dxi) = (self.first_centre + 0.5 * shift, self.dxi);
+        for (i, v) in self.n.iter_mut().enumerate() {
+            let xi = c0 + i as f64 * dxi;
+            let f = rates.attach(xi);
+            let total = f + rates.detach(xi);
+            if total > 0.0 {
+                let n_inf = r * f / total;
+                *v = n_inf + (*v - n_inf) * (-total * dt).exp();
+            }
+        }
+        self.first_centre += shift;
+        self.maintain_cover();
+    }
+
+    /// Adds empty cells so that the grid covers the attachment range with its margin, and drops
+    /// outer cells whose bonds are negligible.
+    fn maintain_cover(&mut self) {
+        let lo = -COVER_MARGIN;
+        let hi = 1.0 + COVER_MARGIN;
+        while self.first_centre - 0.5 * self.dxi > lo {
+            self.make_room(true);
+            self.n.push_front(0.0);
+            self.first_centre -= self.dxi;
+        }
+        while self.last_centre() + 0.5 * self.dxi < hi {
+            self.make_room(false);
+            self.n.push_back(0.0);
+        }
+        while self.first_centre + 0.5 * self.dxi < lo
+            && self.n.front().is_some_and(|v| v.abs() < NEGLIGIBLE_BONDS)
+        {
+            self.n.pop_front();
+            self.first_centre += self.dxi;
+        }
+        while self.last_centre() - 0.5 * self.dxi > hi
+            && self.n.back().is_some_and(|v| v.abs() < NEGLIGIBLE_BONDS)
+        {
+            self.n.pop_back();
+        }
+    }
+
+    fn last_centre(&self) -> f64 {
+        self.first_centre + (self.n.len() as f64 - 1.0) * self.dxi
+    }
+
+    /// Keeps the storage within its capacity: drops the cell at the far end from where one is
+    /// about to be added (it is the oldest outflow cell).
+    fn make_room(&mut self, adding_front: bool) {
+        if self.n.len() + 1 >= self.capacity {
+            if adding_front {
+                self.n.pop_back();
+            } else {
+                self.n.pop_front();
+                self.first_centre += self.dxi;
+            }
+        }
+    }
+}

@@ -1,0 +1,610 @@
+//! The standard ROS 2 command-line arguments, as `rcl` understands them:
+//! `--ros-args -r __ns:=/ns -r __node:=name -r from:=to -p name:=value --params-file f.yaml
+//! --log-level [logger:=]level [--]`, plus name expansion and remapping of topic and service
+//! names.
+
+use ros2_client::ParameterValue;
+use std::path::Path;
+
+/// Log severities, ordered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Severity {
+    Debug,
+    Info,
+    Warn,
+    Error,
+    Fatal,
+}
+
+impl Severity {
+    /// Parses `debug`, `info`, `warn`/`warning`, `error`, `fatal` (any case).
+    pub fn parse(s: &str) -> Option<Self> {
+        match s.to_ascii_lowercase().as_str() {
+            "debug" => Some(Self::Debug),
+            "info" => Some(Self::Info),
+            "warn" | "warning" => Some(Self::Warn),
+            "error" => Some(Self::Error),
+            "fatal" => Some(Self::Fatal),
+            _ => None,
+        }
+    }
+    /// Upper-case name as ROS prints it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Debug => "DEBUG",
+            Self::Info => "INFO",
+            Self::Warn => "WARN",
+            Self::Error => "ERROR",
+            Self::Fatal => "FATAL",
+        }
+    }
+}
+
+/// One `-r [node:]from:=to` rule.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Remap {
+    /// Applies only to the node of this (original) name, when given.
+    pub node: Option<String>,
+    pub from: String,
+    pub to: String,
+}
+
+/// A parameter assignment from `-p` or a parameters file, in command-line order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamAssignment {
+    pub name: String,
+    pub value: ParameterValue,
+    /// Where it came from, for error messages (`-p` or the file name).
+    pub source: String,
+}
+
+/// The parsed command line of `muscle_actuator node`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RosArgs {
+    /// `-r __ns:=...`: the node's namespace (absolute, normalised).
+    pub namespace: Option<String>,
+    /// `-r __node:=...` (or `__name`): the node's name.
+    pub node_name: Option<String>,
+    /// Topic and service remaps, in order (the first match wins).
+    pub remaps: Vec<Remap>,
+    /// Parameter assignments in order (later ones win).
+    pub params: Vec<ParamAssignment>,
+    /// `--log-level`.
+    pub log_level: Option<Severity>,
+    /// `--disable-rosout-logs`.
+    pub disable_rosout: bool,
+    /// `--disable-stdout-logs`.
+    pub disable_stdout: bool,
+    /// `-h` / `--help` outside `--ros-args`.
+    pub help: bool,
+}
+
+/// Usage text of `muscle_actuator node`.
+pub const USAGE: &str = "\
+usage: muscle_actuator node [--ros-args [-r __ns:=/NS] [-r __node:=NAME] [-r FROM:=TO]...
+                             [-p NAME:=VALUE]... [--params-file FILE.yaml]...
+                             [--log-level [LOGGER:=]LEVEL] [--]]
+
+parameters: model (hill|huxley|huxley-pde, default huxley), rate_hz (default 1000.0),
+            publish_rate_hz (0 = every tick), config (TOML file, \"\" = embedded default),
+            record (bool), record_dir (string)
+environment: ROS_DOMAIN_ID (default 0); ROS_AUTOMATIC_DISCOVERY_RANGE=SUBNET to discover
+             beyond this host (default: loopback only)";
+
+impl RosArgs {
+    /// Parses everything after `node` on the command line. Parameter files are read here.
+    pub fn parse(args: &[String]) -> Result<Self, String> {
+        let mut out = RosArgs::default();
+        let mut i = 0;
+        let mut in_ros = false;
+        while i < args.len() {
+            let a = args[i].as_str();
+            if !in_ros {
+                match a {
+                    "--ros-args" => in_ros = true,
+                    "-h" | "--help" => out.help = true,
+                    other => {
+                        return Err(format!(
+                            "unexpected argument {other:?}: ROS arguments go after --ros-args \
+                             (try `muscle_actuator node --help`)"
+                        ))
+                    }
+                }
+                i += 1;
+                continue;
+            }
+            let mut value = |flag: &str| -> Result<String, String> {
+                i += 1;
+                args.get(i)
+                    .cloned()
+                    .ok_or_else(|| format!("{flag} needs a value"))
+            };
+            match a {
+                "--" => in_ros = false,
+                "--ros-args" => {}
+                "-r" | "--remap" => {
+                    let rule = value(a)?;
+                    out.add_remap(&rule)?;
+                }
+                "-p" | "--param" => {
+                    let rule = value(a)?;
+                    let (name, val) = rule.split_once(":=").ok_or_else(|| {
+                        format!("-p {rule:?}: expected NAME:=VALUE (e.g. -p model:=hill)")
+                    })?;
+                    if name.is_empty() {
+                        return Err(format!("-p {rule:?}: empty parameter name"));
+                    }
+                    let yaml: serde_yaml::Value = if val.is_empty() {
+                        serde_yaml::Value::String(String::new())
+                    } else {
+                        serde_yaml::from_str(val).unwrap_or(serde_yaml::Value::String(val.into()))
+                    };
+                    let value = yaml_to_param(&yaml).map_err(|e| format!("-p {rule:?}: {e}"))?;
+                    out.params.push(ParamAssignment {
+                        name: name.into(),
+                        value,
+                        source: "-p".into(),
+                    });
+                }
+                "--params-file" => {
+                    let file = value(a)?;
+                    out.params.push(ParamAssignment {
+                        name: String::new(),
+                        value: ParameterValue::String(file),
+                        source: PARAMS_FILE_MARK.into(),
+                    });
+                }
+                "--log-level" => {
+                    let spec = value(a)?;
+                    // `--log-level level` or `--log-level logger:=level`; every logger of this
+                    // process is the node's.
+                    let level = spec.rsplit_once(":=").map(|(_, l)| l).unwrap_or(&spec);
+                    out.log_level = Some(Severity::parse(level).ok_or_else(|| {
+                        format!(
+                            "--log-level {spec:?}: unknown level (debug, info, warn, error, fatal)"
+                        )
+                    })?);
+                }
+                "-e" | "--enclave" => {
+                    value(a)?;
+                }
+                "--disable-rosout-logs" => out.disable_rosout = true,
+                "--enable-rosout-logs" => out.disable_rosout = false,
+                "--disable-stdout-logs" => out.disable_stdout = true,
+                "--enable-stdout-logs" => out.disable_stdout = false,
+                "--disable-external-lib-logs" | "--enable-external-lib-logs" => {}
+                other => {
+                    return Err(format!(
+                        "unknown ROS argument {other:?} (expected -r, -p, --params-file, \
+                         --log-level, --)"
+                    ))
+                }
+            }
+            i += 1;
+        }
+        Ok(out)
+    }
+
+    fn add_remap(&mut self, rule: &str) -> Result<(), String> {
+        let (lhs, to) = rule
+            .split_once(":=")
+            .ok_or_else(|| format!("-r {rule:?}: expected FROM:=TO"))?;
+        // An optional `node:` prefix (a name has no ':' otherwise).
+        let (node, from) = match lhs.split_once(':') {
+            Some((n, f)) => (Some(n.to_string()), f),
+            None => (None, lhs),
+        };
+        if from.is_empty() || to.is_empty() {
+            return Err(format!("-r {rule:?}: empty name"));
+        }
+        if node.is_some() && (from == "__ns" || from == "__node" || from == "__name") {
+            // Node-specific namespace/name changes: apply only to our node; checked later.
+        }
+        match from {
+            "__ns" => {
+                let ns = normalise_namespace(to)
+                    .map_err(|e| format!("-r {rule:?}: bad namespace: {e}"))?;
+                self.push_node_rule(node, |s| s.namespace = Some(ns));
+            }
+            "__node" | "__name" => {
+                check_token(to).map_err(|e| format!("-r {rule:?}: bad node name: {e}"))?;
+                let name = to.to_string();
+                self.push_node_rule(node, |s| s.node_name = Some(name));
+            }
+            _ => {
+                check_name(from).map_err(|e| format!("-r {rule:?}: bad name {from:?}: {e}"))?;
+                check_name(to).map_err(|e| format!("-r {rule:?}: bad name {to:?}: {e}"))?;
+                self.remaps.push(Remap {
+                    node,
+                    from: from.into(),
+                    to: to.into(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn push_node_rule(&mut self, node: Option<String>, apply: impl FnOnce(&mut Self)) {
+        // A node-prefixed __ns/__node rule applies only to a node of that name; ours is the
+        // default name unless renamed, so compare with the default.
+        match node {
+            Some(n) if n != super::DEFAULT_NODE_NAME => {}
+            _ => apply(self),
+        }
+    }
+
+    /// The parameter assignments with every `--params-file` expanded for the node `fqn`
+    /// (its fully qualified name) in command-line order.
+    pub fn resolved_params(&self, fqn: &str) -> Result<Vec<ParamAssignment>, String> {
+        let mut out = Vec::new();
+        for p in &self.params {
+            if p.source == PARAMS_FILE_MARK {
+                if let ParameterValue::String(file) = &p.value {
+                    out.extend(read_params_file(Path::new(file), fqn)?);
+                }
+            } else {
+                out.push(p.clone());
+            }
+        }
+        Ok(out)
+    }
+}
+
+const PARAMS_FILE_MARK: &str = "\u{0}params-file";
+
+/// Converts a YAML scalar or sequence into a parameter value of the ROS 2 types.
+pub fn yaml_to_param(v: &serde_yaml::Value) -> Result<ParameterValue, String> {
+    use serde_yaml::Value as Y;
+    Ok(match v {
+        Y::Bool(b) => ParameterValue::Boolean(*b),
+        Y::Number(n) => {
+            if let Some(i) = n.as_i64() {
+                ParameterValue::Integer(i)
+            } else if let Some(f) = n.as_f64() {
+                ParameterValue::Double(f)
+            } else {
+                return Err(format!("number {n} out of range"));
+            }
+        }
+        Y::String(s) => ParameterValue::String(s.clone()),
+        Y::Null => return Err("empty value".into()),
+        Y::Sequence(items) => {
+            if items.is_empty() {
+                ParameterValue::StringArray(vec![])
+            } else if items.iter().all(|x| x.is_bool()) {
+                ParameterValue::BooleanArray(items.iter().filter_map(|x| x.as_bool()).collect())
+            } else if items.iter().all(|x| x.is_i64()) {
+                ParameterValue::IntegerArray(items.iter().filter_map(|x| x.as_i64()).collect())
+            } else if items.iter().all(|x| x.is_number()) {
+                ParameterValue::DoubleArray(items.iter().filter_map(|x| x.as_f64()).collect())
+            } else if items.iter().all(|x| x.is_string()) {
+                ParameterValue::StringArray(
+                    items
+                        .iter()
+                        .filter_map(|x| x.as_str().map(String::from))
+                        .collect(),
+                )
+            } else {
+                return Err("an array must hold values of one type".into());
+            }
+        }
+        Y::Mapping(_) => return Err("a mapping is not a parameter value".into()),
+        Y::Tagged(t) => return yaml_to_param(&t.value),
+    })
+}
+
+/// Reads the `ros__parameters` of every section of a parameters file that applies to the node
+/// `fqn` (`/**`, `/**/name`, the exact name, wildcards `*` and `**`; a key without a leading
+/// slash also matches the node's base name in any namespace). Nested keys become dotted names.
+pub fn read_params_file(path: &Path, fqn: &str) -> Result<Vec<ParamAssignment>, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read parameters file {}: {e}", path.display()))?;
+    parse_params_yaml(&text, &path.display().to_string(), fqn)
+}
+
+/// See [`read_params_file`]; `source` names the file in errors.
+pub fn parse_params_yaml(
+    text: &str,
+    source: &str,
+    fqn: &str,
+) -> Result<Vec<ParamAssignment>, String> {
+    let doc: serde_yaml::Value = serde_yaml::from_str(text)
+        .map_err(|e| format!("parameters file {source}: not valid YAML: {e}"))?;
+    let top = match &doc {
+        serde_yaml::Value::Mapping(m) => m,
+        serde_yaml::Value::Null => return Ok(vec![]),
+        _ => {
+            return Err(format!(
+                "parameters file {source}: expected `node_name: {{ros__parameters: {{...}}}}`"
+            ))
+        }
+    };
+    let mut out = Vec::new();
+    for (key, section) in top {
+        let key = key
+            .as_str()
+            .ok_or_else(|| format!("parameters file {source}: node keys must be strings"))?;
+        if !node_key_matches(key, fqn) {
+            continue;
+        }
+        let params = section
+            .as_mapping()
+            .and_then(|m| m.get("ros__parameters"))
+            .ok_or_else(|| {
+                format!("parameters file {source}: section {key:?} has no `ros__parameters`")
+            })?;
+        flatten(params, "", source, &mut out)?;
+    }
+    Ok(out)
+}
+
+fn flatten(
+    v: &serde_yaml::Value,
+    prefix: &str,
+    source: &str,
+    out: &mut Vec<ParamAssignment>,
+) -> Result<(), String> {
+    let Some(map) = v.as_mapping() else {
+        return Err(format!(
+            "parameters file {source}: `ros__parameters` must be a mapping"
+        ));
+    };
+    for (k, val) in map {
+        let k = match k {
+            serde_yaml::Value::String(s) => s.clone(),
+            other => serde_yaml::to_string(other)
+                .unwrap_or_default()
+                .trim()
+                .to_string(),
+        };
+        let name = if prefix.is_empty() {
+            k
+        } else {
+            format!("{prefix}.{k}")
+        };
+        if val.is_mapping() {
+            flatten(val, &name, source, out)?;
+        } else {
+            let value = yaml_to_param(val)
+                .map_err(|e| format!("parameters file {source}: parameter {name:?}: {e}"))?;
+            out.push(ParamAssignment {
+                name,
+                value,
+                source: source.into(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Whether a parameters-file node key applies to the node `fqn`.
+pub fn node_key_matches(key: &str, fqn: &str) -> bool {
+    let base = fqn.rsplit('/').next().unwrap_or(fqn);
+    if key == "/**" || key == "**" || key == base {
+        return true;
+    }
+    let key = if key.starts_with('/') {
+        key.to_string()
+    } else {
+        format!("/{key}")
+    };
+    let pat: Vec<&str> = key.split('/').skip(1).collect();
+    let name: Vec<&str> = fqn.split('/').skip(1).collect();
+    glob(&pat, &name)
+}
+
+fn glob(pat: &[&str], name: &[&str]) -> bool {
+    match pat.split_first() {
+        None => name.is_empty(),
+        Some((&"**", rest)) => (0..=name.len()).any(|k| glob(rest, &name[k..])),
+        Some((p, rest)) => match name.split_first() {
+            Some((n, nrest)) => (*p == "*" || p == n) && glob(rest, nrest),
+            None => false,
+        },
+    }
+}
+
+/// Checks one name token: starts with a letter or `_`, then letters, digits, `_`.
+fn check_token(t: &str) -> Result<(), String> {
+    let mut chars = t.chars();
+    match chars.next() {
+        None => return Err("empty".into()),
+        Some(c) if c.is_ascii_alphabetic() || c == '_' => {}
+        Some(c) => return Err(format!("must not start with {c:?}")),
+    }
+    if let Some(c) = t
+        .chars()
+        .find(|c| !(c.is_ascii_alphanumeric() || *c == '_'))
+    {
+        return Err(format!("character {c:?} not allowed"));
+    }
+    if t.contains("__") {
+        return Err("repeated underscores are not allowed".into());
+    }
+    Ok(())
+}
+
+/// Checks a topic or service name as written by a user: absolute, relative or private (`~`).
+pub fn check_name(n: &str) -> Result<(), String> {
+    let rest = if n == "~" {
+        return Ok(());
+    } else if let Some(r) = n.strip_prefix("~/") {
+        r
+    } else if let Some(r) = n.strip_prefix('/') {
+        r
+    } else {
+        n
+    };
+    if rest.is_empty() {
+        return Err("empty".into());
+    }
+    for tok in rest.split('/') {
+        check_token(tok)?;
+    }
+    Ok(())
+}
+
+/// Normalises a namespace: absolute, no trailing slash (except the root `/`).
+pub fn normalise_namespace(ns: &str) -> Result<String, String> {
+    let trimmed = ns.trim_matches('/');
+    if trimmed.is_empty() {
+        return Ok("/".into());
+    }
+    for tok in trimmed.split('/') {
+        check_token(tok)?;
+    }
+    Ok(format!("/{trimmed}"))
+}
+
+/// Expands a name to its absolute form for a node in namespace `ns` named `node`.
+pub fn expand(name: &str, ns: &str, node: &str) -> String {
+    let fqn = if ns == "/" {
+        format!("/{node}")
+    } else {
+        format!("{ns}/{node}")
+    };
+    if name == "~" {
+        fqn
+    } else if let Some(r) = name.strip_prefix("~/") {
+        format!("{fqn}/{r}")
+    } else if name.starts_with('/') {
+        name.to_string()
+    } else if ns == "/" {
+        format!("/{name}")
+    } else {
+        format!("{ns}/{name}")
+    }
+}
+
+/// The absolute name of `name` (as the node declares it, e.g. `~/state`) after the remap rules.
+/// `original_node` is the node's name before `__node` (node-prefixed rules match it or the
+/// new name).
+pub fn resolve(name: &str, ns: &str, node: &str, original_node: &str, remaps: &[Remap]) -> String {
+    let expanded = expand(name, ns, node);
+    for r in remaps {
+        if let Some(n) = &r.node {
+            if n != node && n != original_node {
+                continue;
+            }
+        }
+        if expand(&r.from, ns, node) == expanded {
+            return expand(&r.to, ns, node);
+        }
+    }
+    expanded
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(s: &str) -> Vec<String> {
+        s.split_whitespace().map(String::from).collect()
+    }
+
+    #[test]
+    fn parses_the_standard_arguments() {
+        let a = RosArgs::parse(&args(
+            "--ros-args -r __ns:=/lab/arm -r __node:=elbow_sim -r ~/state:=/st \
+             -p model:=hill -p rate_hz:=500 -p publish_rate_hz:=100.0 -p record:=false \
+             --log-level WARN --",
+        ))
+        .unwrap();
+        assert_eq!(a.namespace.as_deref(), Some("/lab/arm"));
+        assert_eq!(a.node_name.as_deref(), Some("elbow_sim"));
+        assert_eq!(a.remaps.len(), 1);
+        assert_eq!(a.params.len(), 4);
+        assert_eq!(a.params[0].value, ParameterValue::String("hill".into()));
+        assert_eq!(a.params[1].value, ParameterValue::Integer(500));
+        assert_eq!(a.params[2].value, ParameterValue::Double(100.0));
+        assert_eq!(a.params[3].value, ParameterValue::Boolean(false));
+        assert_eq!(a.log_level, Some(Severity::Warn));
+    }
+
+    #[test]
+    fn rejects_bad_arguments_with_a_reason() {
+        for bad in [
+            "--bogus",
+            "--ros-args -r nothing",
+            "--ros-args -p novalue",
+            "--ros-args -p",
+            "--ros-args --log-level loud",
+            "--ros-args -r __ns:=/bad-name",
+            "--ros-args -r __node:=9x",
+            "--ros-args --frobnicate",
+        ] {
+            let e = RosArgs::parse(&args(bad)).unwrap_err();
+            assert!(!e.is_empty(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn names_expand_and_remap() {
+        assert_eq!(expand("~/state", "/", "m"), "/m/state");
+        assert_eq!(expand("~/state", "/a/b", "m"), "/a/b/m/state");
+        assert_eq!(expand("joint_states", "/a", "m"), "/a/joint_states");
+        assert_eq!(expand("/diagnostics", "/a", "m"), "/diagnostics");
+        let r = vec![
+            Remap {
+                node: None,
+                from: "joint_states".into(),
+                to: "/robot/joint_states".into(),
+            },
+            Remap {
+                node: Some("other".into()),
+                from: "~/state".into(),
+                to: "x".into(),
+            },
+            Remap {
+                node: Some("m".into()),
+                from: "/a/m/activation".into(),
+                to: "cmd".into(),
+            },
+        ];
+        assert_eq!(
+            resolve("joint_states", "/a", "m", "m", &r),
+            "/robot/joint_states"
+        );
+        assert_eq!(resolve("~/state", "/a", "m", "m", &r), "/a/m/state");
+        assert_eq!(resolve("~/activation", "/a", "m", "m", &r), "/a/cmd");
+    }
+
+    #[test]
+    fn params_file_sections_apply_by_node_name() {
+        let yaml = "
+/**:
+  ros__parameters:
+    record: false
+muscle_actuator:
+  ros__parameters:
+    model: hill
+    nested:
+      value: 3
+/other/node:
+  ros__parameters:
+    model: huxley
+/lab/*:
+  ros__parameters:
+    rate_hz: 250.0
+";
+        let p = parse_params_yaml(yaml, "f.yaml", "/lab/muscle_actuator").unwrap();
+        let names: Vec<_> = p.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["record", "model", "nested.value", "rate_hz"]);
+        let p = parse_params_yaml(yaml, "f.yaml", "/other/node").unwrap();
+        let names: Vec<_> = p.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["record", "model"]);
+        assert!(parse_params_yaml("a: [", "f", "/x").is_err());
+        assert!(parse_params_yaml("x:\n  nope: 1\n", "f", "/x").is_err());
+    }
+
+    #[test]
+    fn node_keys_glob() {
+        assert!(node_key_matches("/**", "/a/b"));
+        assert!(node_key_matches("/**/b", "/a/b"));
+        assert!(node_key_matches("/**/b", "/b"));
+        assert!(node_key_matches("/a/*", "/a/b"));
+        assert!(!node_key_matches("/a/*", "/a/c/b"));
+        assert!(node_key_matches("b", "/a/b"));
+        assert!(!node_key_matches("/c/b", "/a/b"));
+    }
+}

@@ -1,0 +1,999 @@
+//! The DDS side of the node: participant, topics, the reset service, parameters, diagnostics,
+//! logging and signals. The simulation runs on the tick thread ([`super::tick`]); this side only
+//! validates and forwards inputs, and publishes what the tick thread hands over.
+
+use super::args::{self, RosArgs, Severity};
+use super::input::{self, Rejection};
+use super::msgs::muscle_actuator_msgs::{
+    ActivationCommand, ActuatorState, ExternalLoad, MuscleState,
+};
+use super::msgs::{
+    DiagnosticArray, DiagnosticStatus, Header, JointState, KeyValue, TriggerRequest,
+    TriggerResponse,
+};
+use super::params::{self, NodeParams};
+use super::tick::{self, Command, Event, LoopIo, RunSummary, Sample, TickStats};
+use super::DEFAULT_NODE_NAME;
+use futures::{FutureExt, StreamExt};
+use ros2_client::builtin_interfaces::Time;
+use ros2_client::log::LogLevel;
+use ros2_client::qos::{Durability, History, WhenFull};
+use ros2_client::{
+    Context, MessageTypeName, Name, NodeLoggingHandle, NodeName, NodeOptions, Publisher,
+    QosProfile, RosoutRaw, ServiceMapping, ServiceTypeName,
+};
+use rustdds::DomainParticipantBuilder;
+use std::collections::HashMap;
+use std::net::{IpAddr, Ipv4Addr};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{self, Receiver};
+use std::sync::{Arc, Mutex, OnceLock, RwLock};
+use std::time::{Duration, Instant};
+
+/// Highest valid `ROS_DOMAIN_ID` (as rmw implementations accept with default ports).
+const MAX_DOMAIN_ID: u16 = 232;
+
+/// The DDS domain from `ROS_DOMAIN_ID` (default 0).
+pub fn domain_id_from_env() -> Result<u16, String> {
+    match std::env::var("ROS_DOMAIN_ID") {
+        Err(_) => Ok(0),
+        Ok(s) if s.trim().is_empty() => Ok(0),
+        Ok(s) => match s.trim().parse::<u16>() {
+            Ok(d) if d <= MAX_DOMAIN_ID => Ok(d),
+            _ => Err(format!(
+                "ROS_DOMAIN_ID={s:?} is invalid: expected an integer from 0 to {MAX_DOMAIN_ID}"
+            )),
+        },
+    }
+}
+
+/// Whether discovery must stay on this host: yes unless `ROS_AUTOMATIC_DISCOVERY_RANGE=SUBNET`
+/// (`LOCALHOST`, `OFF`, unset, and `ROS_LOCALHOST_ONLY=1` all keep it local).
+pub fn discovery_is_local() -> bool {
+    !matches!(
+        std::env::var("ROS_AUTOMATIC_DISCOVERY_RANGE")
+            .map(|s| s.trim().to_ascii_uppercase())
+            .as_deref(),
+        Ok("SUBNET")
+    )
+}
+
+/// Logging to stderr and `/rosout`, with a level threshold.
+#[derive(Clone)]
+pub struct Logger {
+    rosout: Option<Arc<NodeLoggingHandle>>,
+    level: Severity,
+    stdout: bool,
+    name: String,
+}
+
+impl Logger {
+    fn log(&self, sev: Severity, msg: &str) {
+        if sev < self.level {
+            return;
+        }
+        if self.stdout {
+            let t = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map(|d| d.as_secs_f64())
+                .unwrap_or(0.0);
+            eprintln!("[{}] [{t:.6}] [{}]: {msg}", sev.label(), self.name);
+        }
+        if let Some(h) = &self.rosout {
+            let level = match sev {
+                Severity::Debug => LogLevel::Debug,
+                Severity::Info => LogLevel::Info,
+                Severity::Warn => LogLevel::Warn,
+                Severity::Error => LogLevel::Error,
+                Severity::Fatal => LogLevel::Fatal,
+            };
+            h.rosout_raw(Time::now(), level, &self.name, msg, file!(), "", line!());
+        }
+    }
+    pub fn info(&self, msg: &str) {
+        self.log(Severity::Info, msg)
+    }
+    pub fn warn(&self, msg: &str) {
+        self.log(Severity::Warn, msg)
+    }
+    pub fn error(&self, msg: &str) {
+        self.log(Severity::Error, msg)
+    }
+    pub fn debug(&self, msg: &str) {
+        self.log(Severity::Debug, msg)
+    }
+}
+
+/// Says a repeated thing at most once a second per key, with the count of what it held back.
+#[derive(Default)]
+struct RateLimit {
+    last: HashMap<String, (Instant, u64)>,
+}
+
+impl RateLimit {
+    /// `Some(suppressed_since_last)` when the message may go out now.
+    fn allow(&mut self, key: &str) -> Option<u64> {
+        let now = Instant::now();
+        match self.last.get_mut(key) {
+            Some((t, held)) if now.duration_since(*t) < Duration::from_secs(1) => {
+                *held += 1;
+                None
+            }
+            Some((t, held)) => {
+                let n = *held;
+                *t = now;
+                *held = 0;
+                Some(n)
+            }
+            None => {
+                self.last.insert(key.into(), (now, 0));
+                Some(0)
+            }
+        }
+    }
+}
+
+/// Counters of the inputs (written on the DDS side, read by diagnostics).
+#[derive(Default)]
+pub struct InputStats {
+    pub activation_received: AtomicU64,
+    pub activation_rejected: AtomicU64,
+    pub load_received: AtomicU64,
+    pub load_rejected: AtomicU64,
+    /// Commands with at least one excitation clamped to [0, 1].
+    pub clamped_commands: AtomicU64,
+    /// Excitation values clamped.
+    pub clamped_values: AtomicU64,
+    pub rejected_unknown_name: AtomicU64,
+    pub rejected_length_mismatch: AtomicU64,
+    pub rejected_non_finite: AtomicU64,
+    pub rejected_duplicate_name: AtomicU64,
+    pub rejected_empty: AtomicU64,
+    pub malformed: AtomicU64,
+    pub last_problem: Mutex<String>,
+}
+
+impl InputStats {
+    fn count_rejection(&self, r: &Rejection) {
+        let c = match r {
+            Rejection::UnknownName { .. } => &self.rejected_unknown_name,
+            Rejection::LengthMismatch { .. } => &self.rejected_length_mismatch,
+            Rejection::NonFinite { .. } => &self.rejected_non_finite,
+            Rejection::DuplicateName(_) => &self.rejected_duplicate_name,
+            Rejection::Empty => &self.rejected_empty,
+        };
+        c.fetch_add(1, Ordering::Relaxed);
+    }
+    fn total_rejected(&self) -> u64 {
+        self.activation_rejected.load(Ordering::Relaxed)
+            + self.load_rejected.load(Ordering::Relaxed)
+    }
+}
+
+/// Names that commands are checked against (they change with the `config` parameter).
+#[derive(Clone, Default)]
+struct Names {
+    muscles: Vec<String>,
+    joints: Vec<String>,
+}
+
+/// State shared between the parameter callbacks (on the spinner) and the rest.
+struct Shared {
+    params: Mutex<NodeParams>,
+    names: RwLock<Names>,
+    commands: Mutex<mpsc::Sender<Command>>,
+    /// Parameter changes act only once the node is up (the store also runs the action for the
+    /// initial values).
+    armed: AtomicBool,
+    logger: OnceLock<Logger>,
+}
+
+impl Shared {
+    fn log(&self) -> Option<&Logger> {
+        self.logger.get()
+    }
+    fn send(&self, c: Command) {
+        if let Ok(tx) = self.commands.lock() {
+            let _ = tx.send(c);
+        }
+    }
+}
+
+/// Checks one parameter change against the current set (and builds the actuator it would give
+/// when it affects the simulation), without applying it.
+fn validate_param(
+    shared: &Shared,
+    name: &str,
+    value: &ros2_client::ParameterValue,
+) -> Result<(), String> {
+    let mut candidate = shared
+        .params
+        .lock()
+        .map_err(|_| "internal error: parameter lock poisoned".to_string())?
+        .clone();
+    candidate.set(name, value, false)?;
+    if matches!(name, params::MODEL | params::RATE_HZ | params::CONFIG) {
+        candidate.build()?;
+    }
+    Ok(())
+}
+
+/// Applies an accepted parameter change.
+fn apply_param(
+    shared: &Shared,
+    name: &str,
+    value: &ros2_client::ParameterValue,
+) -> Result<(), String> {
+    if !shared.armed.load(Ordering::SeqCst) {
+        return Ok(());
+    }
+    let mut p = shared
+        .params
+        .lock()
+        .map_err(|_| "internal error: parameter lock poisoned".to_string())?;
+    let mut candidate = p.clone();
+    candidate.set(name, value, false)?;
+    match name {
+        params::MODEL | params::RATE_HZ | params::CONFIG => {
+            let act = candidate.build()?;
+            if let Ok(mut n) = shared.names.write() {
+                *n = Names {
+                    muscles: act.muscle_names().to_vec(),
+                    joints: act.joint_names().to_vec(),
+                };
+            }
+            shared.send(Command::Replace(Box::new(act)));
+            shared.send(Command::PublishEvery(candidate.publish_every()));
+        }
+        params::PUBLISH_RATE_HZ => shared.send(Command::PublishEvery(candidate.publish_every())),
+        _ => {}
+    }
+    *p = candidate;
+    drop(p);
+    if let Some(l) = shared.log() {
+        l.info(&format!("parameter {name} set to {value:?}"));
+    }
+    Ok(())
+}
+
+fn qos_reliable(depth: usize) -> QosProfile {
+    QosProfile::publisher_default()
+        .reliability_reliable(WhenFull::DEFAULT)
+        .durability(Durability::Volatile)
+        .history(History::KeepLast { depth })
+}
+
+fn dds_name(resolved: &str) -> Result<Name, String> {
+    Name::parse(resolved).map_err(|e| format!("invalid name {resolved:?}: {e:?}"))
+}
+
+fn time(ns: i64) -> Time {
+    Time::from_nanos(ns)
+}
+
+/// Converts a sample into the two published messages.
+pub fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {
+    let header = Header {
+        stamp: time(s.stamp_ns),
+        frame_id: String::new(),
+    };
+    let muscles = s
+        .muscles
+        .iter()
+        .zip(s.muscle_names.iter())
+        .map(|(m, name)| MuscleState {
+            name: name.clone(),
+            excitation: m.excitation,
+            activation: m.activation,
+            force: m.force,
+            ce_force: m.ce_force,
+            pe_force: m.pe_force,
+            fiber_length: m.fiber_length,
+            fiber_velocity: m.fiber_velocity,
+            tendon_length: m.tendon_length,
+            stiffness: m.stiffness,
+            mtu_stiffness: m.mtu_stiffness,
+            q0: m.q0,
+            q1: m.q1,
+            q2: m.q2,
+            tendon_energy: m.tendon_energy,
+            fiber_energy: m.fiber_energy,
+            crossbridge_energy: m.crossbridge_energy,
+        })
+        .collect();
+    let joint: Vec<String> = s.joint_names.to_vec();
+    let position: Vec<f64> = s.joints.iter().map(|j| j.position).collect();
+    let velocity: Vec<f64> = s.joints.iter().map(|j| j.velocity).collect();
+    let torque: Vec<f64> = s.joints.iter().map(|j| j.torque).collect();
+    let state = ActuatorState {
+        header: header.clone(),
+        model: s.model.name().into(),
+        tick: s.tick,
+        joint: joint.clone(),
+        position: position.clone(),
+        velocity: velocity.clone(),
+        torque: torque.clone(),
+        external_torque: s.joints.iter().map(|j| j.external_torque).collect(),
+        stiffness: s.joints.iter().map(|j| j.stiffness).collect(),
+        muscles,
+    };
+    let js = JointState {
+        header,
+        name: joint,
+        position,
+        velocity,
+        effort: torque,
+    };
+    (state, js)
+}
+
+/// The publisher thread: takes samples from the tick thread and publishes them.
+fn publish_loop(
+    rx: Receiver<Sample>,
+    state_pub: Publisher<ActuatorState>,
+    joint_pub: Publisher<JointState>,
+    errors: Arc<AtomicU64>,
+) {
+    while let Ok(s) = rx.recv() {
+        let (state, js) = sample_to_msgs(&s);
+        if state_pub.publish(state).is_err() {
+            errors.fetch_add(1, Ordering::Relaxed);
+        }
+        if joint_pub.publish(js).is_err() {
+            errors.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+}
+
+fn kv(key: &str, value: impl ToString) -> KeyValue {
+    KeyValue {
+        key: key.into(),
+        value: value.to_string(),
+    }
+}
+
+/// Figures of the last diagnostics period, to report rates of change.
+#[derive(Default)]
+struct DiagPrev {
+    overruns: u64,
+    rejected: u64,
+    nonfinite: u64,
+}
+
+fn diagnostics(
+    fqn: &str,
+    stats: &TickStats,
+    inputs: &InputStats,
+    params: &NodeParams,
+    publish_errors: u64,
+    prev: &mut DiagPrev,
+) -> DiagnosticArray {
+    let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
+    let (p50, p99, max) = stats.window();
+    let overruns = ld(&stats.overruns);
+    let nonfinite = ld(&stats.nonfinite_resets);
+    let rejected = inputs.total_rejected();
+    let new_overruns = overruns - prev.overruns.min(overruns);
+    let new_rejected = rejected - prev.rejected.min(rejected);
+    let new_nonfinite = nonfinite - prev.nonfinite.min(nonfinite);
+    *prev = DiagPrev {
+        overruns,
+        rejected,
+        nonfinite,
+    };
+    let rate = stats.rate_hz();
+    let (level, message) = if new_nonfinite > 0 {
+        (
+            DiagnosticStatus::ERROR,
+            format!("state became non-finite: joint reset ({new_nonfinite} in the last period)"),
+        )
+    } else if new_overruns > 0 {
+        (
+            DiagnosticStatus::WARN,
+            format!("{new_overruns} ticks later than one period in the last period"),
+        )
+    } else {
+        (DiagnosticStatus::OK, format!("holding {rate} Hz"))
+    };
+    let tick_status = DiagnosticStatus {
+        level,
+        name: format!("{fqn}: tick loop"),
+        message,
+        hardware_id: fqn.into(),
+        values: vec![
+            kv("model", params.model.name()),
+            kv("rate_hz", rate),
+            kv("tick", ld(&stats.current_tick)),
+            kv("ticks_total", ld(&stats.ticks)),
+            kv("overruns", overruns),
+            kv("skipped_ticks", ld(&stats.skipped)),
+            kv("lateness_p50_us", format!("{:.1}", p50 / 1e3)),
+            kv("lateness_p99_us", format!("{:.1}", p99 / 1e3)),
+            kv("lateness_max_us", format!("{:.1}", max / 1e3)),
+            kv(
+                "lateness_max_total_us",
+                format!("{:.1}", ld(&stats.max_lateness_ns) as f64 / 1e3),
+            ),
+            kv(
+                "step_mean_us",
+                format!(
+                    "{:.2}",
+                    f64::from_bits(stats.window_step_ns.load(Ordering::Relaxed)) / 1e3
+                ),
+            ),
+            kv("states_dropped", ld(&stats.samples_dropped)),
+            kv("publish_errors", publish_errors),
+            kv("nonfinite_resets", nonfinite),
+            kv("resets", ld(&stats.resets)),
+        ],
+    };
+    let last = inputs
+        .last_problem
+        .lock()
+        .map(|s| s.clone())
+        .unwrap_or_default();
+    let input_status = DiagnosticStatus {
+        level: if new_rejected > 0 {
+            DiagnosticStatus::WARN
+        } else {
+            DiagnosticStatus::OK
+        },
+        name: format!("{fqn}: inputs"),
+        message: if new_rejected > 0 {
+            format!("{new_rejected} commands rejected in the last period")
+        } else {
+            "ok".into()
+        },
+        hardware_id: fqn.into(),
+        values: vec![
+            kv("activation_received", ld(&inputs.activation_received)),
+            kv("activation_rejected", ld(&inputs.activation_rejected)),
+            kv("load_received", ld(&inputs.load_received)),
+            kv("load_rejected", ld(&inputs.load_rejected)),
+            kv("rejected_total", rejected),
+            kv("rejected_unknown_name", ld(&inputs.rejected_unknown_name)),
+            kv(
+                "rejected_length_mismatch",
+                ld(&inputs.rejected_length_mismatch),
+            ),
+            kv("rejected_non_finite", ld(&inputs.rejected_non_finite)),
+            kv(
+                "rejected_duplicate_name",
+                ld(&inputs.rejected_duplicate_name),
+            ),
+            kv("rejected_empty", ld(&inputs.rejected_empty)),
+            kv("clamped_commands", ld(&inputs.clamped_commands)),
+            kv("clamped_values", ld(&inputs.clamped_values)),
+            kv("malformed", ld(&inputs.malformed)),
+            kv("last_problem", last),
+        ],
+    };
+    let recorder_status = DiagnosticStatus {
+        level: DiagnosticStatus::OK,
+        name: format!("{fqn}: recorder"),
+        message: "not recording (recording is not available in this build)".into(),
+        hardware_id: fqn.into(),
+        values: vec![
+            kv("record", params.record),
+            kv("record_dir", &params.record_dir),
+            kv("state", "inactive"),
+        ],
+    };
+    DiagnosticArray {
+        header: Header {
+            stamp: Time::now(),
+            frame_id: String::new(),
+        },
+        status: vec![tick_status, input_status, recorder_status],
+    }
+}
+
+/// Everything the node needs, resolved from the command line before DDS starts.
+#[derive(Debug)]
+struct Setup {
+    namespace: String,
+    name: String,
+    fqn: String,
+    params: NodeParams,
+    ros_args: RosArgs,
+}
+
+fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
+    let ros_args = RosArgs::parse(argv)?;
+    if ros_args.help {
+        println!("{}", args::USAGE);
+        return Ok(None);
+    }
+    let namespace = ros_args.namespace.clone().unwrap_or_else(|| "/".into());
+    let name = ros_args
+        .node_name
+        .clone()
+        .unwrap_or_else(|| DEFAULT_NODE_NAME.into());
+    let fqn = args::expand("~", &namespace, &name);
+    let mut p = NodeParams::default();
+    for a in ros_args.resolved_params(&fqn)? {
+        if a.name == "use_sim_time" {
+            if !matches!(a.value, ros2_client::ParameterValue::Boolean(_)) {
+                return Err(format!("{}: use_sim_time must be a bool", a.source));
+            }
+            continue;
+        }
+        p.set(&a.name, &a.value, true)
+            .map_err(|e| format!("{}: {e}", a.source))?;
+    }
+    Ok(Some(Setup {
+        namespace,
+        name,
+        fqn,
+        params: p,
+        ros_args,
+    }))
+}
+
+/// Runs the node (see [`super::run_node`]).
+pub fn run(argv: &[String]) -> Result<(), String> {
+    let Some(setup) = setup(argv)? else {
+        return Ok(());
+    };
+    let actuator = setup.params.build()?;
+    let level = setup.ros_args.log_level.unwrap_or(Severity::Info);
+
+    // Signals first, so that an early Ctrl-C is not lost.
+    let (stop_tx, stop_rx) = smol::channel::bounded::<()>(1);
+    let mut signals = signal_hook::iterator::Signals::new([
+        signal_hook::consts::SIGINT,
+        signal_hook::consts::SIGTERM,
+    ])
+    .map_err(|e| format!("cannot install signal handlers: {e}"))?;
+    let signals_handle = signals.handle();
+    std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            let mut count = 0;
+            for _ in signals.forever() {
+                count += 1;
+                if count > 1 {
+                    // A second signal: the user insists.
+                    std::process::exit(130);
+                }
+                let _ = stop_tx.try_send(());
+            }
+        })
+        .map_err(|e| format!("cannot start the signal thread: {e}"))?;
+
+    // DDS participant: ROS_DOMAIN_ID, discovery on loopback unless SUBNET.
+    let domain = domain_id_from_env()?;
+    let local = discovery_is_local();
+    let mut builder = DomainParticipantBuilder::new(domain);
+    if local {
+        builder = builder.with_only_networks([IpAddr::V4(Ipv4Addr::LOCALHOST)]);
+    }
+    let participant = builder
+        .build()
+        .map_err(|e| format!("cannot create the DDS participant (domain {domain}): {e:?}"))?;
+    let context = Context::from_domain_participant(participant)
+        .map_err(|e| format!("cannot create the ROS 2 context: {e:?}"))?;
+
+    // Parameters, shared with the spinner's callbacks.
+    let (cmd_tx, cmd_rx) = tick::command_channel();
+    let shared = Arc::new(Shared {
+        params: Mutex::new(setup.params.clone()),
+        names: RwLock::new(Names {
+            muscles: actuator.muscle_names().to_vec(),
+            joints: actuator.joint_names().to_vec(),
+        }),
+        commands: Mutex::new(cmd_tx.clone()),
+        armed: AtomicBool::new(false),
+        logger: OnceLock::new(),
+    });
+    let mut options = NodeOptions::new()
+        .enable_rosout(!setup.ros_args.disable_rosout)
+        .start_parameter_services(true);
+    for (n, v) in setup.params.values() {
+        options = options.declare_parameter(n, v);
+    }
+    let sv = shared.clone();
+    let sa = shared.clone();
+    options = options
+        .parameter_validator(Box::new(move |n, v| validate_param(&sv, n, v)))
+        .parameter_set_action(Box::new(move |n, v| apply_param(&sa, n, v)));
+    let node_name = NodeName::new(&setup.namespace, &setup.name)
+        .map_err(|e| format!("invalid node name {}: {e:?}", setup.fqn))?;
+    let mut node = context
+        .new_node(node_name, options)
+        .map_err(|e| format!("cannot create node {}: {e:?}", setup.fqn))?;
+
+    let logger = Logger {
+        rosout: if setup.ros_args.disable_rosout {
+            None
+        } else {
+            Some(Arc::new(node.logging_handle()))
+        },
+        level,
+        stdout: !setup.ros_args.disable_stdout,
+        name: setup.fqn.trim_start_matches('/').replace('/', "."),
+    };
+    let _ = shared.logger.set(logger.clone());
+
+    // Topics and the service, with the remap rules.
+    let resolve = |n: &str| {
+        args::resolve(
+            n,
+            &setup.namespace,
+            &setup.name,
+            DEFAULT_NODE_NAME,
+            &setup.ros_args.remaps,
+        )
+    };
+    let qos = qos_reliable(10);
+    let mk_topic = |node: &ros2_client::Node, name: &str, ty: (&str, &str)| {
+        let resolved = resolve(name);
+        let n = dds_name(&resolved)?;
+        node.create_topic(&n, MessageTypeName::new(ty.0, ty.1), &qos)
+            .map(|t| (t, resolved.clone()))
+            .map_err(|e| format!("cannot create topic {resolved}: {e:?}"))
+    };
+    let (activation_topic, activation_name) = mk_topic(
+        &node,
+        "~/activation",
+        ("muscle_actuator_msgs", "ActivationCommand"),
+    )?;
+    let (load_topic, load_name) = mk_topic(
+        &node,
+        "~/external_load",
+        ("muscle_actuator_msgs", "ExternalLoad"),
+    )?;
+    let (state_topic, state_name) =
+        mk_topic(&node, "~/state", ("muscle_actuator_msgs", "ActuatorState"))?;
+    let (js_topic, js_name) = mk_topic(&node, "joint_states", ("sensor_msgs", "JointState"))?;
+    let (diag_topic, _) = mk_topic(
+        &node,
+        "/diagnostics",
+        ("diagnostic_msgs", "DiagnosticArray"),
+    )?;
+    let activation_sub = node
+        .create_subscription::<ActivationCommand>(&activation_topic, Some(qos.clone()))
+        .map_err(|e| format!("cannot subscribe to {activation_name}: {e:?}"))?;
+    let load_sub = node
+        .create_subscription::<ExternalLoad>(&load_topic, Some(qos.clone()))
+        .map_err(|e| format!("cannot subscribe to {load_name}: {e:?}"))?;
+    let state_pub = node
+        .create_publisher::<ActuatorState>(&state_topic, Some(qos.clone()))
+        .map_err(|e| format!("cannot publish {state_name}: {e:?}"))?;
+    let js_pub = node
+        .create_publisher::<JointState>(&js_topic, Some(qos.clone()))
+        .map_err(|e| format!("cannot publish {js_name}: {e:?}"))?;
+    let diag_pub = node
+        .create_publisher::<DiagnosticArray>(&diag_topic, Some(qos.clone()))
+        .map_err(|e| format!("cannot publish /diagnostics: {e:?}"))?;
+    let reset_name = resolve("~/reset");
+    let reset_server = node
+        .create_server::<TriggerRequest, TriggerResponse>(
+            ServiceMapping::Enhanced,
+            &dds_name(&reset_name)?,
+            &ServiceTypeName::new("std_srvs", "Trigger"),
+            qos.clone(),
+            qos.clone(),
+        )
+        .map_err(|e| format!("cannot create service {reset_name}: {e:?}"))?;
+    let spinner = node
+        .spinner()
+        .map_err(|e| format!("cannot start the node's spinner: {e:?}"))?;
+
+    // The tick thread and the publisher thread.
+    let stats = Arc::new(TickStats::default());
+    let inputs = Arc::new(InputStats::default());
+    let stop = Arc::new(AtomicBool::new(false));
+    let (sample_tx, sample_rx) = mpsc::sync_channel::<Sample>(256);
+    let (event_tx, event_rx) = mpsc::sync_channel::<Event>(1024);
+    let publish_errors = Arc::new(AtomicU64::new(0));
+    let pe = publish_errors.clone();
+    let publisher_thread = std::thread::Builder::new()
+        .name("publish".into())
+        .spawn(move || publish_loop(sample_rx, state_pub, js_pub, pe))
+        .map_err(|e| format!("cannot start the publisher thread: {e}"))?;
+    let model = actuator.model();
+    let rate = actuator.rate_hz();
+    let tick_thread = tick::spawn(
+        actuator,
+        setup.params.publish_every(),
+        LoopIo {
+            commands: cmd_rx,
+            samples: sample_tx,
+            events: event_tx,
+            stats: stats.clone(),
+            stop: stop.clone(),
+        },
+    )
+    .map_err(|e| format!("cannot start the tick thread: {e}"))?;
+    shared.armed.store(true, Ordering::SeqCst);
+    logger.info(&format!(
+        "{} up: model {model}, {rate} Hz, domain {domain}, discovery {}; topics {activation_name}, \
+         {load_name} -> {state_name}, {js_name}, /diagnostics; service {reset_name}",
+        setup.fqn,
+        if local { "localhost" } else { "subnet" },
+    ));
+
+    let limits = Mutex::new(RateLimit::default());
+    let report = |key: &str, sev: Severity, msg: String| {
+        let allowed = limits.lock().ok().and_then(|mut l| l.allow(key));
+        if let Some(held) = allowed {
+            if held > 0 {
+                logger.log(sev, &format!("{msg} ({held} more like this held back)"));
+            } else {
+                logger.log(sev, &msg);
+            }
+        }
+    };
+
+    let activation_task = async {
+        let mut stream = std::pin::pin!(activation_sub.async_stream());
+        while let Some(r) = stream.next().await {
+            inputs.activation_received.fetch_add(1, Ordering::Relaxed);
+            match r {
+                Ok((msg, _info)) => {
+                    let known = shared
+                        .names
+                        .read()
+                        .map(|n| n.muscles.clone())
+                        .unwrap_or_default();
+                    match input::validate_activation(&msg.muscle, &msg.excitation, &known) {
+                        Ok(acc) => {
+                            if !acc.clamped.is_empty() {
+                                inputs.clamped_commands.fetch_add(1, Ordering::Relaxed);
+                                inputs
+                                    .clamped_values
+                                    .fetch_add(acc.clamped.len() as u64, Ordering::Relaxed);
+                                let what: Vec<String> = acc
+                                    .clamped
+                                    .iter()
+                                    .map(|(n, u)| format!("{n}={u}"))
+                                    .collect();
+                                let m = format!(
+                                    "activation: excitation outside [0, 1] clamped: {}",
+                                    what.join(", ")
+                                );
+                                if let Ok(mut l) = inputs.last_problem.lock() {
+                                    *l = m.clone();
+                                }
+                                report("clamped", Severity::Warn, m);
+                            }
+                            shared.send(Command::Excitation(acc.values));
+                        }
+                        Err(rej) => {
+                            inputs.activation_rejected.fetch_add(1, Ordering::Relaxed);
+                            inputs.count_rejection(&rej);
+                            let m = format!("activation command rejected: {rej}");
+                            if let Ok(mut l) = inputs.last_problem.lock() {
+                                *l = m.clone();
+                            }
+                            report(rej.kind(), Severity::Warn, m);
+                        }
+                    }
+                }
+                Err(e) => {
+                    inputs.malformed.fetch_add(1, Ordering::Relaxed);
+                    report(
+                        "malformed",
+                        Severity::Warn,
+                        format!("unreadable activation message: {e:?}"),
+                    );
+                }
+            }
+        }
+    };
+    let load_task = async {
+        let mut stream = std::pin::pin!(load_sub.async_stream());
+        while let Some(r) = stream.next().await {
+            inputs.load_received.fetch_add(1, Ordering::Relaxed);
+            match r {
+                Ok((msg, _info)) => {
+                    let known = shared
+                        .names
+                        .read()
+                        .map(|n| n.joints.clone())
+                        .unwrap_or_default();
+                    match input::validate_load(&msg.joint, &msg.torque, &known) {
+                        Ok(acc) => shared.send(Command::Load(acc.values)),
+                        Err(rej) => {
+                            inputs.load_rejected.fetch_add(1, Ordering::Relaxed);
+                            inputs.count_rejection(&rej);
+                            let m = format!("external load rejected: {rej}");
+                            if let Ok(mut l) = inputs.last_problem.lock() {
+                                *l = m.clone();
+                            }
+                            report(rej.kind(), Severity::Warn, m);
+                        }
+                    }
+                }
+                Err(e) => {
+                    inputs.malformed.fetch_add(1, Ordering::Relaxed);
+                    report(
+                        "malformed",
+                        Severity::Warn,
+                        format!("unreadable external load message: {e:?}"),
+                    );
+                }
+            }
+        }
+    };
+    let reset_task = async {
+        let mut stream = reset_server.receive_request_stream();
+        while let Some(r) = stream.next().await {
+            let Ok((id, _req)) = r else {
+                continue;
+            };
+            let (tx, rx) = futures::channel::oneshot::channel();
+            shared.send(Command::Reset(Some(tx)));
+            let timeout = smol::Timer::after(Duration::from_secs(2));
+            let resp = futures::select! {
+                r = rx.fuse() => match r {
+                    Ok(before) => TriggerResponse {
+                        success: true,
+                        message: format!("reset to the initial state after {before} ticks"),
+                    },
+                    Err(_) => TriggerResponse {
+                        success: false,
+                        message: "the tick loop is not running".into(),
+                    },
+                },
+                _ = FutureExt::fuse(timeout) => TriggerResponse {
+                    success: false,
+                    message: "the tick loop did not answer within 2 s".into(),
+                },
+            };
+            if let Err(e) = reset_server.async_send_response(id, resp).await {
+                logger.warn(&format!("reset: cannot send the response: {e:?}"));
+            }
+        }
+    };
+    let diag_task = async {
+        let mut prev = DiagPrev::default();
+        loop {
+            smol::Timer::after(Duration::from_secs(1)).await;
+            let p = shared.params.lock().map(|p| p.clone()).unwrap_or_default();
+            let msg = diagnostics(
+                &setup.fqn,
+                &stats,
+                &inputs,
+                &p,
+                publish_errors.load(Ordering::Relaxed),
+                &mut prev,
+            );
+            if let Err(e) = diag_pub.async_publish(msg).await {
+                logger.debug(&format!("diagnostics: publish failed: {e:?}"));
+            }
+        }
+    };
+    let events_task = async {
+        loop {
+            smol::Timer::after(Duration::from_millis(50)).await;
+            while let Ok(e) = event_rx.try_recv() {
+                match e {
+                    Event::NonFiniteReset { tick } => report(
+                        "nonfinite",
+                        Severity::Error,
+                        format!(
+                            "the simulation state became non-finite at tick {tick}: joint reset \
+                             to its initial state, the last valid command stays in force"
+                        ),
+                    ),
+                    Event::Overrun { tick, lateness_us } => report(
+                        "overrun",
+                        Severity::Warn,
+                        format!(
+                            "tick {tick} started {lateness_us:.0} us late (more than one period)"
+                        ),
+                    ),
+                    Event::Resync { skipped } => logger.warn(&format!(
+                        "the tick loop stalled: {skipped} ticks skipped, schedule restarted"
+                    )),
+                    Event::Replaced { model, rate_hz } => logger.info(&format!(
+                        "actuator rebuilt: model {model}, {rate_hz} Hz (from the initial state)"
+                    )),
+                    Event::Reset { at_tick } => {
+                        logger.info(&format!("reset to the initial state after {at_tick} ticks"))
+                    }
+                }
+            }
+        }
+    };
+
+    smol::block_on(async {
+        let spin = spinner.spin().fuse();
+        let stop_fut = stop_rx.recv().fuse();
+        let a = activation_task.fuse();
+        let l = load_task.fuse();
+        let r = reset_task.fuse();
+        let d = diag_task.fuse();
+        let e = events_task.fuse();
+        futures::pin_mut!(spin, stop_fut, a, l, r, d, e);
+        futures::select! {
+            _ = stop_fut => {},
+            res = spin => {
+                if let Err(e) = res {
+                    logger.error(&format!("the node's spinner failed: {e:?}"));
+                }
+            },
+            _ = a => {}, _ = l => {}, _ = r => {}, _ = d => {}, _ = e => {},
+        }
+    });
+
+    // Clean stop: end the loop, then the publisher; the DDS entities go with the node.
+    stop.store(true, Ordering::SeqCst);
+    let summary: RunSummary = tick_thread
+        .join()
+        .map_err(|_| "the tick thread panicked".to_string())?;
+    drop(cmd_tx);
+    drop(shared);
+    let _ = publisher_thread.join();
+    logger.info(&format!(
+        "stopped after {} ticks: lateness p50 {:.1} us, p99 {:.1} us, max {:.1} us; {} overruns, \
+         {} skipped; mean step {:.2} us",
+        summary.ticks,
+        summary.p50_us,
+        summary.p99_us,
+        summary.max_us,
+        summary.overruns,
+        summary.skipped,
+        summary.mean_step_us
+    ));
+    if std::env::var_os("MUSCLE_ACTUATOR_TICK_SUMMARY").is_some() {
+        eprintln!(
+            "tick-summary: {{\"ticks\": {}, \"overruns\": {}, \"skipped\": {}, \"p50_us\": {:.3}, \
+             \"p99_us\": {:.3}, \"max_us\": {:.3}, \"mean_step_us\": {:.3}}}",
+            summary.ticks,
+            summary.overruns,
+            summary.skipped,
+            summary.p50_us,
+            summary.p99_us,
+            summary.max_us,
+            summary.mean_step_us
+        );
+    }
+    signals_handle.close();
+    drop(reset_server);
+    drop(activation_sub);
+    drop(load_sub);
+    drop(diag_pub);
+    drop(node);
+    drop(context);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rate_limit_holds_back_repeats() {
+        let mut r = RateLimit::default();
+        assert_eq!(r.allow("a"), Some(0));
+        assert_eq!(r.allow("a"), None);
+        assert_eq!(r.allow("a"), None);
+        assert_eq!(r.allow("b"), Some(0));
+    }
+
+    #[test]
+    fn setup_applies_arguments_in_order() {
+        let argv: Vec<String> =
+            "--ros-args -r __ns:=/lab -p model:=hill -p rate_hz:=250 -p model:=huxley"
+                .split_whitespace()
+                .map(String::from)
+                .collect();
+        let s = setup(&argv).unwrap().unwrap();
+        assert_eq!(s.fqn, "/lab/muscle_actuator");
+        assert_eq!(s.params.model.name(), "huxley");
+        assert_eq!(s.params.rate_hz, 250.0);
+        let bad: Vec<String> = "--ros-args -p rate_hz:=-1"
+            .split_whitespace()
+            .map(String::from)
+            .collect();
+        assert!(setup(&bad).unwrap_err().contains("rate_hz"));
+        let bad: Vec<String> = "--ros-args -p colour:=red"
+            .split_whitespace()
+            .map(String::from)
+            .collect();
+        assert!(setup(&bad).unwrap_err().contains("colour"));
+    }
+}

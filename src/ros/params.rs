@@ -1,0 +1,242 @@
+//! The node's six parameters (SPEC.md): their defaults, types and validation.
+
+use crate::config::ActuatorConfig;
+use crate::physics::model::ModelKind;
+use crate::sim::Actuator;
+use ros2_client::ParameterValue;
+use std::path::Path;
+
+/// Parameter names.
+pub const MODEL: &str = "model";
+pub const RATE_HZ: &str = "rate_hz";
+pub const PUBLISH_RATE_HZ: &str = "publish_rate_hz";
+pub const CONFIG: &str = "config";
+pub const RECORD: &str = "record";
+pub const RECORD_DIR: &str = "record_dir";
+/// All of them, in the order they are declared.
+pub const ALL: [&str; 6] = [MODEL, RATE_HZ, PUBLISH_RATE_HZ, CONFIG, RECORD, RECORD_DIR];
+
+/// Upper bound on the tick rate (a sanity bound: 100 kHz).
+pub const MAX_RATE_HZ: f64 = 100_000.0;
+
+/// The values of the node's parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NodeParams {
+    /// Contractile-element model.
+    pub model: ModelKind,
+    /// Tick rate, Hz.
+    pub rate_hz: f64,
+    /// State publication rate, Hz; 0 (or >= rate_hz) = every tick.
+    pub publish_rate_hz: f64,
+    /// Configuration file ("" = the embedded default).
+    pub config: String,
+    /// Record to MCAP.
+    pub record: bool,
+    /// Directory for recordings.
+    pub record_dir: String,
+}
+
+impl Default for NodeParams {
+    fn default() -> Self {
+        Self {
+            model: ModelKind::Huxley,
+            rate_hz: 1000.0,
+            publish_rate_hz: 0.0,
+            config: String::new(),
+            record: true,
+            record_dir: "runs".into(),
+        }
+    }
+}
+
+impl NodeParams {
+    /// The value of parameter `name` as declared to ROS.
+    pub fn value(&self, name: &str) -> Option<ParameterValue> {
+        Some(match name {
+            MODEL => ParameterValue::String(self.model.name().into()),
+            RATE_HZ => ParameterValue::Double(self.rate_hz),
+            PUBLISH_RATE_HZ => ParameterValue::Double(self.publish_rate_hz),
+            CONFIG => ParameterValue::String(self.config.clone()),
+            RECORD => ParameterValue::Boolean(self.record),
+            RECORD_DIR => ParameterValue::String(self.record_dir.clone()),
+            _ => return None,
+        })
+    }
+
+    /// Every parameter with its value.
+    pub fn values(&self) -> Vec<(&'static str, ParameterValue)> {
+        ALL.iter()
+            .filter_map(|n| self.value(n).map(|v| (*n, v)))
+            .collect()
+    }
+
+    /// Sets one parameter with the ROS value's own type (as the parameter services deliver it),
+    /// checking its rules but not the whole (see [`NodeParams::build`]).
+    /// `lenient` (start-up values from `-p` and files) also accepts an integer for a double.
+    pub fn set(&mut self, name: &str, value: &ParameterValue, lenient: bool) -> Result<(), String> {
+        let as_f64 = |v: &ParameterValue| -> Result<f64, String> {
+            match v {
+                ParameterValue::Double(d) => Ok(*d),
+                ParameterValue::Integer(i) if lenient => Ok(*i as f64),
+                other => Err(format!(
+                    "parameter {name:?} must be a double (e.g. 1000.0), got {}",
+                    describe(other)
+                )),
+            }
+        };
+        let as_string = |v: &ParameterValue| -> Result<String, String> {
+            match v {
+                ParameterValue::String(s) => Ok(s.clone()),
+                other => Err(format!(
+                    "parameter {name:?} must be a string, got {}",
+                    describe(other)
+                )),
+            }
+        };
+        match name {
+            MODEL => {
+                let s = as_string(value)?;
+                self.model = s.parse::<ModelKind>().map_err(|e| e.to_string())?;
+            }
+            RATE_HZ => {
+                let r = as_f64(value)?;
+                if !(r.is_finite() && r > 0.0 && r <= MAX_RATE_HZ) {
+                    return Err(format!(
+                        "rate_hz = {r} is invalid: must be a finite number > 0 and <= {MAX_RATE_HZ}"
+                    ));
+                }
+                self.rate_hz = r;
+            }
+            PUBLISH_RATE_HZ => {
+                let r = as_f64(value)?;
+                if !(r.is_finite() && r >= 0.0) {
+                    return Err(format!(
+                        "publish_rate_hz = {r} is invalid: must be finite and >= 0 \
+                         (0 = publish every tick)"
+                    ));
+                }
+                self.publish_rate_hz = r;
+            }
+            CONFIG => self.config = as_string(value)?,
+            RECORD => match value {
+                ParameterValue::Boolean(b) => self.record = *b,
+                other => {
+                    return Err(format!(
+                        "parameter \"record\" must be a bool, got {}",
+                        describe(other)
+                    ))
+                }
+            },
+            RECORD_DIR => {
+                let d = as_string(value)?;
+                if d.is_empty() {
+                    return Err("record_dir must not be empty".into());
+                }
+                self.record_dir = d;
+            }
+            other => {
+                return Err(format!(
+                    "unknown parameter {other:?} (known: {})",
+                    ALL.join(", ")
+                ))
+            }
+        }
+        Ok(())
+    }
+
+    /// Loads the configuration these parameters name.
+    pub fn load_config(&self) -> Result<ActuatorConfig, String> {
+        if self.config.is_empty() {
+            Ok(ActuatorConfig::default())
+        } else {
+            ActuatorConfig::from_file(Path::new(&self.config)).map_err(|e| e.to_string())
+        }
+    }
+
+    /// Builds the actuator these parameters describe (checks the whole set).
+    pub fn build(&self) -> Result<Actuator, String> {
+        let cfg = self.load_config()?;
+        Actuator::new(&cfg, self.model, self.rate_hz)
+    }
+
+    /// Publish every `n`th tick.
+    pub fn publish_every(&self) -> u64 {
+        publish_every(self.rate_hz, self.publish_rate_hz)
+    }
+}
+
+/// Publish every `n`th tick for a tick rate and a publication rate (0 = every tick).
+pub fn publish_every(rate_hz: f64, publish_rate_hz: f64) -> u64 {
+    if publish_rate_hz <= 0.0 || publish_rate_hz >= rate_hz {
+        1
+    } else {
+        (rate_hz / publish_rate_hz).round().max(1.0) as u64
+    }
+}
+
+fn describe(v: &ParameterValue) -> String {
+    match v {
+        ParameterValue::NotSet => "nothing (not set)".into(),
+        ParameterValue::Boolean(b) => format!("bool {b}"),
+        ParameterValue::Integer(i) => format!("integer {i}"),
+        ParameterValue::Double(d) => format!("double {d}"),
+        ParameterValue::String(s) => format!("string {s:?}"),
+        other => format!("{other:?}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rules() {
+        let mut p = NodeParams::default();
+        assert!(p
+            .set(MODEL, &ParameterValue::String("hill".into()), false)
+            .is_ok());
+        assert_eq!(p.model, ModelKind::Hill);
+        let e = p
+            .set(MODEL, &ParameterValue::String("bogus".into()), false)
+            .unwrap_err();
+        assert!(e.contains("bogus"), "{e}");
+        assert!(p.set(RATE_HZ, &ParameterValue::Double(0.0), false).is_err());
+        assert!(p
+            .set(RATE_HZ, &ParameterValue::Double(-5.0), false)
+            .is_err());
+        assert!(p
+            .set(RATE_HZ, &ParameterValue::Double(f64::NAN), false)
+            .is_err());
+        assert!(p
+            .set(RATE_HZ, &ParameterValue::Integer(500), false)
+            .is_err());
+        assert!(p.set(RATE_HZ, &ParameterValue::Integer(500), true).is_ok());
+        assert_eq!(p.rate_hz, 500.0);
+        assert!(p
+            .set(PUBLISH_RATE_HZ, &ParameterValue::Double(-1.0), false)
+            .is_err());
+        assert!(p
+            .set(RECORD, &ParameterValue::String("yes".into()), false)
+            .is_err());
+        assert!(p
+            .set("nope", &ParameterValue::Boolean(true), false)
+            .is_err());
+        assert_eq!(publish_every(1000.0, 0.0), 1);
+        assert_eq!(publish_every(1000.0, 100.0), 10);
+        assert_eq!(publish_every(1000.0, 2000.0), 1);
+        assert_eq!(p.values().len(), 6);
+    }
+
+    #[test]
+    fn missing_config_file_is_an_error() {
+        let mut p = NodeParams::default();
+        p.set(
+            CONFIG,
+            &ParameterValue::String("/nonexistent/x.toml".into()),
+            false,
+        )
+        .unwrap();
+        let e = p.load_config().unwrap_err();
+        assert!(e.contains("/nonexistent/x.toml"), "{e}");
+    }
+}

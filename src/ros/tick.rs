@@ -1,0 +1,438 @@
+//! The fixed-rate tick loop, on its own thread. It owns the actuator; everything else talks to
+//! it through channels, so it never waits for DDS: commands queue in a channel and are applied
+//! at the next tick boundary, samples go out through a bounded channel (dropped and counted when
+//! the publisher falls behind), events for the log through another.
+
+use crate::physics::model::ModelKind;
+use crate::sim::{Actuator, JointSnapshot, MuscleSnapshot};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError, TrySendError};
+use std::sync::Arc;
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+/// A request for the tick loop, applied at the next tick boundary.
+pub enum Command {
+    /// New excitations: (muscle index, u in [0, 1]).
+    Excitation(Vec<(usize, f64)>),
+    /// New external torques: (joint index, N m).
+    Load(Vec<(usize, f64)>),
+    /// Back to the initial state; the reply carries the tick count before the reset.
+    Reset(Option<futures::channel::oneshot::Sender<u64>>),
+    /// A new actuator (model, rate or configuration changed): starts from its initial state,
+    /// the inputs in force stay in force.
+    Replace(Box<Actuator>),
+    /// Publish every `n`th tick.
+    PublishEvery(u64),
+}
+
+/// What the tick loop hands to the publisher after a tick.
+#[derive(Debug, Clone)]
+pub struct Sample {
+    /// Tick count after the step (1 for the first tick after start or reset).
+    pub tick: u64,
+    /// Wall-clock time of the tick's deadline, ns since the Unix epoch.
+    pub stamp_ns: i64,
+    pub model: ModelKind,
+    pub muscle_names: Arc<[String]>,
+    pub joint_names: Arc<[String]>,
+    pub muscles: Vec<MuscleSnapshot>,
+    pub joints: Vec<JointSnapshot>,
+}
+
+/// Something the log should say (the loop itself never logs).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    /// The state stopped being finite at `tick`: the joint was reset.
+    NonFiniteReset { tick: u64 },
+    /// A tick started more than one period late.
+    Overrun { tick: u64, lateness_us: f64 },
+    /// The loop fell so far behind that it dropped the backlog and restarted its schedule.
+    Resync { skipped: u64 },
+    /// The actuator was replaced (model/rate/config change).
+    Replaced { model: ModelKind, rate_hz: f64 },
+    /// A reset was done on request.
+    Reset { at_tick: u64 },
+}
+
+/// Counters and timing figures shared with the diagnostics (written by the tick loop).
+#[derive(Debug, Default)]
+pub struct TickStats {
+    /// Ticks done since start (across resets).
+    pub ticks: AtomicU64,
+    /// The actuator's current tick.
+    pub current_tick: AtomicU64,
+    /// Ticks that started more than one period after their deadline.
+    pub overruns: AtomicU64,
+    /// Ticks dropped by a schedule restart after a long stall.
+    pub skipped: AtomicU64,
+    /// States dropped because the publisher was behind.
+    pub samples_dropped: AtomicU64,
+    /// Resets after a non-finite state.
+    pub nonfinite_resets: AtomicU64,
+    /// Resets on request.
+    pub resets: AtomicU64,
+    /// Lateness over the last second, ns (p50, p99, max): f64 bits.
+    pub window_p50_ns: AtomicU64,
+    pub window_p99_ns: AtomicU64,
+    pub window_max_ns: AtomicU64,
+    /// Whole-run maximum lateness, ns.
+    pub max_lateness_ns: AtomicU64,
+    /// Current tick rate, Hz (f64 bits).
+    pub rate_hz_bits: AtomicU64,
+    /// Mean step cost over the last second, ns (f64 bits).
+    pub window_step_ns: AtomicU64,
+}
+
+impl TickStats {
+    pub fn rate_hz(&self) -> f64 {
+        f64::from_bits(self.rate_hz_bits.load(Ordering::Relaxed))
+    }
+    pub fn window(&self) -> (f64, f64, f64) {
+        (
+            f64::from_bits(self.window_p50_ns.load(Ordering::Relaxed)),
+            f64::from_bits(self.window_p99_ns.load(Ordering::Relaxed)),
+            f64::from_bits(self.window_max_ns.load(Ordering::Relaxed)),
+        )
+    }
+}
+
+/// A lateness histogram with 1 µs buckets up to 20 ms (beyond: the last bucket).
+#[derive(Clone)]
+pub struct Histogram {
+    buckets: Vec<u64>,
+    count: u64,
+    max_ns: u64,
+}
+
+impl Default for Histogram {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Histogram {
+    const BUCKETS: usize = 20_000;
+    pub fn new() -> Self {
+        Self {
+            buckets: vec![0; Self::BUCKETS],
+            count: 0,
+            max_ns: 0,
+        }
+    }
+    pub fn record(&mut self, ns: u64) {
+        let b = ((ns / 1000) as usize).min(Self::BUCKETS - 1);
+        self.buckets[b] += 1;
+        self.count += 1;
+        self.max_ns = self.max_ns.max(ns);
+    }
+    pub fn count(&self) -> u64 {
+        self.count
+    }
+    pub fn max_ns(&self) -> u64 {
+        self.max_ns
+    }
+    /// The `q` quantile (0..1), ns, at bucket resolution (upper edge of the bucket, capped by
+    /// the maximum).
+    pub fn quantile_ns(&self, q: f64) -> u64 {
+        if self.count == 0 {
+            return 0;
+        }
+        let target = ((q * self.count as f64).ceil() as u64).clamp(1, self.count);
+        let mut seen = 0;
+        for (i, n) in self.buckets.iter().enumerate() {
+            seen += n;
+            if seen >= target {
+                if i == Self::BUCKETS - 1 {
+                    return self.max_ns;
+                }
+                return (((i as u64) + 1) * 1000).min(self.max_ns);
+            }
+        }
+        self.max_ns
+    }
+    pub fn clear(&mut self) {
+        self.buckets.iter_mut().for_each(|b| *b = 0);
+        self.count = 0;
+        self.max_ns = 0;
+    }
+}
+
+/// Whole-run timing summary, returned when the loop ends.
+#[derive(Debug, Clone, Default)]
+pub struct RunSummary {
+    pub ticks: u64,
+    pub overruns: u64,
+    pub skipped: u64,
+    pub p50_us: f64,
+    pub p99_us: f64,
+    pub max_us: f64,
+    pub mean_step_us: f64,
+}
+
+/// The channels and flags of a running loop.
+pub struct LoopIo {
+    pub commands: Receiver<Command>,
+    pub samples: SyncSender<Sample>,
+    pub events: SyncSender<Event>,
+    pub stats: Arc<TickStats>,
+    pub stop: Arc<AtomicBool>,
+}
+
+/// After this many periods behind, the loop stops catching up and restarts its schedule.
+const RESYNC_PERIODS: u32 = 100;
+
+/// Lowers this thread's timer slack so that sleeps end close to their deadline (Linux).
+fn tighten_timer_slack() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: prctl(PR_SET_TIMERSLACK) takes an integer argument and affects only this thread.
+    unsafe {
+        libc::prctl(libc::PR_SET_TIMERSLACK, 1 as libc::c_ulong, 0, 0, 0);
+    }
+}
+
+fn wall_ns() -> i64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map(|d| d.as_nanos() as i64)
+        .unwrap_or(0)
+}
+
+/// Runs the loop until `io.stop` is set (or the command channel closes). Ticks at the actuator's
+/// rate against absolute deadlines; a tick that starts more than one period late is an overrun.
+pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSummary {
+    tighten_timer_slack();
+    let mut muscle_names: Arc<[String]> = actuator.muscle_names().into();
+    let mut joint_names: Arc<[String]> = actuator.joint_names().into();
+    let mut excitation = vec![0.0; muscle_names.len()];
+    let mut load = vec![0.0; joint_names.len()];
+
+    let mut period = Duration::from_secs_f64(1.0 / actuator.rate_hz());
+    io.stats
+        .rate_hz_bits
+        .store(actuator.rate_hz().to_bits(), Ordering::Relaxed);
+    let mut window = Histogram::new();
+    let mut whole = Histogram::new();
+    let mut window_start = Instant::now();
+    let mut window_step_ns: u64 = 0;
+    let mut window_steps: u64 = 0;
+    let mut total_step_ns: u128 = 0;
+    let mut summary = RunSummary::default();
+
+    let mut origin = Instant::now();
+    let mut origin_wall = wall_ns();
+    let mut n: u64 = 0; // ticks since `origin`
+    let send_event = |e: Event| {
+        let _ = io.events.try_send(e);
+    };
+
+    while !io.stop.load(Ordering::Relaxed) {
+        // 1. Inputs that arrived since the last tick take effect now.
+        loop {
+            match io.commands.try_recv() {
+                Ok(Command::Excitation(v)) => {
+                    for (i, u) in v {
+                        if let Some(slot) = excitation.get_mut(i) {
+                            *slot = u;
+                        }
+                        actuator.set_excitation(i, u);
+                    }
+                }
+                Ok(Command::Load(v)) => {
+                    for (i, t) in v {
+                        if let Some(slot) = load.get_mut(i) {
+                            *slot = t;
+                        }
+                        actuator.set_external_torque(i, t);
+                    }
+                }
+                Ok(Command::Reset(reply)) => {
+                    let before = actuator.tick();
+                    actuator.reset();
+                    excitation.iter_mut().for_each(|u| *u = 0.0);
+                    load.iter_mut().for_each(|t| *t = 0.0);
+                    io.stats.resets.fetch_add(1, Ordering::Relaxed);
+                    send_event(Event::Reset { at_tick: before });
+                    if let Some(r) = reply {
+                        let _ = r.send(before);
+                    }
+                }
+                Ok(Command::Replace(new)) => {
+                    actuator = *new;
+                    muscle_names = actuator.muscle_names().into();
+                    joint_names = actuator.joint_names().into();
+                    excitation.resize(muscle_names.len(), 0.0);
+                    load.resize(joint_names.len(), 0.0);
+                    for (i, u) in excitation.iter().enumerate() {
+                        actuator.set_excitation(i, *u);
+                    }
+                    for (i, t) in load.iter().enumerate() {
+                        actuator.set_external_torque(i, *t);
+                    }
+                    let new_period = Duration::from_secs_f64(1.0 / actuator.rate_hz());
+                    if new_period != period {
+                        period = new_period;
+                        origin = Instant::now();
+                        origin_wall = wall_ns();
+                        n = 0;
+                    }
+                    io.stats
+                        .rate_hz_bits
+                        .store(actuator.rate_hz().to_bits(), Ordering::Relaxed);
+                    send_event(Event::Replaced {
+                        model: actuator.model(),
+                        rate_hz: actuator.rate_hz(),
+                    });
+                }
+                Ok(Command::PublishEvery(k)) => publish_every = k.max(1),
+                Err(TryRecvError::Empty) => break,
+                Err(TryRecvError::Disconnected) => {
+                    io.stop.store(true, Ordering::Relaxed);
+                    break;
+                }
+            }
+        }
+
+        // 2. One step.
+        let t0 = Instant::now();
+        if actuator.step().is_err() {
+            let tick = actuator.tick();
+            actuator.reset();
+            // The last valid command stays in force.
+            for (i, u) in excitation.iter().enumerate() {
+                actuator.set_excitation(i, *u);
+            }
+            for (i, t) in load.iter().enumerate() {
+                actuator.set_external_torque(i, *t);
+            }
+            io.stats.nonfinite_resets.fetch_add(1, Ordering::Relaxed);
+            send_event(Event::NonFiniteReset { tick });
+        }
+        let step_ns = t0.elapsed().as_nanos() as u64;
+        window_step_ns += step_ns;
+        window_steps += 1;
+        total_step_ns += step_ns as u128;
+        io.stats.ticks.fetch_add(1, Ordering::Relaxed);
+        io.stats
+            .current_tick
+            .store(actuator.tick(), Ordering::Relaxed);
+        summary.ticks += 1;
+
+        // 3. Hand the state over (never wait).
+        if actuator.tick() % publish_every == 0 || publish_every == 1 {
+            let sample = Sample {
+                tick: actuator.tick(),
+                stamp_ns: origin_wall + (period.as_nanos() as i64) * n as i64,
+                model: actuator.model(),
+                muscle_names: muscle_names.clone(),
+                joint_names: joint_names.clone(),
+                muscles: actuator.muscles().to_vec(),
+                joints: actuator.joints().to_vec(),
+            };
+            match io.samples.try_send(sample) {
+                Ok(()) => {}
+                Err(TrySendError::Full(_)) => {
+                    io.stats.samples_dropped.fetch_add(1, Ordering::Relaxed);
+                }
+                Err(TrySendError::Disconnected(_)) => {}
+            }
+        }
+
+        // 4. Wait for the next deadline.
+        n += 1;
+        let deadline = origin + Duration::from_nanos((period.as_nanos() as u64).saturating_mul(n));
+        let now = Instant::now();
+        if deadline > now {
+            std::thread::sleep(deadline - now);
+        }
+        let woke = Instant::now();
+        let late = woke.saturating_duration_since(deadline);
+        let late_ns = late.as_nanos() as u64;
+        window.record(late_ns);
+        whole.record(late_ns);
+        if late > period {
+            io.stats.overruns.fetch_add(1, Ordering::Relaxed);
+            summary.overruns += 1;
+            send_event(Event::Overrun {
+                tick: actuator.tick(),
+                lateness_us: late_ns as f64 / 1e3,
+            });
+        }
+        if late > period * RESYNC_PERIODS {
+            let skipped = (late.as_nanos() / period.as_nanos().max(1)) as u64;
+            io.stats.skipped.fetch_add(skipped, Ordering::Relaxed);
+            summary.skipped += skipped;
+            send_event(Event::Resync { skipped });
+            origin = woke;
+            origin_wall = wall_ns();
+            n = 0;
+        }
+        io.stats
+            .max_lateness_ns
+            .fetch_max(late_ns, Ordering::Relaxed);
+
+        // 5. Once a second: the window's figures.
+        if woke.duration_since(window_start) >= Duration::from_secs(1) {
+            let st = &io.stats;
+            st.window_p50_ns.store(
+                (window.quantile_ns(0.5) as f64).to_bits(),
+                Ordering::Relaxed,
+            );
+            st.window_p99_ns.store(
+                (window.quantile_ns(0.99) as f64).to_bits(),
+                Ordering::Relaxed,
+            );
+            st.window_max_ns
+                .store((window.max_ns() as f64).to_bits(), Ordering::Relaxed);
+            st.window_step_ns.store(
+                (window_step_ns as f64 / window_steps.max(1) as f64).to_bits(),
+                Ordering::Relaxed,
+            );
+            window.clear();
+            window_step_ns = 0;
+            window_steps = 0;
+            window_start = woke;
+        }
+    }
+    summary.p50_us = whole.quantile_ns(0.5) as f64 / 1e3;
+    summary.p99_us = whole.quantile_ns(0.99) as f64 / 1e3;
+    summary.max_us = whole.max_ns() as f64 / 1e3;
+    summary.mean_step_us = total_step_ns as f64 / summary.ticks.max(1) as f64 / 1e3;
+    summary
+}
+
+/// Starts the loop on its own thread.
+pub fn spawn(
+    actuator: Actuator,
+    publish_every: u64,
+    io: LoopIo,
+) -> std::io::Result<std::thread::JoinHandle<RunSummary>> {
+    std::thread::Builder::new()
+        .name("tick".into())
+        .spawn(move || run(actuator, publish_every, io))
+}
+
+/// A channel pair for commands (unbounded: commands are small and rate-limited by DDS).
+pub fn command_channel() -> (mpsc::Sender<Command>, Receiver<Command>) {
+    mpsc::channel()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn histogram_quantiles() {
+        let mut h = Histogram::new();
+        for us in 1..=100u64 {
+            h.record(us * 1000 - 500);
+        }
+        assert_eq!(h.count(), 100);
+        assert_eq!(h.quantile_ns(0.5), 50_000);
+        assert_eq!(h.quantile_ns(0.99), 99_000);
+        assert_eq!(h.max_ns(), 99_500);
+        h.record(1_000_000_000);
+        assert_eq!(h.quantile_ns(1.0), 1_000_000_000);
+        h.clear();
+        assert_eq!(h.quantile_ns(0.5), 0);
+    }
+}

@@ -1,0 +1,378 @@
+//! Scenarios: an attachment, a duration and input schedules; the built-in ones reproduce the
+//! paper's experiments (MODEL.md §9), others come from scenario files (TOML, see
+//! `scenarios/example.toml`).
+
+use crate::config::ActuatorConfig;
+use crate::physics::model::ModelKind;
+use crate::physics::params::MuscleParams;
+use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::sim::actuator::DEFAULT_PATH_PRESTRETCH;
+use crate::sim::schedule::Schedule;
+use crate::sim::simulation::Simulation;
+use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use serde::Deserialize;
+use std::path::Path;
+
+/// The built-in scenarios' names.
+pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
+
+/// How the muscles are attached in a scenario.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SetupKind {
+    /// The antagonistic joint of the configuration (both muscles).
+    Joint,
+    /// The first muscle, clamped at a total length.
+    Clamped,
+    /// The first muscle, its tendon pulled by a scheduled force.
+    Force,
+}
+
+/// Which input a schedule drives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Signal {
+    /// A muscle's excitation (clamped to [0, 1] when applied).
+    Excitation,
+    /// The pull on a force-driven tendon, N.
+    TendonForce,
+    /// The external torque on the joint, N m.
+    ExternalTorque,
+}
+
+/// One scheduled input; schedules on the same input add up.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct ScheduledInput {
+    /// The input driven.
+    pub signal: Signal,
+    /// The muscle, for excitations (default: the first).
+    #[serde(default)]
+    pub muscle: Option<String>,
+    /// The schedule.
+    #[serde(flatten)]
+    pub schedule: Schedule,
+}
+
+/// A complete scenario.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// Name, for reports.
+    #[serde(default = "default_name")]
+    pub name: String,
+    /// Simulated time, s.
+    pub duration: f64,
+    /// The attachment.
+    pub attachment: SetupKind,
+    /// Clamped: total MTU length, m (default lopt + l_ts).
+    #[serde(default)]
+    pub length: Option<f64>,
+    /// Force-driven: tendon force of the initial static equilibrium, N.
+    #[serde(default)]
+    pub initial_force: f64,
+    /// The inputs.
+    #[serde(default, rename = "input")]
+    pub inputs: Vec<ScheduledInput>,
+}
+
+fn default_name() -> String {
+    "scenario".into()
+}
+
+/// One recorded tick.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    /// Time at the end of the tick, s (0 for the initial state).
+    pub time: f64,
+    /// The muscles' states (one or two).
+    pub muscles: Vec<MuscleSnapshot>,
+    /// The joint's state, if there is a joint.
+    pub joint: Option<JointSnapshot>,
+}
+
+/// The result of running a scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// Scenario name.
+    pub scenario: String,
+    /// Model used.
+    pub model: ModelKind,
+    /// Tick rate, Hz.
+    pub rate_hz: f64,
+    /// Muscle names.
+    pub muscle_names: Vec<String>,
+    /// Initial state, then one record per tick.
+    pub records: Vec<Record>,
+}
+
+impl Scenario {
+    /// A built-in scenario by name (MODEL.md §9).
+    pub fn built_in(name: &str, params: &MuscleParams) -> Result<Self, String> {
+        let excitation = |schedule| ScheduledInput {
+            signal: Signal::Excitation,
+            muscle: None,
+            schedule,
+        };
+        let energy = |f: f64| Scenario {
+            name: name.into(),
+            duration: 0.2,
+            attachment: SetupKind::Force,
+            length: None,
+            initial_force: 150.0,
+            inputs: vec![ScheduledInput {
+                signal: Signal::TendonForce,
+                muscle: None,
+                schedule: Schedule::Sine {
+                    offset: 150.0,
+                    amplitude: 150.0,
+                    frequency: f,
+                    phase: 0.0,
+                },
+            }],
+        };
+        match name {
+            "pulse" => Ok(Scenario {
+                name: name.into(),
+                duration: 3.0,
+                attachment: SetupKind::Clamped,
+                length: Some(params.l_opt + params.l_ts),
+                initial_force: 0.0,
+                inputs: vec![excitation(Schedule::Pulse {
+                    start: 1.0,
+                    end: 2.0,
+                    value: 1.0,
+                    base: 0.0,
+                })],
+            }),
+            "energy-10hz" => Ok(energy(10.0)),
+            "energy-100hz" => Ok(energy(100.0)),
+            _ => Err(format!(
+                "unknown scenario {name:?}: expected one of {} or a scenario file (.toml)",
+                BUILT_IN.join(", ")
+            )),
+        }
+    }
+
+    /// A scenario from a TOML file.
+    pub fn from_file(path: &Path) -> Result<Self, String> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read scenario file {}: {e}", path.display()))?;
+        let s: Scenario = toml::from_str(&text).map_err(|e| {
+            format!(
+                "scenario file {}: {}",
+                path.display(),
+                e.to_string().trim().replace('\n', " ")
+            )
+        })?;
+        s.check()
+            .map_err(|e| format!("scenario file {}: {e}", path.display()))?;
+        Ok(s)
+    }
+
+    /// A built-in name, or else a path to a scenario file.
+    pub fn resolve(name_or_path: &str, params: &MuscleParams) -> Result<Self, String> {
+        if BUILT_IN.contains(&name_or_path) || !Path::new(name_or_path).exists() {
+            if !BUILT_IN.contains(&name_or_path) && name_or_path.ends_with(".toml") {
+                return Err(format!("scenario file {name_or_path} does not exist"));
+            }
+            Self::built_in(name_or_path, params)
+        } else {
+            Self::from_file(Path::new(name_or_path))
+        }
+    }
+
+    fn check(&self) -> Result<(), String> {
+        if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= 3600.0) {
+            return Err(format!(
+                "duration = {} must be in (0, 3600] s",
+                self.duration
+            ));
+        }
+        if let Some(l) = self.length {
+            if !(l.is_finite() && l > 0.0) {
+                return Err(format!("length = {l} must be a finite number > 0"));
+            }
+        }
+        if !self.initial_force.is_finite() || self.initial_force < 0.0 {
+            return Err(format!(
+                "initial_force = {} must be a finite number >= 0",
+                self.initial_force
+            ));
+        }
+        for (i, input) in self.inputs.iter().enumerate() {
+            input
+                .schedule
+                .check()
+                .map_err(|e| format!("input[{i}]: {e}"))?;
+            let allowed = match self.attachment {
+                SetupKind::Joint => input.signal != Signal::TendonForce,
+                SetupKind::Clamped => input.signal == Signal::Excitation,
+                SetupKind::Force => input.signal != Signal::ExternalTorque,
+            };
+            if !allowed {
+                return Err(format!(
+                    "input[{i}]: signal {:?} does not apply to attachment {:?}",
+                    input.signal, self.attachment
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Runs the scenario with `model` at `rate_hz` (`substeps` implicit steps per tick).
+    pub fn run(
+        &self,
+        config: &ActuatorConfig,
+        model: ModelKind,
+        rate_hz: f64,
+        substeps: usize,
+    ) -> Result<Run, String> {
+        let mut runner = self.runner(config, model, rate_hz, substeps)?;
+        let ticks = (self.duration * rate_hz).round() as u64;
+        let mut records = Vec::with_capacity(ticks as usize + 1);
+        records.push(runner.record());
+        for _ in 0..ticks {
+            runner.step()?;
+            records.push(runner.record());
+        }
+        Ok(Run {
+            scenario: self.name.clone(),
+            model,
+            rate_hz,
+            muscle_names: runner.names.clone(),
+            records,
+        })
+    }
+
+    /// A tick-by-tick runner of the scenario (for tests and benchmarks).
+    pub fn runner(
+        &self,
+        config: &ActuatorConfig,
+        model: ModelKind,
+        rate_hz: f64,
+        substeps: usize,
+    ) -> Result<ScenarioRunner, String> {
+        config.validate().map_err(|e| e.to_string())?;
+        let first = &config.muscles[0];
+        let (params, names, attachment) = match self.attachment {
+            SetupKind::Joint => {
+                let params: Vec<_> = config.muscles.iter().map(|m| m.params.clone()).collect();
+                let path_length = config
+                    .joint
+                    .path_length
+                    .unwrap_or(params[0].l_opt + params[0].l_ts + DEFAULT_PATH_PRESTRETCH);
+                (
+                    params,
+                    config.muscles.iter().map(|m| m.name.clone()).collect(),
+                    Attachment::Joint {
+                        params: config.joint.clone(),
+                        path_length,
+                    },
+                )
+            }
+            SetupKind::Clamped => (
+                vec![first.params.clone()],
+                vec![first.name.clone()],
+                Attachment::Clamped {
+                    length: self
+                        .length
+                        .unwrap_or(first.params.l_opt + first.params.l_ts),
+                },
+            ),
+            SetupKind::Force => (
+                vec![first.params.clone()],
+                vec![first.name.clone()],
+                Attachment::ForceDriven,
+            ),
+        };
+        let mut muscle_index = Vec::with_capacity(self.inputs.len());
+        for (i, input) in self.inputs.iter().enumerate() {
+            let idx = match &input.muscle {
+                None => 0,
+                Some(m) => names.iter().position(|n| n == m).ok_or_else(|| {
+                    format!(
+                        "input[{i}]: unknown muscle {m:?} (this scenario has {})",
+                        names.join(", ")
+                    )
+                })?,
+            };
+            muscle_index.push(idx);
+        }
+        let plant = Plant::new(&params, model, attachment)?;
+        let initial = Inputs {
+            tendon_force: self.initial_force,
+            ..Inputs::default()
+        };
+        let sim = Simulation::new(plant, rate_hz, substeps, initial)?;
+        let mut runner = ScenarioRunner {
+            scenario: self.clone(),
+            sim,
+            names,
+            muscle_index,
+        };
+        runner.apply_inputs();
+        Ok(runner)
+    }
+}
+
+/// Steps a scenario tick by tick, sampling its schedules at each tick's start.
+#[derive(Debug, Clone)]
+pub struct ScenarioRunner {
+    scenario: Scenario,
+    sim: Simulation,
+    names: Vec<String>,
+    muscle_index: Vec<usize>,
+}
+
+impl ScenarioRunner {
+    /// The inputs the schedules give at time t.
+    pub fn inputs_at(&self, t: f64) -> Inputs {
+        let mut inputs = Inputs::default();
+        let mut tendon_force_scheduled = false;
+        for (input, &m) in self.scenario.inputs.iter().zip(&self.muscle_index) {
+            let v = input.schedule.value(t);
+            match input.signal {
+                Signal::Excitation => inputs.excitation[m] += v,
+                Signal::TendonForce => {
+                    tendon_force_scheduled = true;
+                    inputs.tendon_force += v
+                }
+                Signal::ExternalTorque => inputs.external_torque += v,
+            }
+        }
+        if !tendon_force_scheduled {
+            inputs.tendon_force = self.scenario.initial_force;
+        }
+        for u in &mut inputs.excitation {
+            *u = u.clamp(0.0, 1.0);
+        }
+        inputs
+    }
+
+    fn apply_inputs(&mut self) {
+        let inputs = self.inputs_at(self.sim.time());
+        self.sim.set_inputs(inputs);
+    }
+
+    /// Advances one tick (inputs sampled at its start).
+    pub fn step(&mut self) -> Result<(), String> {
+        self.apply_inputs();
+        self.sim.step().map_err(|e| e.to_string())
+    }
+
+    /// The current state as a record.
+    pub fn record(&self) -> Record {
+        Record {
+            time: self.sim.time(),
+            muscles: (0..self.names.len())
+                .map(|i| self.sim.muscle_snapshot(i))
+                .collect(),
+            joint: self.sim.joint_snapshot(),
+        }
+    }
+
+    /// The simulation.
+    pub fn simulation(&self) -> &Simulation {
+        &self.sim
+    }
+}

@@ -1,0 +1,201 @@
+//! Input schedules of scenario files: functions of time sampled at each tick's start.
+
+use serde::{Deserialize, Serialize};
+
+/// One scheduled signal.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum Schedule {
+    /// A constant value.
+    Constant {
+        /// The value.
+        value: f64,
+    },
+    /// `from` before `at`, `to` from `at` on.
+    Step {
+        /// Switch time, s.
+        at: f64,
+        /// Value before, default 0.
+        #[serde(default)]
+        from: f64,
+        /// Value after.
+        to: f64,
+    },
+    /// `value` on [start, end), `base` elsewhere.
+    Pulse {
+        /// Start, s.
+        start: f64,
+        /// End, s.
+        end: f64,
+        /// Value inside.
+        value: f64,
+        /// Value outside, default 0.
+        #[serde(default)]
+        base: f64,
+    },
+    /// Linear from `from` at `start` to `to` at `end`, held outside.
+    Ramp {
+        /// Start, s.
+        start: f64,
+        /// End, s.
+        end: f64,
+        /// Value at and before start.
+        from: f64,
+        /// Value at and after end.
+        to: f64,
+    },
+    /// `offset + amplitude sin(2π frequency t + phase)`.
+    Sine {
+        /// Mean value.
+        #[serde(default)]
+        offset: f64,
+        /// Amplitude.
+        amplitude: f64,
+        /// Frequency, Hz.
+        frequency: f64,
+        /// Phase, rad.
+        #[serde(default)]
+        phase: f64,
+    },
+    /// Linear interpolation through `points` = [[t, value], ...] (ascending t), held outside.
+    Piecewise {
+        /// The corner points.
+        points: Vec<[f64; 2]>,
+    },
+}
+
+impl Schedule {
+    /// The value at time t.
+    pub fn value(&self, t: f64) -> f64 {
+        match self {
+            Schedule::Constant { value } => *value,
+            Schedule::Step { at, from, to } => {
+                if t >= *at {
+                    *to
+                } else {
+                    *from
+                }
+            }
+            Schedule::Pulse {
+                start,
+                end,
+                value,
+                base,
+            } => {
+                if t >= *start && t < *end {
+                    *value
+                } else {
+                    *base
+                }
+            }
+            Schedule::Ramp {
+                start,
+                end,
+                from,
+                to,
+            } => {
+                if t <= *start {
+                    *from
+                } else if t >= *end {
+                    *to
+                } else {
+                    from + (to - from) * (t - start) / (end - start)
+                }
+            }
+            Schedule::Sine {
+                offset,
+                amplitude,
+                frequency,
+                phase,
+            } => offset + amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin(),
+            Schedule::Piecewise { points } => {
+                let Some(first) = points.first() else {
+                    return 0.0;
+                };
+                if t <= first[0] {
+                    return first[1];
+                }
+                for w in points.windows(2) {
+                    let (a, b) = (w[0], w[1]);
+                    if t <= b[0] {
+                        return a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]);
+                    }
+                }
+                points[points.len() - 1][1]
+            }
+        }
+    }
+
+    /// The first problem with the schedule's numbers, if any.
+    pub fn check(&self) -> Result<(), String> {
+        let finite = |name: &str, v: f64| {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err(format!("{name} = {v} must be a finite number"))
+            }
+        };
+        match self {
+            Schedule::Constant { value } => finite("value", *value),
+            Schedule::Step { at, from, to } => {
+                finite("at", *at)?;
+                finite("from", *from)?;
+                finite("to", *to)
+            }
+            Schedule::Pulse {
+                start,
+                end,
+                value,
+                base,
+            } => {
+                finite("start", *start)?;
+                finite("end", *end)?;
+                finite("value", *value)?;
+                finite("base", *base)?;
+                if end <= start {
+                    return Err(format!("end = {end} must be > start = {start}"));
+                }
+                Ok(())
+            }
+            Schedule::Ramp {
+                start,
+                end,
+                from,
+                to,
+            } => {
+                finite("start", *start)?;
+                finite("end", *end)?;
+                finite("from", *from)?;
+                finite("to", *to)?;
+                if end <= start {
+                    return Err(format!("end = {end} must be > start = {start}"));
+                }
+                Ok(())
+            }
+            Schedule::Sine {
+                offset,
+                amplitude,
+                frequency,
+                phase,
+            } => {
+                finite("offset", *offset)?;
+                finite("amplitude", *amplitude)?;
+                finite("frequency", *frequency)?;
+                finite("phase", *phase)
+            }
+            Schedule::Piecewise { points } => {
+                if points.is_empty() {
+                    return Err("points must not be empty".into());
+                }
+                for p in points {
+                    finite("point time", p[0])?;
+                    finite("point value", p[1])?;
+                }
+                if points.windows(2).any(|w| w[1][0] <= w[0][0]) {
+                    return Err("point times must be strictly ascending".into());
+                }
+                Ok(())
+            }
+        }
+    }
+}

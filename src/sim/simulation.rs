@@ -1,0 +1,368 @@
+//! A plant stepped at a fixed tick: inputs held over each tick, activation advanced exactly,
+//! the mechanics and moments by TR-BDF2 sub-steps, the full model's grid by characteristics.
+//! Deterministic and allocation-free per tick.
+
+use crate::integrator::trbdf2::TrBdf2;
+use crate::integrator::OdeSystem;
+use crate::physics::activation::activation_after;
+use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
+use crate::physics::joint;
+use crate::physics::model::ModelKind;
+use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use nalgebra::SVector;
+
+/// Largest state vector (joint with two Huxley muscles).
+pub const MAX_DIM: usize = 12;
+/// Room of the full model's grid, in units of ξ (long tails after fast lengthening).
+const GRID_EXTENT: f64 = 64.0;
+
+/// Default number of implicit sub-steps per tick for each model (chosen so that 1 kHz ticks meet
+/// MODEL.md §10 against the reference solver; see tests/integrator_accuracy.rs).
+pub fn default_substeps(model: ModelKind) -> usize {
+    match model {
+        ModelKind::Hill => 8,
+        ModelKind::Huxley => 8,
+        ModelKind::HuxleyPde => 20,
+    }
+}
+
+/// The state stopped being finite; the simulation is left as it was before the tick.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("the simulation state became non-finite at tick {tick}; the joint must be reset")]
+pub struct StepError {
+    /// The tick that failed.
+    pub tick: u64,
+}
+
+/// The plant's ODE over one tick, with activations in closed form from the tick's start.
+struct TickOde<'a> {
+    plant: &'a Plant,
+    inputs: &'a Inputs,
+    a0: [f64; 2],
+    /// The last (t, activations) computed: Newton iterates at one stage time many times.
+    memo: std::cell::Cell<(f64, [f64; 2])>,
+}
+
+impl<'a> TickOde<'a> {
+    fn new(plant: &'a Plant, inputs: &'a Inputs, a0: [f64; 2]) -> Self {
+        Self {
+            plant,
+            inputs,
+            a0,
+            memo: std::cell::Cell::new((f64::NAN, [0.0; 2])),
+        }
+    }
+
+    fn activations(&self, t: f64) -> [f64; 2] {
+        let (t_memo, a_memo) = self.memo.get();
+        if t_memo == t {
+            return a_memo;
+        }
+        let a = self.compute_activations(t);
+        self.memo.set((t, a));
+        a
+    }
+
+    fn compute_activations(&self, t: f64) -> [f64; 2] {
+        let mut a = [0.0; 2];
+        for (i, mtu) in self.plant.mtus.iter().enumerate() {
+            let p = &mtu.params;
+            a[i] = activation_after(self.a0[i], self.inputs.excitation[i], t, p.t_act, p.t_deact);
+        }
+        a
+    }
+}
+
+impl<const N: usize> OdeSystem<N> for TickOde<'_> {
+    fn rhs(&self, t: f64, y: &SVector<f64, N>, dy: &mut SVector<f64, N>) {
+        let act = self.activations(t);
+        self.plant
+            .derivatives(y.as_slice(), &act, self.inputs, dy.as_mut_slice());
+    }
+    fn scales(&self) -> SVector<f64, N> {
+        let mut s = SVector::<f64, N>::zeros();
+        self.plant.scales(s.as_mut_slice());
+        s
+    }
+}
+
+#[derive(Debug, Clone)]
+enum Stepper {
+    D2(TrBdf2<2>),
+    D5(TrBdf2<5>),
+    D6(TrBdf2<6>),
+    D12(TrBdf2<12>),
+}
+
+impl Stepper {
+    fn for_dim(dim: usize) -> Option<Self> {
+        Some(match dim {
+            2 => Stepper::D2(TrBdf2::new()),
+            5 => Stepper::D5(TrBdf2::new()),
+            6 => Stepper::D6(TrBdf2::new()),
+            12 => Stepper::D12(TrBdf2::new()),
+            _ => return None,
+        })
+    }
+
+    fn step(&mut self, ode: &TickOde, t: f64, h: f64, y: &mut [f64]) -> bool {
+        fn run<const N: usize>(
+            s: &mut TrBdf2<N>,
+            ode: &TickOde,
+            t: f64,
+            h: f64,
+            y: &mut [f64],
+        ) -> bool {
+            let mut v = SVector::<f64, N>::from_column_slice(&y[..N]);
+            let ok = s.step(ode, t, h, &mut v).is_ok();
+            y[..N].copy_from_slice(v.as_slice());
+            ok
+        }
+        match self {
+            Stepper::D2(s) => run(s, ode, t, h, y),
+            Stepper::D5(s) => run(s, ode, t, h, y),
+            Stepper::D6(s) => run(s, ode, t, h, y),
+            Stepper::D12(s) => run(s, ode, t, h, y),
+        }
+    }
+
+    fn stats(&self) -> crate::integrator::trbdf2::Stats {
+        match self {
+            Stepper::D2(s) => s.stats,
+            Stepper::D5(s) => s.stats,
+            Stepper::D6(s) => s.stats,
+            Stepper::D12(s) => s.stats,
+        }
+    }
+}
+
+/// A plant with its state, stepped tick by tick.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    plant: Plant,
+    rate_hz: f64,
+    substeps: usize,
+    inputs: Inputs,
+    activation: [f64; 2],
+    y: [f64; MAX_DIM],
+    stepper: Stepper,
+    fresh_stepper: Stepper,
+    grids: Vec<CrossBridgeGrid>,
+    tick: u64,
+}
+
+impl Simulation {
+    /// A simulation at rest under `inputs` (their tendon force sets the force-driven resting
+    /// state), ticking at `rate_hz` with `substeps` implicit steps per tick.
+    pub fn new(
+        plant: Plant,
+        rate_hz: f64,
+        substeps: usize,
+        inputs: Inputs,
+    ) -> Result<Self, String> {
+        if !(rate_hz.is_finite() && rate_hz > 0.0) {
+            return Err(format!(
+                "invalid rate_hz = {rate_hz}: must be a finite number > 0"
+            ));
+        }
+        if substeps == 0 || substeps > 10_000 {
+            return Err(format!(
+                "invalid substeps = {substeps}: must be between 1 and 10000"
+            ));
+        }
+        let stepper = Stepper::for_dim(plant.dim())
+            .ok_or_else(|| format!("no stepper for a state of dimension {}", plant.dim()))?;
+        let grids = match plant.model {
+            ModelKind::HuxleyPde => plant
+                .mtus
+                .iter()
+                .map(|m| CrossBridgeGrid::new(m.params.crossbridge.pde_cells, GRID_EXTENT))
+                .collect(),
+            _ => Vec::new(),
+        };
+        let mut sim = Self {
+            plant,
+            rate_hz,
+            substeps,
+            inputs,
+            activation: [0.0; 2],
+            y: [0.0; MAX_DIM],
+            fresh_stepper: stepper.clone(),
+            stepper,
+            grids,
+            tick: 0,
+        };
+        sim.reset(inputs);
+        Ok(sim)
+    }
+
+    /// Back to rest under `inputs`, tick 0.
+    pub fn reset(&mut self, inputs: Inputs) {
+        self.inputs = inputs;
+        self.activation = [0.0; 2];
+        self.plant
+            .resting_state(&inputs, &mut self.y[..self.plant.dim()]);
+        for g in &mut self.grids {
+            g.reset();
+        }
+        self.stepper = self.fresh_stepper.clone();
+        self.tick = 0;
+    }
+
+    /// The plant.
+    pub fn plant(&self) -> &Plant {
+        &self.plant
+    }
+    /// Tick rate, Hz.
+    pub fn rate_hz(&self) -> f64 {
+        self.rate_hz
+    }
+    /// Implicit sub-steps per tick.
+    pub fn substeps(&self) -> usize {
+        self.substeps
+    }
+    /// Ticks done.
+    pub fn tick(&self) -> u64 {
+        self.tick
+    }
+    /// Simulated time, s.
+    pub fn time(&self) -> f64 {
+        self.tick as f64 / self.rate_hz
+    }
+    /// The inputs held over the next tick.
+    pub fn inputs(&self) -> &Inputs {
+        &self.inputs
+    }
+    /// Sets the inputs for the next tick.
+    pub fn set_inputs(&mut self, inputs: Inputs) {
+        self.inputs = inputs;
+    }
+    /// The state vector (layout in physics::plant).
+    pub fn state(&self) -> &[f64] {
+        &self.y[..self.plant.dim()]
+    }
+    /// Activations.
+    pub fn activations(&self) -> &[f64] {
+        &self.activation[..self.plant.mtus.len()]
+    }
+    /// The full model's grids (empty for the other models).
+    pub fn grids(&self) -> &[CrossBridgeGrid] {
+        &self.grids
+    }
+    /// Integrator work counters.
+    pub fn stats(&self) -> crate::integrator::trbdf2::Stats {
+        self.stepper.stats()
+    }
+
+    /// Advances one tick. A non-finite result restores the previous state and is reported.
+    pub fn step(&mut self) -> Result<(), StepError> {
+        let dt = 1.0 / self.rate_hz;
+        let h = dt / self.substeps as f64;
+        let dim = self.plant.dim();
+        let saved_y = self.y;
+        let a0 = self.activation;
+        let mut ok = true;
+        for k in 0..self.substeps {
+            let t = k as f64 * h;
+            if self.plant.model == ModelKind::HuxleyPde {
+                for (i, g) in self.grids.iter().enumerate() {
+                    self.plant.frozen_closure[i] = g.closure(self.plant.mtus[i].rates());
+                }
+            }
+            let mut lm_before = [0.0; 2];
+            for i in 0..self.plant.mtus.len() {
+                lm_before[i] = self.y[self.plant.offset(i)];
+            }
+            let ode = TickOde::new(&self.plant, &self.inputs, a0);
+            ok &= self.stepper.step(&ode, t, h, &mut self.y[..dim]);
+            if self.plant.model == ModelKind::HuxleyPde {
+                let a_mid = ode.activations(t + 0.5 * h);
+                for (i, g) in self.grids.iter_mut().enumerate() {
+                    let mtu = &self.plant.mtus[i];
+                    let o = self.plant.offset(i);
+                    let l_m = self.y[o];
+                    let shift = (l_m - lm_before[i]) / mtu.crossbridge.l_h;
+                    let r = a_mid[i] * mtu.overlap(0.5 * (l_m + lm_before[i]));
+                    g.advance(mtu.rates(), r, h, shift);
+                    self.y[o + 2..o + 5].copy_from_slice(&g.moments());
+                }
+            }
+            if !ok {
+                break;
+            }
+        }
+        let ode = TickOde::new(&self.plant, &self.inputs, a0);
+        let a1 = ode.activations(dt);
+        ok &= self.y[..dim].iter().all(|v| v.is_finite()) && a1.iter().all(|v| v.is_finite());
+        if !ok {
+            self.y = saved_y;
+            self.stepper = self.fresh_stepper.clone();
+            return Err(StepError { tick: self.tick });
+        }
+        self.activation = a1;
+        self.tick += 1;
+        Ok(())
+    }
+
+    /// Muscle i's published state.
+    pub fn muscle_snapshot(&self, i: usize) -> MuscleSnapshot {
+        let y = self.state();
+        let o = self.plant.offset(i);
+        let out = self.plant.outputs(y, &self.activation, &self.inputs, i);
+        let q = self.plant.moments(y, i);
+        MuscleSnapshot {
+            excitation: self.inputs.excitation[i],
+            activation: self.activation[i],
+            force: out.tendon_force,
+            ce_force: out.ce_force,
+            pe_force: out.pe_force,
+            fiber_length: y[o],
+            fiber_velocity: y[o + 1],
+            tendon_length: out.tendon_length,
+            stiffness: out.ce_stiffness,
+            mtu_stiffness: out.mtu_stiffness,
+            q0: q[0],
+            q1: q[1],
+            q2: q[2],
+            tendon_energy: out.tendon_energy,
+            fiber_energy: out.fibre_energy,
+            crossbridge_energy: out.crossbridge_energy,
+        }
+    }
+
+    /// The joint's published state (None without a joint).
+    pub fn joint_snapshot(&self) -> Option<JointSnapshot> {
+        let Attachment::Joint { params, .. } = &self.plant.attachment else {
+            return None;
+        };
+        let y = self.state();
+        let ago = self.muscle_snapshot(0);
+        let ant = self.muscle_snapshot(1);
+        Some(JointSnapshot {
+            position: y[0],
+            velocity: y[1],
+            torque: params.radius * (ago.force - ant.force),
+            external_torque: self.inputs.external_torque,
+            stiffness: crate::physics::stiffness::joint_stiffness(
+                params.radius,
+                ago.mtu_stiffness,
+                ant.mtu_stiffness,
+            ),
+        })
+    }
+
+    /// Kinetic energy of the fibre masses and the joint, J.
+    pub fn kinetic_energy(&self) -> f64 {
+        let y = self.state();
+        let mut e = 0.0;
+        for (i, mtu) in self.plant.mtus.iter().enumerate() {
+            let v = y[self.plant.offset(i) + 1];
+            e += 0.5 * mtu.params.mass * v * v;
+        }
+        if let Attachment::Joint { params, .. } = &self.plant.attachment {
+            e += joint::kinetic_energy(params, y[1]);
+        }
+        e
+    }
+}

@@ -1,0 +1,380 @@
+"""Helpers for the rclpy tests: the node as a process, and an rclpy peer that waits for
+matching (never for fixed sleeps) and collects messages."""
+
+import math
+import os
+import signal
+import subprocess
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter_client import AsyncParameterClient
+from rclpy.qos import QoSProfile, ReliabilityPolicy, HistoryPolicy, DurabilityPolicy
+
+from muscle_actuator_msgs.msg import ActivationCommand, ActuatorState, ExternalLoad
+from sensor_msgs.msg import JointState
+from diagnostic_msgs.msg import DiagnosticArray
+from rcl_interfaces.msg import Log
+from std_srvs.srv import Trigger
+
+ROOT = Path(__file__).resolve().parents[2]
+
+# Service calls to a RustDDS server: the first one can take ~3 s (ROS2_PYPI.md).
+SERVICE_TIMEOUT = 15.0
+DISCOVERY_TIMEOUT = 20.0
+
+
+def wait_until(predicate, timeout, interval=0.01, what="condition"):
+    """Polls `predicate` until it is truthy; returns its value or raises AssertionError."""
+    deadline = time.monotonic() + timeout
+    while True:
+        v = predicate()
+        if v:
+            return v
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out after {timeout} s waiting for {what}")
+        time.sleep(interval)
+
+
+class NodeProcess:
+    """`muscle_actuator node --ros-args -r __ns:=NS ...` as a child process."""
+
+    def __init__(self, namespace, ros_args=(), env=None, name=None):
+        self.namespace = namespace
+        self.name = name or "muscle_actuator"
+        self.ros_args = list(ros_args)
+        self.env = dict(os.environ)
+        if env:
+            self.env.update(env)
+        self.proc = None
+        self.log = tempfile.NamedTemporaryFile(
+            prefix=f"node{namespace.replace('/', '_')}_", suffix=".log", delete=False
+        )
+        self.returncode = None
+        self.stop_seconds = None
+
+    @staticmethod
+    def binary():
+        b = os.environ.get("MUSCLE_ACTUATOR_BIN")
+        if b:
+            return b
+        return str(ROOT / "target" / "debug" / "muscle_actuator")
+
+    @property
+    def fqn(self):
+        return (self.namespace.rstrip("/") + "/" + self.name) if self.namespace != "/" else "/" + self.name
+
+    def topic(self, rel):
+        """A name relative to the node: `~/x` (private) or `x` (in its namespace)."""
+        if rel.startswith("~/"):
+            return self.fqn + "/" + rel[2:]
+        if rel.startswith("/"):
+            return rel
+        return (self.namespace.rstrip("/") + "/" + rel) if self.namespace != "/" else "/" + rel
+
+    def command(self):
+        args = [self.binary(), "node", "--ros-args"]
+        if self.namespace != "/":
+            args += ["-r", f"__ns:={self.namespace}"]
+        if self.name != "muscle_actuator":
+            args += ["-r", f"__node:={self.name}"]
+        return args + self.ros_args
+
+    def start(self):
+        self.proc = subprocess.Popen(
+            self.command(), stdout=self.log, stderr=subprocess.STDOUT, env=self.env
+        )
+        return self
+
+    def alive(self):
+        return self.proc is not None and self.proc.poll() is None
+
+    def output(self):
+        self.log.flush()
+        return Path(self.log.name).read_text(errors="replace")
+
+    def stop(self, sig=signal.SIGINT, timeout=5.0):
+        """Sends `sig` and waits; records the exit code and how long the exit took."""
+        if self.proc is None:
+            return None
+        if self.proc.poll() is None:
+            t0 = time.monotonic()
+            self.proc.send_signal(sig)
+            try:
+                self.proc.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+            self.stop_seconds = time.monotonic() - t0
+        self.returncode = self.proc.returncode
+        return self.returncode
+
+
+def reliable(depth=10):
+    return QoSProfile(
+        reliability=ReliabilityPolicy.RELIABLE,
+        history=HistoryPolicy.KEEP_LAST,
+        depth=depth,
+        durability=DurabilityPolicy.VOLATILE,
+    )
+
+
+class Inbox:
+    """Messages of one subscription, collected on the executor thread."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.items = []  # (receive time, msg)
+
+    def add(self, msg):
+        with self.lock:
+            self.items.append((time.monotonic(), msg))
+
+    def msgs(self, since=None):
+        with self.lock:
+            return [m for (t, m) in self.items if since is None or t >= since]
+
+    def timed(self, since=None):
+        with self.lock:
+            return [(t, m) for (t, m) in self.items if since is None or t >= since]
+
+    def last(self):
+        with self.lock:
+            return self.items[-1][1] if self.items else None
+
+    def clear(self):
+        with self.lock:
+            self.items.clear()
+
+    def wait(self, predicate=lambda m: True, timeout=10.0, since=None, what="a message"):
+        """The first message (received after `since`) that satisfies `predicate`."""
+
+        def find():
+            for m in self.msgs(since):
+                if predicate(m):
+                    return m
+            return None
+
+        return wait_until(find, timeout, what=what)
+
+
+class Peer:
+    """An rclpy node on its own executor thread."""
+
+    def __init__(self, name):
+        self.node = Node(name)
+        self.executor = SingleThreadedExecutor()
+        self.executor.add_node(self.node)
+        self._stop = False
+        self.thread = threading.Thread(target=self._spin, daemon=True)
+        self.thread.start()
+        self.subs = []
+        self.pubs = {}
+        self.clients = {}
+
+    def _spin(self):
+        while not self._stop and rclpy.ok():
+            try:
+                self.executor.spin_once(timeout_sec=0.05)
+            except Exception:  # shutting down
+                if self._stop:
+                    return
+                raise
+
+    def close(self):
+        self._stop = True
+        self.thread.join(timeout=5)
+        self.executor.remove_node(self.node)
+        self.node.destroy_node()
+
+    # --- graph -------------------------------------------------------------------------------
+    def wait_for_node(self, name, namespace, timeout=DISCOVERY_TIMEOUT):
+        return wait_until(
+            lambda: (name, namespace) in self.node.get_node_names_and_namespaces(),
+            timeout,
+            what=f"node {namespace}/{name}",
+        )
+
+    # --- topics ------------------------------------------------------------------------------
+    def subscribe(self, msg_type, topic, qos=None):
+        inbox = Inbox()
+        sub = self.node.create_subscription(msg_type, topic, inbox.add, qos or reliable())
+        self.subs.append(sub)
+        inbox.sub = sub
+        return inbox
+
+    def wait_matched_sub(self, inbox, timeout=DISCOVERY_TIMEOUT):
+        wait_until(
+            lambda: inbox.sub.get_publisher_count() > 0,
+            timeout,
+            what=f"a publisher on {inbox.sub.topic_name}",
+        )
+
+    def publisher(self, msg_type, topic, qos=None):
+        key = (msg_type, topic)
+        if key not in self.pubs:
+            pub = self.node.create_publisher(msg_type, topic, qos or reliable())
+            # Volatile messages sent before the match are lost: wait for it.
+            wait_until(
+                lambda: pub.get_subscription_count() > 0,
+                DISCOVERY_TIMEOUT,
+                what=f"a subscriber on {topic}",
+            )
+            self.pubs[key] = pub
+        return self.pubs[key]
+
+    def activation(self, topic, **excitations):
+        msg = ActivationCommand()
+        msg.header.stamp = self.node.get_clock().now().to_msg()
+        msg.muscle = list(excitations.keys())
+        msg.excitation = [float(v) for v in excitations.values()]
+        self.publisher(ActivationCommand, topic).publish(msg)
+
+    def raw_activation(self, topic, muscles, values):
+        msg = ActivationCommand()
+        msg.muscle = list(muscles)
+        msg.excitation = [float(v) for v in values]
+        self.publisher(ActivationCommand, topic).publish(msg)
+
+    def load(self, topic, joints, torques):
+        msg = ExternalLoad()
+        msg.header.stamp = self.node.get_clock().now().to_msg()
+        msg.joint = list(joints)
+        msg.torque = [float(v) for v in torques]
+        self.publisher(ExternalLoad, topic).publish(msg)
+
+    # --- services ----------------------------------------------------------------------------
+    def call(self, srv_type, name, request, timeout=SERVICE_TIMEOUT):
+        key = (srv_type, name)
+        if key not in self.clients:
+            self.clients[key] = self.node.create_client(srv_type, name)
+        client = self.clients[key]
+        assert client.wait_for_service(timeout_sec=DISCOVERY_TIMEOUT), f"service {name} not found"
+        fut = client.call_async(request)
+        wait_until(fut.done, timeout, what=f"the answer of {name}")
+        return fut.result()
+
+    def reset(self, node):
+        return self.call(Trigger, node.topic("~/reset"), Trigger.Request())
+
+    def param_client(self, node):
+        key = ("params", node.fqn)
+        if key not in self.clients:
+            c = AsyncParameterClient(self.node, node.fqn)
+            assert c.wait_for_services(timeout_sec=DISCOVERY_TIMEOUT), "parameter services not found"
+            self.clients[key] = c
+        return self.clients[key]
+
+    def await_future(self, fut, timeout=SERVICE_TIMEOUT, what="a service answer"):
+        wait_until(fut.done, timeout, what=what)
+        return fut.result()
+
+
+class Watch:
+    """The usual subscriptions to one node: state, joint_states, diagnostics."""
+
+    def __init__(self, peer, node, diagnostics=True, rosout=False):
+        self.peer = peer
+        self.node = node
+        self.state = peer.subscribe(ActuatorState, node.topic("~/state"), reliable(100))
+        self.joints = peer.subscribe(JointState, node.topic("joint_states"), reliable(100))
+        self.diag = peer.subscribe(DiagnosticArray, "/diagnostics") if diagnostics else None
+        self.rosout = None
+        if rosout:
+            self.rosout = peer.subscribe(
+                Log,
+                "/rosout",
+                QoSProfile(
+                    reliability=ReliabilityPolicy.RELIABLE,
+                    history=HistoryPolicy.KEEP_LAST,
+                    depth=1000,
+                    durability=DurabilityPolicy.TRANSIENT_LOCAL,
+                ),
+            )
+        peer.wait_matched_sub(self.state)
+        peer.wait_matched_sub(self.joints)
+        self.state.wait(timeout=DISCOVERY_TIMEOUT, what=f"{node.topic('~/state')}")
+
+    def _until_seen(self, send, seen, timeout, what):
+        """Sends an idempotent command until a state shows it (a first sample can be lost
+        while RustDDS has not yet matched the new writer); returns the first such state."""
+        deadline = time.monotonic() + timeout
+        while True:
+            t = time.monotonic()
+            send()
+            try:
+                return self.state.wait(seen, timeout=0.5, since=t, what=what)
+            except AssertionError:
+                if time.monotonic() > deadline:
+                    raise AssertionError(f"timed out after {timeout} s waiting for {what}")
+
+    def activation(self, timeout=10.0, **u):
+        """Commands excitations and waits until ~/state shows them in force."""
+        topic = self.node.topic("~/activation")
+
+        def seen(s):
+            return all(
+                abs(m.excitation - min(max(u[m.name], 0.0), 1.0)) < 1e-12
+                for m in s.muscles
+                if m.name in u
+            )
+
+        return self._until_seen(
+            lambda: self.peer.activation(topic, **u), seen, timeout, f"excitation {u} in force"
+        )
+
+    def load(self, torque, timeout=10.0):
+        """Applies an external torque and waits until ~/state shows it."""
+        topic = self.node.topic("~/external_load")
+        return self._until_seen(
+            lambda: self.peer.load(topic, ["elbow"], [torque]),
+            lambda s: s.external_torque[0] == torque,
+            timeout,
+            f"external torque {torque} in force",
+        )
+
+    def states_after(self, t0, duration):
+        """The states received in [t0, t0 + duration] (waits until then)."""
+        end = t0 + duration
+        wait_until(lambda: time.monotonic() >= end, duration + 1.0)
+        return [m for (t, m) in self.state.timed(t0) if t <= end]
+
+    def next_state(self, predicate=lambda m: True, timeout=10.0, what="a state"):
+        return self.state.wait(predicate, timeout=timeout, since=time.monotonic(), what=what)
+
+    def diagnostics(self, since=None, timeout=5.0):
+        """The next /diagnostics array of this node (as {status name suffix: {key: value}})."""
+        since = time.monotonic() if since is None else since
+        fqn = self.node.fqn
+
+        def mine(a):
+            return any(s.hardware_id == fqn for s in a.status)
+
+        arr = self.diag.wait(mine, timeout=timeout, since=since, what=f"/diagnostics of {fqn}")
+        out = {}
+        for s in arr.status:
+            if s.hardware_id == fqn:
+                key = s.name.split(": ", 1)[-1]
+                out[key] = {kv.key: kv.value for kv in s.values}
+                out[key]["_level"] = int.from_bytes(s.level, "little") if isinstance(s.level, bytes) else int(s.level)
+                out[key]["_message"] = s.message
+        return out
+
+
+def muscle(state, name):
+    for m in state.muscles:
+        if m.name == name:
+            return m
+    raise AssertionError(f"no muscle {name!r} in state (have {[m.name for m in state.muscles]})")
+
+
+def finite_state(state):
+    vals = list(state.position) + list(state.velocity) + list(state.torque) + list(state.stiffness)
+    for m in state.muscles:
+        vals += [m.force, m.activation, m.fiber_length, m.stiffness, m.q0, m.q1, m.q2]
+    return all(math.isfinite(v) for v in vals)

@@ -1,0 +1,141 @@
+"""The six parameters through rclpy's parameter client: listed, read, changed at run time,
+and an invalid value refused with a reason. `-p` and `--params-file` at start-up."""
+
+import time
+
+import pytest
+from rcl_interfaces.msg import ParameterEvent, ParameterType
+from rclpy.parameter import Parameter, parameter_value_to_python
+
+from helpers import NodeProcess, Watch, SERVICE_TIMEOUT, wait_until
+
+NS = "/t_params"
+SIX = {"model", "rate_hz", "publish_rate_hz", "config", "record", "record_dir"}
+
+
+@pytest.fixture(scope="module")
+def params_file(tmp_path_factory):
+    p = tmp_path_factory.mktemp("params") / "node.yaml"
+    p.write_text(
+        "/**:\n  ros__parameters:\n    record: false\n"
+        "muscle_actuator:\n  ros__parameters:\n    record_dir: /tmp/from_file\n    model: huxley\n"
+    )
+    return p
+
+
+@pytest.fixture(scope="module")
+def node(node_factory, params_file):
+    # -p after --params-file wins for `model`.
+    return node_factory(
+        NS, "--params-file", str(params_file), "-p", "model:=hill", "-p", "publish_rate_hz:=100.0"
+    )
+
+
+@pytest.fixture(scope="module")
+def client(peer, node):
+    return peer.param_client(node)
+
+
+@pytest.fixture(scope="module")
+def watch(peer, node):
+    return Watch(peer, node, diagnostics=False)
+
+
+def values(peer, client, names):
+    resp = peer.await_future(client.get_parameters(names))
+    return {n: parameter_value_to_python(v) for n, v in zip(names, resp.values)}
+
+
+def test_six_parameters_are_listed(peer, client):
+    resp = peer.await_future(client.list_parameters())
+    assert SIX <= set(resp.result.names)
+
+
+def test_values_from_the_command_line_and_the_file(peer, client):
+    v = values(peer, client, sorted(SIX))
+    assert v["model"] == "hill"  # -p overrides the file
+    assert v["rate_hz"] == 1000.0
+    assert v["publish_rate_hz"] == 100.0
+    assert v["config"] == ""
+    assert v["record"] is False  # from /** in the file
+    assert v["record_dir"] == "/tmp/from_file"
+    types = peer.await_future(client.get_parameter_types(["model", "rate_hz", "record"]))
+    assert list(types.types) == [
+        ParameterType.PARAMETER_STRING,
+        ParameterType.PARAMETER_DOUBLE,
+        ParameterType.PARAMETER_BOOL,
+    ]
+
+
+@pytest.mark.parametrize(
+    "name,value,reason",
+    [
+        ("rate_hz", -1.0, "rate_hz"),
+        ("rate_hz", 0.0, "rate_hz"),
+        ("model", "bogus", "bogus"),
+        ("config", "/nonexistent/actuator.toml", "/nonexistent/actuator.toml"),
+        ("publish_rate_hz", -5.0, "publish_rate_hz"),
+        ("rate_hz", "fast", "rate_hz"),
+    ],
+)
+def test_invalid_values_are_refused_with_a_reason(peer, client, name, value, reason):
+    before = values(peer, client, [name])[name]
+    resp = peer.await_future(client.set_parameters([Parameter(name, value=value)]))
+    (result,) = resp.results
+    assert not result.successful
+    assert reason in result.reason, result.reason
+    assert values(peer, client, [name])[name] == before
+
+
+def test_model_changes_at_run_time(peer, client, watch):
+    seen = []
+    sub = peer.node.create_subscription(
+        ParameterEvent, "/parameter_events", lambda m: seen.append(m), 10
+    )
+    try:
+        resp = peer.await_future(client.set_parameters([Parameter("model", value="huxley")]))
+        assert resp.results[0].successful, resp.results[0].reason
+        watch.next_state(lambda s: s.model == "huxley", what="~/state with model huxley")
+        wait_until(
+            lambda: any(
+                e.node == f"{NS}/muscle_actuator"
+                and any(p.name == "model" and p.value.string_value == "huxley" for p in e.changed_parameters)
+                for e in seen
+            ),
+            SERVICE_TIMEOUT,
+            what="the change on /parameter_events",
+        )
+    finally:
+        peer.node.destroy_subscription(sub)
+        peer.await_future(client.set_parameters([Parameter("model", value="hill")]))
+    watch.next_state(lambda s: s.model == "hill", what="~/state back to hill")
+
+
+def test_publish_rate_changes_the_state_rate(peer, client, watch):
+    def rate(seconds=1.0):
+        t0 = time.monotonic()
+        states = watch.states_after(t0, seconds)
+        return len(states) / seconds
+
+    assert 70 <= rate() <= 130
+    resp = peer.await_future(client.set_parameters([Parameter("publish_rate_hz", value=20.0)]))
+    assert resp.results[0].successful, resp.results[0].reason
+    time.sleep(0.2)
+    assert 12 <= rate() <= 30
+    peer.await_future(client.set_parameters([Parameter("publish_rate_hz", value=100.0)]))
+
+
+def test_bad_start_up_parameter_is_one_clear_error():
+    for args, word in [
+        (["-p", "model:=bogus"], "bogus"),
+        (["-p", "rate_hz:=-3"], "rate_hz"),
+        (["-p", "colour:=red"], "colour"),
+        (["--params-file", "/nonexistent/p.yaml"], "/nonexistent/p.yaml"),
+    ]:
+        n = NodeProcess("/t_params_bad", args)
+        n.start()
+        rc = n.proc.wait(timeout=20)
+        out = n.output().strip()
+        assert rc != 0, out
+        assert word in out, out
+        assert "panicked" not in out, out
