@@ -6,7 +6,7 @@ use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
 use muscle_actuator::physics::params::MuscleParams;
 use muscle_actuator::sim::scenario::Scenario;
-use muscle_actuator::sim::simulation::default_substeps;
+use muscle_actuator::sim::simulation::default_stepping;
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 
@@ -51,7 +51,7 @@ fn simulate_pulse(c: &mut Criterion) {
                 || (),
                 |_| {
                     black_box(
-                        sc.run(&cfg, model, 1000.0, default_substeps(model))
+                        sc.run(&cfg, model, 1000.0, default_stepping(model))
                             .unwrap(),
                     )
                 },

@@ -4,7 +4,7 @@ use clap::{Parser, Subcommand};
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
 use muscle_actuator::sim::scenario::Scenario;
-use muscle_actuator::sim::simulation::default_substeps;
+use muscle_actuator::sim::simulation::{default_stepping, Stepping};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -34,7 +34,8 @@ enum Command {
         /// Tick rate, Hz.
         #[arg(long, default_value_t = 1000.0)]
         rate_hz: f64,
-        /// Implicit sub-steps per tick (default: the model's).
+        /// Fixed number of implicit sub-steps per tick (default: adaptive for hill and huxley,
+        /// 20 for huxley-pde).
         #[arg(long)]
         substeps: Option<usize>,
         /// CSV output file ('-' for standard output).
@@ -85,7 +86,9 @@ fn run(cli: Cli) -> Result<(), String> {
                 &cfg,
                 model,
                 rate_hz,
-                substeps.unwrap_or(default_substeps(model)),
+                substeps
+                    .map(Stepping::Fixed)
+                    .unwrap_or(default_stepping(model)),
             )?;
             if let Some(path) = csv {
                 let write = |out: &mut dyn std::io::Write| {

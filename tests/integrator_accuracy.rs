@@ -1,5 +1,6 @@
 //! MODEL.md §10: at 1 kHz the tick results stay within 1e-3 Fmax (force) and 1e-6 m (length) of
-//! a tight-tolerance adaptive reference on every scenario, and runs are bit-identical.
+//! a tight-tolerance adaptive reference (Dop853 from `ode_solvers`, an explicit method sharing
+//! nothing with the implicit stepper) on every scenario, and runs are bit-identical.
 
 mod common;
 
@@ -7,50 +8,129 @@ use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
 use muscle_actuator::physics::params::MuscleParams;
 use muscle_actuator::sim::scenario::Scenario;
-use muscle_actuator::sim::simulation::default_substeps;
+use muscle_actuator::sim::simulation::{default_stepping, Stepping};
+use std::path::Path;
 
 const FORCE_TOL: f64 = 1e-3 * 3913.0;
 const LENGTH_TOL: f64 = 1e-6;
 
-fn check(name: &str, model: ModelKind) {
-    let sc = Scenario::built_in(name, &MuscleParams::default()).unwrap();
-    let substeps = std::env::var("SUBSTEPS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default_substeps(model));
-    let (df, dl) = common::worst_deviation_from_reference(&sc, model, 1000.0, substeps);
-    println!("{name} {model}: worst |dF| = {df:.3e} N, worst |dl_m| = {dl:.3e} m");
+fn stepping(model: ModelKind) -> Stepping {
+    // TOL=... overrides the tolerance, to study the accuracy/cost trade-off.
+    match (
+        std::env::var("TOL").ok().and_then(|s| s.parse().ok()),
+        default_stepping(model),
+    ) {
+        (Some(tolerance), Stepping::Adaptive { max_substeps, .. }) => Stepping::Adaptive {
+            tolerance,
+            max_substeps,
+        },
+        (_, s) => s,
+    }
+}
+
+fn check(sc: &Scenario, model: ModelKind) {
+    let (df, dl) = common::worst_deviation_from_reference(sc, model, 1000.0, stepping(model));
+    println!(
+        "{} {model}: worst |dF| = {df:.3e} N, worst |dl_m| = {dl:.3e} m",
+        sc.name
+    );
     assert!(
         df <= FORCE_TOL,
-        "{name} {model}: force deviation {df} N > {FORCE_TOL} N"
+        "{} {model}: force deviation {df} N > {FORCE_TOL} N",
+        sc.name
     );
     assert!(
         dl <= LENGTH_TOL,
-        "{name} {model}: length deviation {dl} m > {LENGTH_TOL} m"
+        "{} {model}: length deviation {dl} m > {LENGTH_TOL} m",
+        sc.name
     );
+}
+
+fn built_in(name: &str) -> Scenario {
+    Scenario::built_in(name, &MuscleParams::default()).unwrap()
+}
+
+fn joint_scenario() -> Scenario {
+    Scenario::from_file(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/example.toml"))
+        .unwrap()
 }
 
 #[test]
 fn pulse_hill_matches_reference() {
-    check("pulse", ModelKind::Hill);
+    check(&built_in("pulse"), ModelKind::Hill);
 }
 #[test]
 fn pulse_huxley_matches_reference() {
-    check("pulse", ModelKind::Huxley);
+    check(&built_in("pulse"), ModelKind::Huxley);
 }
 #[test]
 fn energy_10hz_hill_matches_reference() {
-    check("energy-10hz", ModelKind::Hill);
+    check(&built_in("energy-10hz"), ModelKind::Hill);
 }
 #[test]
 fn energy_100hz_hill_matches_reference() {
-    check("energy-100hz", ModelKind::Hill);
+    check(&built_in("energy-100hz"), ModelKind::Hill);
 }
 #[test]
 fn energy_10hz_huxley_matches_reference() {
-    check("energy-10hz", ModelKind::Huxley);
+    check(&built_in("energy-10hz"), ModelKind::Huxley);
 }
 #[test]
 fn energy_100hz_huxley_matches_reference() {
-    check("energy-100hz", ModelKind::Huxley);
+    check(&built_in("energy-100hz"), ModelKind::Huxley);
+}
+#[test]
+fn joint_scenario_hill_matches_reference() {
+    check(&joint_scenario(), ModelKind::Hill);
+}
+#[test]
+fn joint_scenario_huxley_matches_reference() {
+    check(&joint_scenario(), ModelKind::Huxley);
+}
+
+/// Fixed sub-steps: halving the step divides the error by about four (second order), which
+/// also shows the reference is far more accurate than the stepper.
+#[test]
+fn fixed_stepping_converges_at_second_order() {
+    let sc = built_in("pulse");
+    let (_, e8) =
+        common::worst_deviation_from_reference(&sc, ModelKind::Hill, 1000.0, Stepping::Fixed(8));
+    let (_, e16) =
+        common::worst_deviation_from_reference(&sc, ModelKind::Hill, 1000.0, Stepping::Fixed(16));
+    let order = (e8 / e16).log2();
+    println!("fixed 8 vs 16 sub-steps: {e8:.3e} / {e16:.3e} m, observed order {order:.2}");
+    assert!((1.7..2.5).contains(&order), "observed order {order}");
+}
+
+/// Same inputs at the same ticks: bit-identical outputs, for every model.
+#[test]
+fn runs_are_bit_identical() {
+    let cfg = ActuatorConfig::default();
+    for (sc, model) in [
+        (built_in("pulse"), ModelKind::Hill),
+        (built_in("pulse"), ModelKind::Huxley),
+        (built_in("energy-100hz"), ModelKind::HuxleyPde),
+        (joint_scenario(), ModelKind::Huxley),
+    ] {
+        let a = sc
+            .run(&cfg, model, 1000.0, default_stepping(model))
+            .unwrap();
+        let b = sc
+            .run(&cfg, model, 1000.0, default_stepping(model))
+            .unwrap();
+        assert_eq!(a.records.len(), b.records.len());
+        for (ra, rb) in a.records.iter().zip(&b.records) {
+            for (ma, mb) in ra.muscles.iter().zip(&rb.muscles) {
+                assert_eq!(
+                    ma.force.to_bits(),
+                    mb.force.to_bits(),
+                    "{} {model} t={}",
+                    sc.name,
+                    ra.time
+                );
+                assert_eq!(ma.fiber_length.to_bits(), mb.fiber_length.to_bits());
+                assert_eq!(ma.q1.to_bits(), mb.q1.to_bits());
+            }
+        }
+    }
 }

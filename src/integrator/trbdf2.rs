@@ -12,6 +12,8 @@ use crate::integrator::OdeSystem;
 use nalgebra::{SMatrix, SVector};
 
 const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
+/// Local error constant of TR-BDF2, `(-3γ² + 4γ - 2) / (12 (2 - γ))`.
+const ERROR_CONSTANT: f64 = (-3.0 * GAMMA * GAMMA + 4.0 * GAMMA - 2.0) / (12.0 * (2.0 - GAMMA));
 /// Newton stops when the scaled correction is below this.
 const NEWTON_TOL: f64 = 1e-6;
 const NEWTON_MAX_ITER: usize = 10;
@@ -140,7 +142,7 @@ impl<const N: usize> TrBdf2<N> {
                 .iter()
                 .zip(weights.iter())
                 .zip(z.iter())
-                .map(|((dv, w), zv)| (dv / (w + NEWTON_RTOL * zv.abs())).abs())
+                .map(|((dv, w), zv)| dv.abs() / (w + NEWTON_RTOL * zv.abs()))
                 .fold(0.0, f64::max);
             if !norm.is_finite() {
                 return None;
@@ -172,6 +174,81 @@ impl<const N: usize> TrBdf2<N> {
         self.step_split(sys, t, h, y, 0)
     }
 
+    /// Integrates from t0 to t1 with sub-steps chosen by the local error estimate, so that each
+    /// sub-step's error is below `tol` times the system's scales (max norm). `h` carries the
+    /// step size from call to call (deterministic: it depends only on the history of states).
+    /// Steps are at most `t1 - t0` and at least `(t1 - t0) / max_substeps`; a step at the
+    /// minimum size is accepted whatever its estimate.
+    pub fn advance<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t0: f64,
+        t1: f64,
+        y: &mut SVector<f64, N>,
+        h: &mut f64,
+        tol: f64,
+        max_substeps: usize,
+    ) -> Result<usize, ConvergenceError> {
+        let span = t1 - t0;
+        let h_min = span / max_substeps as f64;
+        let inv_w = sys.scales().map(|s| 1.0 / (tol * s));
+        let mut t = t0;
+        let mut taken = 0;
+        if !(*h > 0.0) || !h.is_finite() {
+            *h = span;
+        }
+        while t1 - t > 1e-12 * span {
+            // Never longer than the carried size; no sliver at the span's end.
+            let remaining = t1 - t;
+            let mut step = h.clamp(h_min, span);
+            if remaining <= step {
+                step = remaining;
+            } else if remaining < 2.0 * step {
+                step = 0.5 * remaining;
+            }
+            let attempt = self.try_step(sys, t, step, y, false).or_else(|| {
+                self.stats.rejected += 1;
+                self.try_step(sys, t, step, y, true)
+            });
+            let (next, err) = match attempt {
+                Some((next, est)) => (next, est.component_mul(&inv_w).amax()),
+                None if step > h_min => {
+                    *h = (0.25 * step).max(h_min);
+                    continue;
+                }
+                None => return Err(ConvergenceError { t }),
+            };
+            let factor = if err > 0.0 {
+                (0.9 * err.powf(-1.0 / 3.0)).clamp(0.2, 2.0)
+            } else {
+                2.0
+            };
+            if err <= 1.0 || step <= h_min * (1.0 + 1e-9) {
+                // A step clipped to the span's end says nothing against the carried size.
+                let clipped = step < *h;
+                *y = next;
+                t += step;
+                taken += 1;
+                // Small changes are not worth a new factorisation.
+                let proposed = if (1.0..=1.25).contains(&factor) {
+                    step
+                } else {
+                    step * factor
+                };
+                *h = if clipped && factor >= 1.0 {
+                    h.max(proposed)
+                } else {
+                    proposed
+                };
+            } else {
+                self.stats.rejected += 1;
+                self.last_end = None;
+                *h = step * factor;
+            }
+        }
+        Ok(taken)
+    }
+
     fn step_split<S: OdeSystem<N>>(
         &mut self,
         sys: &S,
@@ -181,7 +258,7 @@ impl<const N: usize> TrBdf2<N> {
         depth: u32,
     ) -> Result<(), ConvergenceError> {
         for attempt in 0..2 {
-            if let Some(next) = self.try_step(sys, t, h, y, attempt == 1) {
+            if let Some((next, _)) = self.try_step(sys, t, h, y, attempt == 1) {
                 *y = next;
                 return Ok(());
             }
@@ -202,7 +279,7 @@ impl<const N: usize> TrBdf2<N> {
         h: f64,
         y: &SVector<f64, N>,
         force_refresh: bool,
-    ) -> Option<SVector<f64, N>> {
+    ) -> Option<(SVector<f64, N>, SVector<f64, N>)> {
         let d = 0.5 * GAMMA * h;
         let mut f0 = SVector::<f64, N>::zeros();
         match &self.last_end {
@@ -235,75 +312,91 @@ impl<const N: usize> TrBdf2<N> {
         let mut w = z + (z - y) * ((1.0 - GAMMA) / GAMMA);
         let slow2 = self.newton(sys, t + h, d, &rhs2, &mut w, &weights)?;
         self.refresh_next = slow1 || slow2;
-        // At convergence w - d f(w) = rhs2, so f(w) = (w - rhs2) / d: no extra evaluation.
-        self.last_end = Some((t + h, w, (w - rhs2) / d));
-        Some(w)
+        // At convergence each stage equation gives its f for free: f = (stage - rhs) / d.
+        let f_gamma = (z - rhs1) / d;
+        let f_end = (w - rhs2) / d;
+        self.last_end = Some((t + h, w, f_end));
+        // Local error (Hosea & Shampine 1996): C h³ y''' with y''' from the divided difference of
+        // f over the nodes 0, γ, 1, filtered through (I - d J)⁻¹ for stiff components.
+        let dd = ((f_end - f_gamma) / (1.0 - GAMMA) - (f_gamma - f0) / GAMMA)
+            * (2.0 * ERROR_CONSTANT * h);
+        let mut est = dd;
+        if let Some(lu) = self.lu.as_ref() {
+            lu.solve_mut(&mut est);
+        }
+        Some((w, est))
     }
 }
 
-/// LU factorisation with partial pivoting of a small static matrix, in place.
+/// LU factorisation with partial pivoting of a small static matrix, row-major on the stack.
 ///
 /// Written by hand: nalgebra's `LU` needs `DimMin` bounds that a generic `const N` cannot name,
-/// and this is the textbook Doolittle elimination on the stack, allocation-free.
+/// and this is the textbook Doolittle elimination, allocation-free, with the row-major layout
+/// that makes the substitutions plain dot products.
 #[derive(Debug, Clone)]
 struct Lu<const N: usize> {
-    lu: SMatrix<f64, N, N>,
+    rows: [[f64; N]; N],
     perm: [usize; N],
 }
 
 impl<const N: usize> Lu<N> {
     /// Factorises `m`; `None` if it is singular.
-    fn new(mut m: SMatrix<f64, N, N>) -> Option<Self> {
+    fn new(m: SMatrix<f64, N, N>) -> Option<Self> {
+        let mut rows = [[0.0; N]; N];
+        for (i, row) in rows.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                *v = m[(i, j)];
+            }
+        }
         let mut perm = [0usize; N];
         for (i, p) in perm.iter_mut().enumerate() {
             *p = i;
         }
         for k in 0..N {
-            let (mut piv, mut best) = (k, m[(k, k)].abs());
-            for i in k + 1..N {
-                if m[(i, k)].abs() > best {
+            let (mut piv, mut best) = (k, rows[k][k].abs());
+            for (i, row) in rows.iter().enumerate().skip(k + 1) {
+                if row[k].abs() > best {
                     piv = i;
-                    best = m[(i, k)].abs();
+                    best = row[k].abs();
                 }
             }
-            if !(best > 0.0) || !best.is_finite() {
+            if !(best > 0.0 && best.is_finite()) {
                 return None;
             }
-            if piv != k {
-                m.swap_rows(piv, k);
-                perm.swap(piv, k);
-            }
-            let inv = 1.0 / m[(k, k)];
-            for i in k + 1..N {
-                let l = m[(i, k)] * inv;
-                m[(i, k)] = l;
+            rows.swap(piv, k);
+            perm.swap(piv, k);
+            let pivot_row = rows[k];
+            let inv = 1.0 / pivot_row[k];
+            for row in rows.iter_mut().skip(k + 1) {
+                let l = row[k] * inv;
+                row[k] = l;
                 if l != 0.0 {
-                    for j in k + 1..N {
-                        m[(i, j)] -= l * m[(k, j)];
+                    for (v, p) in row[k + 1..].iter_mut().zip(&pivot_row[k + 1..]) {
+                        *v -= l * p;
                     }
                 }
             }
         }
-        Some(Self { lu: m, perm })
+        Some(Self { rows, perm })
     }
 
     /// Solves `A x = b` in place.
     fn solve_mut(&self, b: &mut SVector<f64, N>) {
-        let mut x = SVector::<f64, N>::zeros();
+        let mut x = [0.0; N];
         for i in 0..N {
-            let mut s = b[self.perm[i]];
-            for j in 0..i {
-                s -= self.lu[(i, j)] * x[j];
-            }
-            x[i] = s;
+            let row = &self.rows[i];
+            let dot: f64 = row[..i].iter().zip(&x[..i]).map(|(l, v)| l * v).sum();
+            x[i] = b[self.perm[i]] - dot;
         }
         for i in (0..N).rev() {
-            let mut s = x[i];
-            for j in i + 1..N {
-                s -= self.lu[(i, j)] * x[j];
-            }
-            x[i] = s / self.lu[(i, i)];
+            let row = &self.rows[i];
+            let dot: f64 = row[i + 1..]
+                .iter()
+                .zip(&x[i + 1..])
+                .map(|(u, v)| u * v)
+                .sum();
+            x[i] = (x[i] - dot) / row[i];
         }
-        *b = x;
+        b.copy_from_slice(&x);
     }
 }

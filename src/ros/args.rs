@@ -143,7 +143,7 @@ impl RosArgs {
                     out.params.push(ParamAssignment {
                         name: name.into(),
                         value,
-                        source: "-p".into(),
+                        source: format!("-p {rule}"),
                     });
                 }
                 "--params-file" => {

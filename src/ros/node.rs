@@ -358,6 +358,7 @@ struct DiagPrev {
     overruns: u64,
     rejected: u64,
     nonfinite: u64,
+    ticks: u64,
 }
 
 fn diagnostics(
@@ -376,13 +377,24 @@ fn diagnostics(
     let new_overruns = overruns - prev.overruns.min(overruns);
     let new_rejected = rejected - prev.rejected.min(rejected);
     let new_nonfinite = nonfinite - prev.nonfinite.min(nonfinite);
+    let ticks = ld(&stats.ticks);
+    let stalled = ticks == prev.ticks;
     *prev = DiagPrev {
         overruns,
         rejected,
         nonfinite,
+        ticks,
     };
     let rate = stats.rate_hz();
-    let (level, message) = if new_nonfinite > 0 {
+    let (level, message) = if stalled {
+        (
+            DiagnosticStatus::ERROR,
+            format!(
+                "tick loop stalled: no tick in the last period (at tick {})",
+                ld(&stats.current_tick)
+            ),
+        )
+    } else if new_nonfinite > 0 {
         (
             DiagnosticStatus::ERROR,
             format!("state became non-finite: joint reset ({new_nonfinite} in the last period)"),
@@ -860,6 +872,13 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                 publish_errors.load(Ordering::Relaxed),
                 &mut prev,
             );
+            if let Some(st) = msg.status.first() {
+                if st.level == DiagnosticStatus::ERROR
+                    && st.message.starts_with("tick loop stalled")
+                {
+                    report("stalled", Severity::Error, st.message.clone());
+                }
+            }
             if let Err(e) = diag_pub.async_publish(msg).await {
                 logger.debug(&format!("diagnostics: publish failed: {e:?}"));
             }
@@ -875,7 +894,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                         Severity::Error,
                         format!(
                             "the simulation state became non-finite at tick {tick}: joint reset \
-                             to its initial state, the last valid command stays in force"
+                             to its initial state, inputs cleared until the next command"
                         ),
                     ),
                     Event::Overrun { tick, lateness_us } => report(
@@ -919,8 +938,22 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         }
     });
 
-    // Clean stop: end the loop, then the publisher; the DDS entities go with the node.
+    // Clean stop: end the loop, then the publisher; the DDS entities go with the node. A step
+    // that never returns must not hold the process: give the loop half a second.
     stop.store(true, Ordering::SeqCst);
+    let deadline = Instant::now() + Duration::from_millis(500);
+    while !tick_thread.is_finished() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    if !tick_thread.is_finished() {
+        let tick = stats.current_tick.load(Ordering::Relaxed);
+        let msg = format!(
+            "the tick loop did not stop within 0.5 s (a step at tick {tick} never returned); \
+             exiting without it"
+        );
+        logger.error(&msg);
+        return Err(msg);
+    }
     let summary: RunSummary = tick_thread
         .join()
         .map_err(|_| "the tick thread panicked".to_string())?;

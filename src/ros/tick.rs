@@ -295,15 +295,12 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         // 2. One step.
         let t0 = Instant::now();
         if actuator.step().is_err() {
+            // Back to the initial state with the inputs cleared (whatever drove the state out
+            // of range is not applied again); the next valid command applies as usual.
             let tick = actuator.tick();
             actuator.reset();
-            // The last valid command stays in force.
-            for (i, u) in excitation.iter().enumerate() {
-                actuator.set_excitation(i, *u);
-            }
-            for (i, t) in load.iter().enumerate() {
-                actuator.set_external_torque(i, *t);
-            }
+            excitation.iter_mut().for_each(|u| *u = 0.0);
+            load.iter_mut().for_each(|t| *t = 0.0);
             io.stats.nonfinite_resets.fetch_add(1, Ordering::Relaxed);
             send_event(Event::NonFiniteReset { tick });
         }

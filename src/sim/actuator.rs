@@ -7,7 +7,7 @@
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
 use crate::physics::plant::{Attachment, Inputs, Plant};
-use crate::sim::simulation::{default_substeps, Simulation, StepError};
+use crate::sim::simulation::{default_stepping, Simulation, StepError, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 
 /// Extra length of both paths over lopt + l_ts at θ = 0 (MODEL.md §8 default geometry), m.
@@ -28,15 +28,15 @@ impl Actuator {
     /// Builds the actuator in its initial state (joint at `initial_angle`, at rest, a = 0).
     /// `rate_hz` is the tick rate (> 0, finite).
     pub fn new(config: &ActuatorConfig, model: ModelKind, rate_hz: f64) -> Result<Self, String> {
-        Self::with_substeps(config, model, rate_hz, default_substeps(model))
+        Self::with_stepping(config, model, rate_hz, default_stepping(model))
     }
 
-    /// As `new`, with a chosen number of implicit sub-steps per tick.
-    pub fn with_substeps(
+    /// As `new`, with a chosen sub-stepping.
+    pub fn with_stepping(
         config: &ActuatorConfig,
         model: ModelKind,
         rate_hz: f64,
-        substeps: usize,
+        stepping: Stepping,
     ) -> Result<Self, String> {
         config.validate().map_err(|e| e.to_string())?;
         let params: Vec<_> = config.muscles.iter().map(|m| m.params.clone()).collect();
@@ -49,7 +49,7 @@ impl Actuator {
             path_length,
         };
         let plant = Plant::new(&params, model, attachment)?;
-        let sim = Simulation::new(plant, rate_hz, substeps, Inputs::default())?;
+        let sim = Simulation::new(plant, rate_hz, stepping, Inputs::default())?;
         let mut actuator = Self {
             config: config.clone(),
             sim,

@@ -8,7 +8,7 @@ use crate::physics::params::MuscleParams;
 use crate::physics::plant::{Attachment, Inputs, Plant};
 use crate::sim::actuator::DEFAULT_PATH_PRESTRETCH;
 use crate::sim::schedule::Schedule;
-use crate::sim::simulation::Simulation;
+use crate::sim::simulation::{Simulation, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use serde::Deserialize;
 use std::path::Path;
@@ -219,15 +219,15 @@ impl Scenario {
         Ok(())
     }
 
-    /// Runs the scenario with `model` at `rate_hz` (`substeps` implicit steps per tick).
+    /// Runs the scenario with `model` at `rate_hz` with the given sub-stepping.
     pub fn run(
         &self,
         config: &ActuatorConfig,
         model: ModelKind,
         rate_hz: f64,
-        substeps: usize,
+        stepping: Stepping,
     ) -> Result<Run, String> {
-        let mut runner = self.runner(config, model, rate_hz, substeps)?;
+        let mut runner = self.runner(config, model, rate_hz, stepping)?;
         let ticks = (self.duration * rate_hz).round() as u64;
         let mut records = Vec::with_capacity(ticks as usize + 1);
         records.push(runner.record());
@@ -250,7 +250,7 @@ impl Scenario {
         config: &ActuatorConfig,
         model: ModelKind,
         rate_hz: f64,
-        substeps: usize,
+        stepping: Stepping,
     ) -> Result<ScenarioRunner, String> {
         config.validate().map_err(|e| e.to_string())?;
         let first = &config.muscles[0];
@@ -303,7 +303,7 @@ impl Scenario {
             tendon_force: self.initial_force,
             ..Inputs::default()
         };
-        let sim = Simulation::new(plant, rate_hz, substeps, initial)?;
+        let sim = Simulation::new(plant, rate_hz, stepping, initial)?;
         let mut runner = ScenarioRunner {
             scenario: self.clone(),
             sim,

@@ -17,13 +17,40 @@ pub const MAX_DIM: usize = 12;
 /// Room of the full model's grid, in units of ξ (long tails after fast lengthening).
 const GRID_EXTENT: f64 = 64.0;
 
-/// Default number of implicit sub-steps per tick for each model (chosen so that 1 kHz ticks meet
-/// MODEL.md §10 against the reference solver; see tests/integrator_accuracy.rs).
-pub fn default_substeps(model: ModelKind) -> usize {
+/// How a tick is divided into implicit sub-steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stepping {
+    /// Sub-steps chosen by the local error estimate: each below `tolerance` times the state's
+    /// scales, at most `max_substeps` per tick.
+    Adaptive {
+        /// Relative local error tolerance.
+        tolerance: f64,
+        /// Most sub-steps per tick.
+        max_substeps: usize,
+    },
+    /// A fixed number of equal sub-steps per tick (the full model always steps this way).
+    Fixed(usize),
+}
+
+/// Local error tolerances of the adaptive stepping, relative to the state's scales, per model:
+/// chosen so that 1 kHz ticks meet MODEL.md §10 against the reference solver with a margin of at
+/// least 2 on every scenario (tests/integrator_accuracy.rs prints the deviations).
+pub const HILL_TOLERANCE: f64 = 1e-5;
+/// See [`HILL_TOLERANCE`]; the DM model's stiff cross-bridge spring needs a tighter one.
+pub const HUXLEY_TOLERANCE: f64 = 2e-6;
+
+/// The default stepping of each model.
+pub fn default_stepping(model: ModelKind) -> Stepping {
     match model {
-        ModelKind::Hill => 8,
-        ModelKind::Huxley => 8,
-        ModelKind::HuxleyPde => 20,
+        ModelKind::Hill => Stepping::Adaptive {
+            tolerance: HILL_TOLERANCE,
+            max_substeps: 64,
+        },
+        ModelKind::Huxley => Stepping::Adaptive {
+            tolerance: HUXLEY_TOLERANCE,
+            max_substeps: 64,
+        },
+        ModelKind::HuxleyPde => Stepping::Fixed(20),
     }
 }
 
@@ -127,6 +154,37 @@ impl Stepper {
         }
     }
 
+    fn advance(
+        &mut self,
+        ode: &TickOde,
+        t1: f64,
+        y: &mut [f64],
+        h: &mut f64,
+        tol: f64,
+        max_substeps: usize,
+    ) -> bool {
+        fn run<const N: usize>(
+            s: &mut TrBdf2<N>,
+            ode: &TickOde,
+            t1: f64,
+            y: &mut [f64],
+            h: &mut f64,
+            tol: f64,
+            max: usize,
+        ) -> bool {
+            let mut v = SVector::<f64, N>::from_column_slice(&y[..N]);
+            let ok = s.advance(ode, 0.0, t1, &mut v, h, tol, max).is_ok();
+            y[..N].copy_from_slice(v.as_slice());
+            ok
+        }
+        match self {
+            Stepper::D2(s) => run(s, ode, t1, y, h, tol, max_substeps),
+            Stepper::D5(s) => run(s, ode, t1, y, h, tol, max_substeps),
+            Stepper::D6(s) => run(s, ode, t1, y, h, tol, max_substeps),
+            Stepper::D12(s) => run(s, ode, t1, y, h, tol, max_substeps),
+        }
+    }
+
     fn stats(&self) -> crate::integrator::trbdf2::Stats {
         match self {
             Stepper::D2(s) => s.stats,
@@ -142,7 +200,9 @@ impl Stepper {
 pub struct Simulation {
     plant: Plant,
     rate_hz: f64,
-    substeps: usize,
+    stepping: Stepping,
+    /// The adaptive stepping's carried sub-step size, s.
+    h: f64,
     inputs: Inputs,
     activation: [f64; 2],
     y: [f64; MAX_DIM],
@@ -158,7 +218,7 @@ impl Simulation {
     pub fn new(
         plant: Plant,
         rate_hz: f64,
-        substeps: usize,
+        stepping: Stepping,
         inputs: Inputs,
     ) -> Result<Self, String> {
         if !(rate_hz.is_finite() && rate_hz > 0.0) {
@@ -166,10 +226,31 @@ impl Simulation {
                 "invalid rate_hz = {rate_hz}: must be a finite number > 0"
             ));
         }
-        if substeps == 0 || substeps > 10_000 {
-            return Err(format!(
-                "invalid substeps = {substeps}: must be between 1 and 10000"
-            ));
+        match stepping {
+            Stepping::Fixed(n) if n == 0 || n > 10_000 => {
+                return Err(format!(
+                    "invalid substeps = {n}: must be between 1 and 10000"
+                ));
+            }
+            Stepping::Adaptive {
+                tolerance,
+                max_substeps,
+            } => {
+                if !(tolerance.is_finite() && tolerance > 0.0) {
+                    return Err(format!(
+                        "invalid tolerance = {tolerance}: must be a finite number > 0"
+                    ));
+                }
+                if max_substeps == 0 || max_substeps > 10_000 {
+                    return Err(format!(
+                        "invalid max_substeps = {max_substeps}: must be between 1 and 10000"
+                    ));
+                }
+                if plant.model == ModelKind::HuxleyPde {
+                    return Err("the huxley-pde model needs a fixed number of sub-steps".into());
+                }
+            }
+            Stepping::Fixed(_) => {}
         }
         let stepper = Stepper::for_dim(plant.dim())
             .ok_or_else(|| format!("no stepper for a state of dimension {}", plant.dim()))?;
@@ -184,7 +265,8 @@ impl Simulation {
         let mut sim = Self {
             plant,
             rate_hz,
-            substeps,
+            stepping,
+            h: 0.0,
             inputs,
             activation: [0.0; 2],
             y: [0.0; MAX_DIM],
@@ -207,6 +289,7 @@ impl Simulation {
             g.reset();
         }
         self.stepper = self.fresh_stepper.clone();
+        self.h = 0.0;
         self.tick = 0;
     }
 
@@ -218,9 +301,9 @@ impl Simulation {
     pub fn rate_hz(&self) -> f64 {
         self.rate_hz
     }
-    /// Implicit sub-steps per tick.
-    pub fn substeps(&self) -> usize {
-        self.substeps
+    /// How ticks are divided into sub-steps.
+    pub fn stepping(&self) -> Stepping {
+        self.stepping
     }
     /// Ticks done.
     pub fn tick(&self) -> u64 {
@@ -258,12 +341,31 @@ impl Simulation {
     /// Advances one tick. A non-finite result restores the previous state and is reported.
     pub fn step(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
-        let h = dt / self.substeps as f64;
         let dim = self.plant.dim();
         let saved_y = self.y;
+        let saved_h = self.h;
         let a0 = self.activation;
         let mut ok = true;
-        for k in 0..self.substeps {
+        let substeps = match self.stepping {
+            Stepping::Adaptive {
+                tolerance,
+                max_substeps,
+            } => {
+                let ode = TickOde::new(&self.plant, &self.inputs, a0);
+                ok = self.stepper.advance(
+                    &ode,
+                    dt,
+                    &mut self.y[..dim],
+                    &mut self.h,
+                    tolerance,
+                    max_substeps,
+                );
+                0
+            }
+            Stepping::Fixed(n) => n,
+        };
+        let h = dt / substeps.max(1) as f64;
+        for k in 0..substeps {
             let t = k as f64 * h;
             if self.plant.model == ModelKind::HuxleyPde {
                 for (i, g) in self.grids.iter().enumerate() {
@@ -297,6 +399,7 @@ impl Simulation {
         ok &= self.y[..dim].iter().all(|v| v.is_finite()) && a1.iter().all(|v| v.is_finite());
         if !ok {
             self.y = saved_y;
+            self.h = saved_h;
             self.stepper = self.fresh_stepper.clone();
             return Err(StepError { tick: self.tick });
         }

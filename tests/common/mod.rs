@@ -6,6 +6,7 @@ use muscle_actuator::integrator::reference;
 use muscle_actuator::physics::activation::activation_rate;
 use muscle_actuator::physics::model::ModelKind;
 use muscle_actuator::sim::scenario::{Record, Scenario};
+use muscle_actuator::sim::simulation::Stepping;
 
 /// Tick-by-tick comparison of the 1 kHz stepper with the Dop853 reference (tolerance 1e-10 on
 /// scaled variables), same inputs held over each tick. Returns the worst force and fibre-length
@@ -14,14 +15,14 @@ pub fn worst_deviation_from_reference(
     scenario: &Scenario,
     model: ModelKind,
     rate_hz: f64,
-    substeps: usize,
+    stepping: Stepping,
 ) -> (f64, f64) {
     assert!(
         model != ModelKind::HuxleyPde,
         "the full model has no ODE reference"
     );
     let cfg = ActuatorConfig::default();
-    let mut runner = scenario.runner(&cfg, model, rate_hz, substeps).unwrap();
+    let mut runner = scenario.runner(&cfg, model, rate_hz, stepping).unwrap();
     let plant = runner.simulation().plant().clone();
     let dim = plant.dim();
     let n_mus = plant.mtus.len();
@@ -54,4 +55,46 @@ pub fn worst_deviation_from_reference(
         }
     }
     (worst_f, worst_l)
+}
+
+/// Per-tick deviations (time, |dF|, |dl|) of muscle 0, for diagnosis.
+pub fn deviation_series(
+    scenario: &Scenario,
+    model: ModelKind,
+    rate_hz: f64,
+    stepping: Stepping,
+) -> Vec<(f64, f64, f64)> {
+    let cfg = ActuatorConfig::default();
+    let mut runner = scenario.runner(&cfg, model, rate_hz, stepping).unwrap();
+    let plant = runner.simulation().plant().clone();
+    let dim = plant.dim();
+    let n_mus = plant.mtus.len();
+    let mut y: Vec<f64> = runner.simulation().state().to_vec();
+    y.extend_from_slice(runner.simulation().activations());
+    let mut scales = vec![0.0; dim];
+    plant.scales(&mut scales);
+    scales.extend(std::iter::repeat_n(1.0, n_mus));
+    let ticks = (scenario.duration * rate_hz).round() as u64;
+    let mut out = Vec::new();
+    for k in 0..ticks {
+        let t0 = k as f64 / rate_hz;
+        let inputs = runner.inputs_at(t0);
+        let f = |_t: f64, y: &[f64], dy: &mut [f64]| {
+            let act = &y[dim..];
+            plant.derivatives(&y[..dim], act, &inputs, &mut dy[..dim]);
+            for i in 0..n_mus {
+                let p = &plant.mtus[i].params;
+                dy[dim + i] = activation_rate(inputs.excitation[i], act[i], p.t_act, p.t_deact);
+            }
+        };
+        reference::integrate(&f, t0, t0 + 1.0 / rate_hz, &mut y, &scales, 1e-10).unwrap();
+        runner.step().unwrap();
+        let rec = runner.record();
+        out.push((
+            rec.time,
+            (rec.muscles[0].force - plant.tendon_force(&y[..dim], 0, &inputs)).abs(),
+            (rec.muscles[0].fiber_length - y[plant.offset(0)]).abs(),
+        ));
+    }
+    out
 }
