@@ -30,7 +30,7 @@ fn oracle_matches_published_numbers() {
 
 /// Drives the grid kinematically at constant u until steady, returns Q1.
 fn grid_steady_q1(cells: usize, u: f64) -> f64 {
-    let mut g = CrossBridgeGrid::new(cells, 200.0);
+    let mut g = CrossBridgeGrid::new(cells, 40.0);
     let n_iso = HUXLEY.f1 / (HUXLEY.f1 + HUXLEY.g1);
     g.fill(|xi| {
         if (0.0..=1.0).contains(&xi) {
@@ -39,9 +39,10 @@ fn grid_steady_q1(cells: usize, u: f64) -> f64 {
             0.0
         }
     });
-    // Long enough for every bond to be replaced several times over.
-    let t_end = 0.6 + 8.0 / u.abs().max(1.0);
-    let dt = (0.02 / cells as f64 / u.abs().max(1e-9)).min(2e-4);
+    // Long enough for every bond to be replaced several times over; each step moves the grid
+    // by a quarter of a cell at most.
+    let t_end = 0.3 + 4.0 / u.abs().max(1.0);
+    let dt = (0.25 / cells as f64 / u.abs().max(1e-9)).min(2e-4);
     let steps = (t_end / dt).ceil() as usize;
     for _ in 0..steps {
         g.advance(&HUXLEY, 1.0, dt, -u * dt);
@@ -55,7 +56,7 @@ fn full_model_force_velocity_matches_oracle() {
     let q1_iso = exact::isometric_moments(&HUXLEY, 1.0)[1];
     for frac in [-1.0, -0.5, -0.2, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0] {
         let u = frac * u_max;
-        let q1 = grid_steady_q1(400, u);
+        let q1 = grid_steady_q1(200, u);
         let want = exact::steady_q1(&HUXLEY, 1.0, u);
         let err = (q1 - want).abs() / q1_iso;
         println!("u = {u:9.3} h/s: grid Q1 {q1:.6}, oracle {want:.6}, error {err:.1e} of Q1_iso");
@@ -86,8 +87,8 @@ fn full_model_isometric_rise_matches_oracle() {
 fn grid_error_shrinks_with_resolution() {
     let u = 0.5 * exact::unloaded_shortening_rate(&HUXLEY);
     let want = exact::steady_q1(&HUXLEY, 1.0, u);
-    let coarse = (grid_steady_q1(50, u) - want).abs();
-    let fine = (grid_steady_q1(400, u) - want).abs();
+    let coarse = (grid_steady_q1(25, u) - want).abs();
+    let fine = (grid_steady_q1(200, u) - want).abs();
     assert!(
         fine < coarse / 4.0,
         "coarse error {coarse:.2e}, fine {fine:.2e}"

@@ -212,11 +212,17 @@ impl<const N: usize> TrBdf2<N> {
             });
             let (next, err) = match attempt {
                 Some((next, est)) => (next, est.component_mul(&inv_w).amax()),
-                None if step > h_min => {
+                None if step > h_min * (1.0 + 1e-9) => {
                     *h = (0.25 * step).max(h_min);
                     continue;
                 }
-                None => return Err(ConvergenceError { t }),
+                None => {
+                    // Last resort at the smallest size: halve down to 2^-6 of it.
+                    self.step_split(sys, t, step, y, 0)?;
+                    t += step;
+                    taken += 1;
+                    continue;
+                }
             };
             let factor = if err > 0.0 {
                 (0.9 * err.powf(-1.0 / 3.0)).clamp(0.2, 2.0)

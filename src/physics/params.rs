@@ -281,8 +281,8 @@ impl MuscleParams {
         }
         if let Some(l_tc) = self.l_tc {
             c.positive("l_tc", l_tc);
-            if l_tc.is_finite() && self.l_ts.is_finite() && l_tc <= self.l_ts {
-                c.fail("l_tc", l_tc, "must be > l_ts");
+            if l_tc.is_finite() && self.l_ts.is_finite() && l_tc < self.l_ts {
+                c.fail("l_tc", l_tc, "must be >= l_ts");
             }
         }
         let x = &self.crossbridge;

@@ -54,12 +54,14 @@ pub fn default_stepping(model: ModelKind) -> Stepping {
     }
 }
 
-/// The state stopped being finite; the simulation is left as it was before the tick.
+/// A tick that could not be computed; the simulation is left as it was before the tick.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("the simulation state became non-finite at tick {tick}; the joint must be reset")]
+#[error("tick {tick} failed: {reason}; the simulation must be reset")]
 pub struct StepError {
     /// The tick that failed.
     pub tick: u64,
+    /// What went wrong.
+    pub reason: &'static str,
 }
 
 /// The plant's ODE over one tick, with activations in closed form from the tick's start.
@@ -396,12 +398,21 @@ impl Simulation {
         }
         let ode = TickOde::new(&self.plant, &self.inputs, a0);
         let a1 = ode.activations(dt);
-        ok &= self.y[..dim].iter().all(|v| v.is_finite()) && a1.iter().all(|v| v.is_finite());
-        if !ok {
+        let finite =
+            self.y[..dim].iter().all(|v| v.is_finite()) && a1.iter().all(|v| v.is_finite());
+        if !ok || !finite {
+            let reason = if ok {
+                "the state became non-finite"
+            } else {
+                "the implicit solver did not converge (a discontinuous spring or an extreme input?)"
+            };
             self.y = saved_y;
             self.h = saved_h;
             self.stepper = self.fresh_stepper.clone();
-            return Err(StepError { tick: self.tick });
+            return Err(StepError {
+                tick: self.tick,
+                reason,
+            });
         }
         self.activation = a1;
         self.tick += 1;

@@ -1,0 +1,192 @@
+#!/usr/bin/env python3
+"""Node-rate benchmark (issue 3): the node at 1 kHz for DURATION s, publishing ~/state every
+tick, with an rclpy client commanding at 100 Hz. Reports the node's tick lateness p50/p99/max
+and missed ticks (from the node's own summary at exit), and the command-to-state latency seen
+by the client, beside an rclpy-to-rclpy echo round trip measured in the same run.
+
+Run through benches/node_rate.sh (builds, sets up the venv, loopback-only network namespace).
+"""
+
+import argparse
+import json
+import os
+import signal
+import statistics
+import subprocess
+import sys
+import threading
+import time
+
+os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+
+import rclpy  # noqa: E402
+from rclpy.executors import SingleThreadedExecutor  # noqa: E402
+from rclpy.qos import QoSProfile, ReliabilityPolicy, HistoryPolicy  # noqa: E402
+from muscle_actuator_msgs.msg import ActivationCommand, ActuatorState  # noqa: E402
+
+QOS = QoSProfile(reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST, depth=100)
+
+
+def echo_server():
+    """A second rclpy process that sends back every command it receives."""
+    rclpy.init()
+    node = rclpy.create_node("bench_echo")
+    pub = node.create_publisher(ActivationCommand, "/bench/echo_out", QOS)
+    node.create_subscription(ActivationCommand, "/bench/echo_in", pub.publish, QOS)
+    signal.signal(signal.SIGTERM, lambda *a: sys.exit(0))
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, SystemExit):
+        pass
+
+
+def pct(xs, q):
+    if not xs:
+        return float("nan")
+    xs = sorted(xs)
+    return xs[min(len(xs) - 1, max(0, int(round(q * (len(xs) - 1)))))]
+
+
+def summary(xs):
+    return {
+        "n": len(xs),
+        "p50_ms": pct(xs, 0.5) * 1e3,
+        "p99_ms": pct(xs, 0.99) * 1e3,
+        "max_ms": max(xs) * 1e3 if xs else float("nan"),
+        "mean_ms": statistics.fmean(xs) * 1e3 if xs else float("nan"),
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", required=True)
+    ap.add_argument("--duration", type=float, default=60.0)
+    ap.add_argument("--model", default="huxley")
+    ap.add_argument("--rate", type=float, default=1000.0)
+    ap.add_argument("--command-rate", type=float, default=100.0)
+    ap.add_argument("--json", help="write the figures here too")
+    ap.add_argument("--echo-server", action="store_true", help=argparse.SUPPRESS)
+    a = ap.parse_args()
+    if a.echo_server:
+        return echo_server()
+
+    env = dict(os.environ, MUSCLE_ACTUATOR_TICK_SUMMARY="1")
+    node_proc = subprocess.Popen(
+        [a.bin, "node", "--ros-args", "-r", "__ns:=/bench", "-p", f"model:={a.model}",
+         "-p", f"rate_hz:={float(a.rate)}", "--log-level", "error"],
+        stderr=subprocess.PIPE, text=True, env=env,
+    )
+    echo_proc = subprocess.Popen([sys.executable, __file__, "--bin", a.bin, "--echo-server"])
+    rclpy.init()
+    node = rclpy.create_node("bench_client")
+    lock = threading.Lock()
+    pending = {}  # excitation value -> send time (commands to the node)
+    echo_pending = {}  # sequence -> send time
+    lat, echo = [], []
+    states = [0]
+
+    def on_state(m):
+        t = time.monotonic()
+        states[0] += 1
+        u = m.muscles[0].excitation
+        with lock:
+            t0 = pending.pop(u, None)
+        if t0 is not None:
+            lat.append(t - t0)
+
+    def on_echo(m):
+        t = time.monotonic()
+        with lock:
+            t0 = echo_pending.pop(m.header.stamp.nanosec, None)
+        if t0 is not None:
+            echo.append(t - t0)
+
+    node.create_subscription(ActuatorState, "/bench/muscle_actuator/state", on_state, QOS)
+    node.create_subscription(ActivationCommand, "/bench/echo_out", on_echo, QOS)
+    cmd = node.create_publisher(ActivationCommand, "/bench/muscle_actuator/activation", QOS)
+    echo_pub = node.create_publisher(ActivationCommand, "/bench/echo_in", QOS)
+    ex = SingleThreadedExecutor()
+    ex.add_node(node)
+    threading.Thread(target=ex.spin, daemon=True).start()
+
+    def wait(pred, what, timeout=30.0):
+        end = time.monotonic() + timeout
+        while not pred():
+            if time.monotonic() > end:
+                sys.exit(f"timed out waiting for {what}")
+            time.sleep(0.01)
+
+    wait(lambda: cmd.get_subscription_count() > 0 and states[0] > 0, "the node")
+    wait(lambda: echo_pub.get_subscription_count() > 0, "the echo server")
+    time.sleep(2.0)  # let both sides finish matching (first samples can be dropped)
+
+    period = 1.0 / a.command_rate
+    n = 0
+    t_start = time.monotonic()
+    next_t = t_start
+    sent = 0
+    while time.monotonic() - t_start < a.duration:
+        n += 1
+        # A distinct excitation per command identifies the first state that carries it.
+        u = 0.2 + (n % 1000) * 1e-4 + 1e-7
+        m = ActivationCommand()
+        m.muscle = ["flexor", "extensor"]
+        m.excitation = [u, 0.2]
+        e = ActivationCommand()
+        e.header.stamp.nanosec = n
+        now = time.monotonic()
+        with lock:
+            pending.clear()  # only the newest command is measured
+            pending[u] = now
+            echo_pending[n] = now
+        cmd.publish(m)
+        echo_pub.publish(e)
+        sent += 1
+        next_t += period
+        time.sleep(max(0.0, next_t - time.monotonic()))
+    time.sleep(0.5)
+    wall = time.monotonic() - t_start
+    n_states = states[0]
+    node_proc.send_signal(signal.SIGINT)
+    _, err = node_proc.communicate(timeout=10)
+    echo_proc.send_signal(signal.SIGTERM)
+    echo_proc.wait(timeout=10)
+    ex.shutdown()
+    tick = {}
+    for line in err.splitlines():
+        if line.startswith("tick-summary: "):
+            tick = json.loads(line[len("tick-summary: "):])
+    expected_ticks = a.rate * wall
+    res = {
+        "model": a.model,
+        "rate_hz": a.rate,
+        "duration_s": round(wall, 2),
+        "commands_sent": sent,
+        "states_received": n_states,
+        "tick": tick,
+        "command_to_state": summary(lat),
+        "rclpy_echo_round_trip": summary(echo),
+    }
+    t = tick
+    print(f"node {a.model} at {a.rate:.0f} Hz for {wall:.1f} s; client commanding at {a.command_rate:.0f} Hz")
+    if t:
+        print(f"  ticks {t['ticks']} (about {expected_ticks:.0f} expected), ticks later than one period: "
+              f"{t['overruns']}, skipped: {t['skipped']}")
+        print(f"  tick lateness: p50 {t['p50_us']:.1f} us, p99 {t['p99_us']:.1f} us, max {t['max_us']:.1f} us; "
+              f"mean step {t['mean_step_us']:.2f} us")
+    else:
+        print("  (no tick summary from the node)\n" + err[-2000:])
+    for k, label in [("command_to_state", "command -> ~/state (rclpy -> node -> rclpy)"),
+                     ("rclpy_echo_round_trip", "rclpy echo round trip (rclpy -> rclpy -> rclpy)")]:
+        s = res[k]
+        print(f"  {label}: n {s['n']}, p50 {s['p50_ms']:.3f} ms, p99 {s['p99_ms']:.3f} ms, "
+              f"max {s['max_ms']:.3f} ms")
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(res, f, indent=2)
+    ok = bool(t) and t["overruns"] == 0
+    print(f"  bar (no tick later than one period): {'met' if ok else 'NOT met'}")
+
+
+if __name__ == "__main__":
+    main()

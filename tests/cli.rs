@@ -1,0 +1,205 @@
+//! The command line on bad input: one clear line naming what is wrong, a non-zero exit, never a
+//! panic (exit code 101). And the CSV it writes: header and rows as documented.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_muscle_actuator"))
+}
+
+fn tmp(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("muscle_actuator_cli_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn assert_clean_failure(o: &Output, needles: &[&str]) {
+    let err = stderr(o);
+    assert!(!o.status.success(), "should fail: {err}");
+    assert_ne!(o.status.code(), Some(101), "panicked: {err}");
+    assert!(!err.contains("panicked"), "panicked: {err}");
+    for n in needles {
+        assert!(err.contains(n), "expected {n:?} in: {err}");
+    }
+}
+
+fn simulate_with_config(config_text: &str) -> Output {
+    let cfg = tmp(&format!("cfg_{}.toml", config_text.len()), config_text);
+    bin()
+        .args(["simulate", "pulse", "--model", "hill", "--config"])
+        .arg(&cfg)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn each_invalid_parameter_gets_its_own_error() {
+    let cases: &[(&str, &[&str])] = &[
+        (
+            "[[muscle]]\nname = \"flexor\"\nf_max = -1.0\n[[muscle]]\nname = \"extensor\"\n",
+            &["muscle.flexor.f_max", "must be > 0"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\nmass = 0.0\n[[muscle]]\nname = \"extensor\"\n",
+            &["muscle.flexor.mass", "must be > 0"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\n[[muscle]]\nname = \"extensor\"\nl_mc = 0.05\n",
+            &["muscle.extensor.l_mc", "must be > l_ms"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\nt_act = nan\n[[muscle]]\nname = \"extensor\"\n",
+            &["muscle.flexor.t_act", "finite"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\nfl_width = -0.5\n[[muscle]]\nname = \"extensor\"\n",
+            &["muscle.flexor.fl_width"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\nl_opt = 0.0\n[[muscle]]\nname = \"extensor\"\n",
+            &["muscle.flexor.l_opt"],
+        ),
+        (
+            "[joint]\nradius = -0.03\n",
+            &["joint.radius", "must be > 0"],
+        ),
+        (
+            "[joint]\nmin_angle = 1.0\nmax_angle = 0.5\n",
+            &["joint.max_angle", "must be > min_angle"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\nfmax = 10.0\n[[muscle]]\nname = \"extensor\"\n",
+            &["fmax"],
+        ),
+        ("[[muscle]]\nname = \"flexor\"\n", &["exactly two muscles"]),
+        (
+            "[[muscle]]\nname = \"a\"\n[[muscle]]\nname = \"a\"\n",
+            &["must be unique"],
+        ),
+        ("this is not toml", &["configuration file"]),
+    ];
+    for (text, needles) in cases {
+        let o = simulate_with_config(text);
+        assert_clean_failure(&o, needles);
+    }
+}
+
+#[test]
+fn several_bad_values_are_all_reported() {
+    let o = simulate_with_config("[[muscle]]\nname = \"flexor\"\nf_max = -1.0\nv_max = 0.0\n[[muscle]]\nname = \"extensor\"\n");
+    assert_clean_failure(&o, &["muscle.flexor.f_max", "muscle.flexor.v_max"]);
+}
+
+#[test]
+fn discontinuous_l_tc_is_warned_about() {
+    // The paper's table value l_tc = l_ts: a 200 N jump at slack length. The run may go through
+    // or stop with a clear error at the jump; it must warn and must not panic.
+    let o = simulate_with_config(
+        "[[muscle]]\nname = \"flexor\"\nl_tc = 0.3185\n[[muscle]]\nname = \"extensor\"\n",
+    );
+    assert_ne!(o.status.code(), Some(101), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("breaks tendon force continuity"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(stderr(&o).contains("l_tc = 0.3194980"), "{}", stderr(&o));
+}
+
+#[test]
+fn unknown_scenario_lists_the_valid_ones() {
+    let o = bin().args(["simulate", "twitch"]).output().unwrap();
+    assert_clean_failure(&o, &["twitch", "pulse", "energy-10hz", "energy-100hz"]);
+}
+
+#[test]
+fn unknown_model_is_named() {
+    let o = bin()
+        .args(["simulate", "pulse", "--model", "hil"])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, &["hil", "hill, huxley, huxley-pde"]);
+}
+
+#[test]
+fn bad_files_and_rates_fail_cleanly() {
+    let o = bin()
+        .args(["simulate", "pulse", "--config", "/nonexistent/cfg.toml"])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, &["/nonexistent/cfg.toml"]);
+    let o = bin()
+        .args(["simulate", "/nonexistent/s.toml"])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, &["/nonexistent/s.toml"]);
+    let o = bin()
+        .args(["simulate", "pulse", "--rate-hz", "0"])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, &["rate_hz"]);
+    let o = bin()
+        .args([
+            "simulate",
+            "pulse",
+            "--model",
+            "huxley-pde",
+            "--substeps",
+            "0",
+        ])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, &["substeps"]);
+    let bad = tmp("bad_scenario.toml", "duration = 1.0\nattachment = \"joint\"\n[[input]]\nsignal = \"excitation\"\nmuscle = \"biceps\"\nkind = \"step\"\nat = 0.1\nto = 1.0\n");
+    let o = bin().arg("simulate").arg(&bad).output().unwrap();
+    assert_clean_failure(&o, &["biceps", "flexor"]);
+    let bad = tmp("bad_ramp.toml", "duration = 1.0\nattachment = \"clamped\"\n[[input]]\nsignal = \"excitation\"\nkind = \"ramp\"\nstart = 0.5\nend = 0.2\nfrom = 0.0\nto = 1.0\n");
+    let o = bin().arg("simulate").arg(&bad).output().unwrap();
+    assert_clean_failure(&o, &["end = 0.2 must be > start = 0.5"]);
+    let bad = tmp(
+        "bad_duration.toml",
+        "duration = -1.0\nattachment = \"joint\"\n",
+    );
+    let o = bin().arg("simulate").arg(&bad).output().unwrap();
+    assert_clean_failure(&o, &["duration"]);
+}
+
+#[test]
+fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
+    let out = std::env::temp_dir().join(format!("ma_cli_{}.csv", std::process::id()));
+    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/example.toml");
+    let o = bin()
+        .args(["simulate", scenario, "--model", "hill", "--csv"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    assert_eq!(
+        header,
+        "time,name,excitation,activation,force,ce_force,pe_force,fiber_length,fiber_velocity,\
+         tendon_length,stiffness,mtu_stiffness,q0,q1,q2,tendon_energy,fiber_energy,\
+         crossbridge_energy,joint_position,joint_velocity,joint_stiffness"
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // 1.5 s at 1 kHz: the initial state and 1500 ticks, two muscles each.
+    assert_eq!(rows.len(), 2 * 1501);
+    assert!(rows.iter().all(|r| r.len() == 21));
+    assert_eq!(rows[0][1], "flexor");
+    assert_eq!(rows[1][1], "extensor");
+    // The flexor pulse flexes the joint: positive angle at 0.5 s.
+    let at_half = rows
+        .iter()
+        .find(|r| r[0] == "0.5" && r[1] == "flexor")
+        .unwrap();
+    assert!(at_half[18].parse::<f64>().unwrap() > 0.01, "{at_half:?}");
+}
