@@ -33,7 +33,6 @@ def echo_server():
     node = rclpy.create_node("bench_echo")
     pub = node.create_publisher(ActivationCommand, "/bench/echo_out", QOS)
     node.create_subscription(ActivationCommand, "/bench/echo_in", pub.publish, QOS)
-    signal.signal(signal.SIGTERM, lambda *a: sys.exit(0))
     try:
         rclpy.spin(node)
     except (KeyboardInterrupt, SystemExit):
@@ -77,6 +76,15 @@ def main():
         stderr=subprocess.PIPE, text=True, env=env,
     )
     echo_proc = subprocess.Popen([sys.executable, __file__, "--bin", a.bin, "--echo-server"])
+    try:
+        run_client(a, node_proc, echo_proc)
+    finally:
+        for p in (node_proc, echo_proc):
+            if p.poll() is None:
+                p.kill()
+
+
+def run_client(a, node_proc, echo_proc):
     rclpy.init()
     node = rclpy.create_node("bench_client")
     lock = threading.Lock()
@@ -107,7 +115,8 @@ def main():
     echo_pub = node.create_publisher(ActivationCommand, "/bench/echo_in", QOS)
     ex = SingleThreadedExecutor()
     ex.add_node(node)
-    threading.Thread(target=ex.spin, daemon=True).start()
+    spinner = threading.Thread(target=ex.spin, daemon=True)
+    spinner.start()
 
     def wait(pred, what, timeout=30.0):
         end = time.monotonic() + timeout
@@ -149,9 +158,12 @@ def main():
     n_states = states[0]
     node_proc.send_signal(signal.SIGINT)
     _, err = node_proc.communicate(timeout=10)
-    echo_proc.send_signal(signal.SIGTERM)
+    echo_proc.kill()  # rclpy.spin does not return on SIGTERM
     echo_proc.wait(timeout=10)
     ex.shutdown()
+    spinner.join(timeout=5)
+    node.destroy_node()
+    rclpy.try_shutdown()
     tick = {}
     for line in err.splitlines():
         if line.startswith("tick-summary: "):

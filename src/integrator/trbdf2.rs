@@ -194,8 +194,11 @@ impl<const N: usize> TrBdf2<N> {
         let inv_w = sys.scales().map(|s| 1.0 / (tol * s));
         let mut t = t0;
         let mut taken = 0;
-        if !(*h > 0.0) || !h.is_finite() {
+        if !(*h > 0.0 && h.is_finite()) {
             *h = span;
+        }
+        if !(span > 0.0 && span.is_finite()) || y.iter().any(|v| !v.is_finite()) {
+            return Err(ConvergenceError { t: t0 });
         }
         while t1 - t > 1e-12 * span {
             // Never longer than the carried size; no sliver at the span's end.
@@ -206,12 +209,20 @@ impl<const N: usize> TrBdf2<N> {
             } else if remaining < 2.0 * step {
                 step = 0.5 * remaining;
             }
-            let attempt = self.try_step(sys, t, step, y, false).or_else(|| {
-                self.stats.rejected += 1;
-                self.try_step(sys, t, step, y, true)
-            });
+            let finite = |r: &(SVector<f64, N>, SVector<f64, N>)| r.0.iter().all(|v| v.is_finite());
+            let attempt = self
+                .try_step(sys, t, step, y, false)
+                .filter(finite)
+                .or_else(|| {
+                    self.stats.rejected += 1;
+                    self.try_step(sys, t, step, y, true).filter(finite)
+                });
             let (next, err) = match attempt {
-                Some((next, est)) => (next, est.component_mul(&inv_w).amax()),
+                Some((next, est)) => {
+                    // Never NaN below: a non-finite estimate counts as infinitely large.
+                    let err = est.component_mul(&inv_w).amax();
+                    (next, if err.is_finite() { err } else { f64::INFINITY })
+                }
                 None if step > h_min * (1.0 + 1e-9) => {
                     *h = (0.25 * step).max(h_min);
                     continue;
@@ -264,7 +275,8 @@ impl<const N: usize> TrBdf2<N> {
         depth: u32,
     ) -> Result<(), ConvergenceError> {
         for attempt in 0..2 {
-            if let Some((next, _)) = self.try_step(sys, t, h, y, attempt == 1) {
+            let attempt = self.try_step(sys, t, h, y, attempt == 1);
+            if let Some((next, _)) = attempt.filter(|(n, _)| n.iter().all(|v| v.is_finite())) {
                 *y = next;
                 return Ok(());
             }

@@ -122,12 +122,12 @@ impl Mtu {
         l_m: f64,
         v: f64,
         q: &[f64; 3],
-        frozen_closure: Option<&[f64; 3]>,
+        closure: Option<&[f64; 3]>,
     ) -> [f64; 3] {
         let rates = &self.crossbridge.rates;
         let r = activation * self.overlap(l_m);
         let u = self.crossbridge.shortening_rate(v);
-        match frozen_closure {
+        match closure {
             None => distribution_moment::moment_rates(rates, q, r, u),
             Some(phi) => [
                 r * rates.beta(0) - phi[0],

@@ -40,6 +40,31 @@ pub struct Inputs {
     pub external_torque: f64,
 }
 
+/// The full model's closure over a sub-step: φ taken from the grid at the sub-step's start t0,
+/// extrapolated linearly with the slope of the previous sub-step (second order, and no extra
+/// pass over the grid): `φ(t) = φ0 + slope (t - t0)`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct HeldClosure {
+    /// φ_k at t0, 1/s.
+    pub phi: [f64; 3],
+    /// dφ_k/dt, 1/s².
+    pub slope: [f64; 3],
+    /// Start of the sub-step, s (time within the tick).
+    pub t0: f64,
+}
+
+impl HeldClosure {
+    /// φ at time t.
+    pub fn at(&self, t: f64) -> [f64; 3] {
+        let dt = t - self.t0;
+        [
+            self.phi[0] + self.slope[0] * dt,
+            self.phi[1] + self.slope[1] * dt,
+            self.phi[2] + self.slope[2] * dt,
+        ]
+    }
+}
+
 /// One or two MTUs and their attachment.
 #[derive(Debug, Clone)]
 pub struct Plant {
@@ -49,8 +74,8 @@ pub struct Plant {
     pub attachment: Attachment,
     /// The model of the contractile elements.
     pub model: ModelKind,
-    /// The full model's closure φ per muscle, held over a step (unused by the other models).
-    pub frozen_closure: [[f64; 3]; 2],
+    /// The full model's closure φ per muscle over a sub-step (unused by the other models).
+    pub held_closure: [HeldClosure; 2],
     offsets: [usize; 2],
     dim: usize,
 }
@@ -83,7 +108,7 @@ impl Plant {
             mtus,
             attachment,
             model,
-            frozen_closure: [[0.0; 3]; 2],
+            held_closure: [HeldClosure::default(); 2],
             offsets: [base, base + per_muscle],
             dim: base + want * per_muscle,
         })
@@ -137,8 +162,9 @@ impl Plant {
         }
     }
 
-    /// `dy/dt` at state y with activations `act`.
-    pub fn derivatives(&self, y: &[f64], act: &[f64], inputs: &Inputs, dy: &mut [f64]) {
+    /// `dy/dt` at state y with activations `act`; `t` (time within the tick, s) only matters to
+    /// the full model's held closure.
+    pub fn derivatives(&self, t: f64, y: &[f64], act: &[f64], inputs: &Inputs, dy: &mut [f64]) {
         let mut tendon_forces = [0.0; 2];
         for (i, mtu) in self.mtus.iter().enumerate() {
             let o = self.offsets[i];
@@ -150,8 +176,8 @@ impl Plant {
             dy[o] = v;
             dy[o + 1] = mtu.fibre_acceleration(f_se, f_ce, l_m, v);
             if mtu.contractile_dim() == 3 {
-                let frozen = (self.model == ModelKind::HuxleyPde).then(|| &self.frozen_closure[i]);
-                let dq = mtu.moment_rates(act[i], l_m, v, &q, frozen);
+                let held = (self.model == ModelKind::HuxleyPde).then(|| self.held_closure[i].at(t));
+                let dq = mtu.moment_rates(act[i], l_m, v, &q, held.as_ref());
                 dy[o + 2..o + 5].copy_from_slice(&dq);
             }
         }

@@ -8,7 +8,7 @@ use crate::physics::activation::activation_after;
 use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
 use crate::physics::joint;
 use crate::physics::model::ModelKind;
-use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::physics::plant::{Attachment, HeldClosure, Inputs, Plant};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use nalgebra::SVector;
 
@@ -107,7 +107,7 @@ impl<const N: usize> OdeSystem<N> for TickOde<'_> {
     fn rhs(&self, t: f64, y: &SVector<f64, N>, dy: &mut SVector<f64, N>) {
         let act = self.activations(t);
         self.plant
-            .derivatives(y.as_slice(), &act, self.inputs, dy.as_mut_slice());
+            .derivatives(t, y.as_slice(), &act, self.inputs, dy.as_mut_slice());
     }
     fn scales(&self) -> SVector<f64, N> {
         let mut s = SVector::<f64, N>::zeros();
@@ -211,6 +211,8 @@ pub struct Simulation {
     stepper: Stepper,
     fresh_stepper: Stepper,
     grids: Vec<CrossBridgeGrid>,
+    /// The full model's closure at the previous sub-step's start (for the held closure's slope).
+    previous_closure: [Option<[f64; 3]>; 2],
     tick: u64,
 }
 
@@ -275,6 +277,7 @@ impl Simulation {
             fresh_stepper: stepper.clone(),
             stepper,
             grids,
+            previous_closure: [None; 2],
             tick: 0,
         };
         sim.reset(inputs);
@@ -290,6 +293,7 @@ impl Simulation {
         for g in &mut self.grids {
             g.reset();
         }
+        self.previous_closure = [None; 2];
         self.stepper = self.fresh_stepper.clone();
         self.h = 0.0;
         self.tick = 0;
@@ -371,7 +375,13 @@ impl Simulation {
             let t = k as f64 * h;
             if self.plant.model == ModelKind::HuxleyPde {
                 for (i, g) in self.grids.iter().enumerate() {
-                    self.plant.frozen_closure[i] = g.closure(self.plant.mtus[i].rates());
+                    let phi = g.closure(self.plant.mtus[i].rates());
+                    let slope = match self.previous_closure[i] {
+                        Some(prev) => [0, 1, 2].map(|k| (phi[k] - prev[k]) / h),
+                        None => [0.0; 3],
+                    };
+                    self.plant.held_closure[i] = HeldClosure { phi, slope, t0: t };
+                    self.previous_closure[i] = Some(phi);
                 }
             }
             let mut lm_before = [0.0; 2];
@@ -408,6 +418,7 @@ impl Simulation {
             };
             self.y = saved_y;
             self.h = saved_h;
+            self.previous_closure = [None; 2];
             self.stepper = self.fresh_stepper.clone();
             return Err(StepError {
                 tick: self.tick,

@@ -36,9 +36,9 @@ pub fn worst_deviation_from_reference(
     for k in 0..ticks {
         let t0 = k as f64 / rate_hz;
         let inputs = runner.inputs_at(t0);
-        let f = |_t: f64, y: &[f64], dy: &mut [f64]| {
+        let f = |t: f64, y: &[f64], dy: &mut [f64]| {
             let act = &y[dim..];
-            plant.derivatives(&y[..dim], act, &inputs, &mut dy[..dim]);
+            plant.derivatives(t - t0, &y[..dim], act, &inputs, &mut dy[..dim]);
             for i in 0..n_mus {
                 let p = &plant.mtus[i].params;
                 dy[dim + i] = activation_rate(inputs.excitation[i], act[i], p.t_act, p.t_deact);
@@ -79,9 +79,9 @@ pub fn deviation_series(
     for k in 0..ticks {
         let t0 = k as f64 / rate_hz;
         let inputs = runner.inputs_at(t0);
-        let f = |_t: f64, y: &[f64], dy: &mut [f64]| {
+        let f = |t: f64, y: &[f64], dy: &mut [f64]| {
             let act = &y[dim..];
-            plant.derivatives(&y[..dim], act, &inputs, &mut dy[..dim]);
+            plant.derivatives(t - t0, &y[..dim], act, &inputs, &mut dy[..dim]);
             for i in 0..n_mus {
                 let p = &plant.mtus[i].params;
                 dy[dim + i] = activation_rate(inputs.excitation[i], act[i], p.t_act, p.t_deact);

@@ -17,6 +17,41 @@ pub const NEGLIGIBLE_BONDS: f64 = 1e-13;
 /// The grid always covers [-COVER_MARGIN, 1 + COVER_MARGIN] (the attachment range and a margin).
 pub const COVER_MARGIN: f64 = 0.05;
 
+/// Exact relaxation of one cell's bond fraction over `dt` with rates frozen at position `xi`:
+/// `n∞ + (n - n∞) exp(-(f + g) dt)`, `n∞ = r f / (f + g)`.
+fn relax(rates: &Rates, r: f64, n: f64, xi: f64, dt: f64) -> f64 {
+    let f = rates.attach(xi);
+    let total = f + rates.detach(xi);
+    if total > 0.0 {
+        let n_inf = r * f / total;
+        n_inf + (n - n_inf) * (-total * dt).exp()
+    } else {
+        n
+    }
+}
+
+/// The parts of the cell [c - w/2, c + w/2] in ξ < 0, [0, 1] and ξ > 1 where the rates are
+/// smooth: (fraction of the cell, centroid) each; a cell inside one region is one part.
+fn split_cell(c: f64, w: f64) -> [(f64, f64); 3] {
+    let (a, b) = (c - 0.5 * w, c + 0.5 * w);
+    if (a >= 0.0 && b <= 1.0) || b <= 0.0 || a >= 1.0 {
+        return [(1.0, c), (0.0, 0.0), (0.0, 0.0)];
+    }
+    let part = |lo: f64, hi: f64| {
+        let (lo, hi) = (lo.max(a), hi.min(b));
+        if hi > lo {
+            ((hi - lo) / w, 0.5 * (lo + hi))
+        } else {
+            (0.0, 0.0)
+        }
+    };
+    [
+        part(f64::NEG_INFINITY, 0.0),
+        part(0.0, 1.0),
+        part(1.0, f64::INFINITY),
+    ]
+}
+
 /// Bond distribution n(ξ) on a moving uniform grid of cells.
 #[derive(Debug, Clone)]
 pub struct CrossBridgeGrid {
@@ -98,7 +133,12 @@ impl CrossBridgeGrid {
                 continue;
             }
             let c = c0 + i as f64 * dxi;
-            let k = (rates.attach(c) + rates.detach(c)) * v;
+            let rate: f64 = split_cell(c, dxi)
+                .iter()
+                .filter(|(w, _)| *w > 0.0)
+                .map(|(w, x)| w * (rates.attach(*x) + rates.detach(*x)))
+                .sum();
+            let k = rate * v;
             phi[0] += k;
             phi[1] += k * c;
             phi[2] += k * c * c;
@@ -107,17 +147,20 @@ impl CrossBridgeGrid {
     }
 
     /// Advances by `dt` seconds while every cell moves by `shift` (in ξ; `-∫u dt`, negative when
-    /// shortening) at attachment factor `r`.
+    /// shortening) at attachment factor `r`, each cell at its mid-step position. A cell that
+    /// straddles a rate breakpoint (ξ = 0 or 1) is advanced part by part, each part with the
+    /// rates at its own centroid, and keeps the length-weighted mean: the grid then responds
+    /// smoothly to motion instead of switching a whole cell's bonds at once.
     pub fn advance(&mut self, rates: &Rates, r: f64, dt: f64, shift: f64) {
         let (c0, dxi) = (self.first_centre + 0.5 * shift, self.dxi);
         for (i, v) in self.n.iter_mut().enumerate() {
-            let xi = c0 + i as f64 * dxi;
-            let f = rates.attach(xi);
-            let total = f + rates.detach(xi);
-            if total > 0.0 {
-                let n_inf = r * f / total;
-                *v = n_inf + (*v - n_inf) * (-total * dt).exp();
-            }
+            let c = c0 + i as f64 * dxi;
+            let parts = split_cell(c, dxi);
+            *v = parts
+                .iter()
+                .filter(|(w, _)| *w > 0.0)
+                .map(|(w, x)| w * relax(rates, r, *v, *x, dt))
+                .sum();
         }
         self.first_centre += shift;
         self.maintain_cover();
