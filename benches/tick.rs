@@ -40,6 +40,32 @@ fn tick(c: &mut Criterion) {
     g.finish();
 }
 
+/// The expensive case of the adaptive stepping: the first 20 ticks after a full flexor
+/// excitation step from rest (time per 20 ticks; divide by 20 for the mean per tick).
+fn tick_transient(c: &mut Criterion) {
+    let mut g = c.benchmark_group("twenty_ticks_after_excitation_step");
+    for model in [ModelKind::Hill, ModelKind::Huxley] {
+        let rest = Actuator::new(&ActuatorConfig::default(), model, 1000.0).unwrap();
+        g.bench_function(model.name(), |b| {
+            b.iter_batched(
+                || {
+                    let mut a = rest.clone();
+                    a.set_excitation(0, 1.0);
+                    a
+                },
+                |mut a| {
+                    for _ in 0..20 {
+                        a.step().unwrap();
+                    }
+                    black_box(a.muscles()[0].force)
+                },
+                BatchSize::SmallInput,
+            )
+        });
+    }
+    g.finish();
+}
+
 fn simulate_pulse(c: &mut Criterion) {
     let cfg = ActuatorConfig::default();
     let sc = Scenario::built_in("pulse", &MuscleParams::default()).unwrap();
@@ -62,5 +88,5 @@ fn simulate_pulse(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, tick, simulate_pulse);
+criterion_group!(benches, tick, tick_transient, simulate_pulse);
 criterion_main!(benches);

@@ -415,6 +415,10 @@ fn diagnostics(
         values: vec![
             kv("model", params.model.name()),
             kv("rate_hz", rate),
+            kv(
+                "realtime_priority",
+                stats.realtime.load(Ordering::Relaxed).to_string(),
+            ),
             kv("tick", ld(&stats.current_tick)),
             kv("ticks_total", ld(&stats.ticks)),
             kv("overruns", overruns),

@@ -57,6 +57,8 @@ pub enum Event {
 /// Counters and timing figures shared with the diagnostics (written by the tick loop).
 #[derive(Debug, Default)]
 pub struct TickStats {
+    /// Whether the tick thread runs under real-time (SCHED_FIFO) scheduling.
+    pub realtime: AtomicBool,
     /// Ticks done since start (across resets).
     pub ticks: AtomicU64,
     /// The actuator's current tick.
@@ -190,6 +192,26 @@ fn tighten_timer_slack() {
     }
 }
 
+/// Priority of the tick thread under SCHED_FIFO, when the process may use it (root or
+/// CAP_SYS_NICE / an rtprio limit): the loop then preempts the DDS and publisher threads and other
+/// processes' ordinary threads, which is what holds the period on a loaded machine.
+const REALTIME_PRIORITY: libc::c_int = 40;
+
+/// Asks for real-time (SCHED_FIFO) scheduling for this thread; returns whether it was granted.
+/// Without the privilege the loop runs at normal priority, which is only slower to wake.
+fn request_realtime_priority() -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        let param = libc::sched_param {
+            sched_priority: REALTIME_PRIORITY,
+        };
+        // SAFETY: pid 0 is the calling thread; `param` is a valid sched_param for the call.
+        unsafe { libc::sched_setscheduler(0, libc::SCHED_FIFO, &param) == 0 }
+    }
+    #[cfg(not(target_os = "linux"))]
+    false
+}
+
 fn wall_ns() -> i64 {
     SystemTime::now()
         .duration_since(UNIX_EPOCH)
@@ -201,6 +223,9 @@ fn wall_ns() -> i64 {
 /// rate against absolute deadlines; a tick that starts more than one period late is an overrun.
 pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSummary {
     tighten_timer_slack();
+    io.stats
+        .realtime
+        .store(request_realtime_priority(), Ordering::Relaxed);
     let mut muscle_names: Arc<[String]> = actuator.muscle_names().into();
     let mut joint_names: Arc<[String]> = actuator.joint_names().into();
     let mut excitation = vec![0.0; muscle_names.len()];

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Every test of the project, on a fresh machine or an old one (idempotent, reuses what is built):
+#   1. the Rust tests: unit, integration (physics against closed forms, the adaptive reference
+#      solver, conservation laws; the CLI), and the benchmarks compiled and run once in test mode;
+#   2. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
+#      a loopback-only network namespace (scripts/test-ros.sh; it creates .venv and builds the
+#      message package for rclpy on first use).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+echo "== Rust tests" >&2
+cargo test --all-targets
+echo "== ROS 2 tests (rclpy peer)" >&2
+bash scripts/test-ros.sh -q
