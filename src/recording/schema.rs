@@ -1,0 +1,120 @@
+//! ROS 2 message definitions as rosbag2 embeds them in MCAP (`ros2msg` schema encoding): the
+//! type's own `.msg` text, then every dependency (depth first, each once) after a line of 80 `=`
+//! and a `MSG: pkg/Type` header.
+
+use std::collections::BTreeSet;
+
+/// The separator line rosbag2 puts between definitions.
+pub const SEPARATOR: &str =
+    "================================================================================";
+
+const PRIMITIVES: [&str; 17] = [
+    "bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16", "int32",
+    "uint32", "int64", "uint64", "string", "wstring", "time", "duration",
+];
+
+/// `pkg/msg/Type` or `pkg/Type` → (`pkg`, `Type`).
+fn split(name: &str) -> Option<(&str, &str)> {
+    let mut parts = name.split('/');
+    let pkg = parts.next()?;
+    let a = parts.next()?;
+    match parts.next() {
+        None => Some((pkg, a)),
+        Some(t) if a == "msg" && parts.next().is_none() => Some((pkg, t)),
+        _ => None,
+    }
+}
+
+/// The complex types a definition's fields name, as `pkg/Type` (in field order).
+fn dependencies(pkg: &str, text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        let Some(ty) = line.split_whitespace().next() else {
+            continue;
+        };
+        // Constants (`TYPE NAME=value`) name only primitives.
+        if line.split_whitespace().nth(1).is_some_and(|n| n.contains('=')) {
+            continue;
+        }
+        let base = ty.split('[').next().unwrap_or(ty);
+        let base = base.split("<=").next().unwrap_or(base);
+        if PRIMITIVES.contains(&base) {
+            continue;
+        }
+        let full = if base == "Header" {
+            "std_msgs/Header".to_string()
+        } else if let Some((p, t)) = split(base) {
+            format!("{p}/{t}")
+        } else {
+            format!("{pkg}/{base}")
+        };
+        out.push(full);
+    }
+    out
+}
+
+/// The `ros2msg` schema text of `type_name` (`pkg/msg/Type`), with `lookup` giving the `.msg`
+/// text of any `pkg/msg/Type`. Fails on a type `lookup` does not know.
+pub fn ros2msg_schema<'a>(
+    type_name: &str,
+    lookup: &dyn Fn(&str) -> Option<&'a str>,
+) -> Result<String, String> {
+    let (pkg, ty) =
+        split(type_name).ok_or_else(|| format!("{type_name:?} is not a pkg/msg/Type name"))?;
+    let root = lookup(&format!("{pkg}/msg/{ty}"))
+        .ok_or_else(|| format!("no definition for {type_name}"))?;
+    let mut out = root.trim_end().to_string();
+    out.push('\n');
+    let mut seen = BTreeSet::new();
+    seen.insert(format!("{pkg}/{ty}"));
+    let mut stack: Vec<String> = dependencies(pkg, root).into_iter().rev().collect();
+    while let Some(dep) = stack.pop() {
+        if !seen.insert(dep.clone()) {
+            continue;
+        }
+        let (p, t) = split(&dep).ok_or_else(|| format!("bad type name {dep:?}"))?;
+        let text = lookup(&format!("{p}/msg/{t}"))
+            .ok_or_else(|| format!("no definition for {dep} (needed by {type_name})"))?;
+        out.push_str(SEPARATOR);
+        out.push_str("\nMSG: ");
+        out.push_str(&dep);
+        out.push('\n');
+        out.push_str(text.trim_end());
+        out.push('\n');
+        for d in dependencies(p, text).into_iter().rev() {
+            stack.push(d);
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn appends_dependencies_once() {
+        let defs = |n: &str| -> Option<&'static str> {
+            match n {
+                "a/msg/Outer" => Some("std_msgs/Header header\nInner[] x  # inner\nInner y\n"),
+                "a/msg/Inner" => Some("float64 v\nstd_msgs/Header h\n"),
+                "std_msgs/msg/Header" => Some("builtin_interfaces/Time stamp\nstring frame_id\n"),
+                "builtin_interfaces/msg/Time" => Some("int32 sec\nuint32 nanosec\n"),
+                _ => None,
+            }
+        };
+        let s = ros2msg_schema("a/msg/Outer", &defs).unwrap();
+        let headers: Vec<&str> = s.lines().filter(|l| l.starts_with("MSG: ")).collect();
+        assert_eq!(
+            headers,
+            [
+                "MSG: std_msgs/Header",
+                "MSG: builtin_interfaces/Time",
+                "MSG: a/Inner"
+            ]
+        );
+        assert_eq!(s.matches(SEPARATOR).count(), 3);
+        assert!(ros2msg_schema("a/msg/Missing", &defs).is_err());
+    }
+}
