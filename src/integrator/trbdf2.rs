@@ -179,6 +179,7 @@ impl<const N: usize> TrBdf2<N> {
     /// step size from call to call (deterministic: it depends only on the history of states).
     /// Steps are at most `t1 - t0` and at least `(t1 - t0) / max_substeps`; a step at the
     /// minimum size is accepted whatever its estimate.
+    #[allow(clippy::too_many_arguments)]
     pub fn advance<S: OdeSystem<N>>(
         &mut self,
         sys: &S,

@@ -116,7 +116,10 @@ impl<const N: usize> OdeSystem<N> for TickOde<'_> {
     }
 }
 
+/// The stepper for the plant's state dimension (the variants differ in size; there is one per
+/// simulation, so no boxing).
 #[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)]
 enum Stepper {
     D2(TrBdf2<2>),
     D5(TrBdf2<5>),
@@ -385,8 +388,8 @@ impl Simulation {
                 }
             }
             let mut lm_before = [0.0; 2];
-            for i in 0..self.plant.mtus.len() {
-                lm_before[i] = self.y[self.plant.offset(i)];
+            for (i, l) in lm_before.iter_mut().enumerate().take(self.plant.mtus.len()) {
+                *l = self.y[self.plant.offset(i)];
             }
             let ode = TickOde::new(&self.plant, &self.inputs, a0);
             ok &= self.stepper.step(&ode, t, h, &mut self.y[..dim]);
