@@ -2,11 +2,12 @@
 //! BDF2 stage to t + h, γ = 2 - √2. L-stable, second order, both stages share the iteration
 //! matrix `I - d J` with `d = γh/2`.
 //!
-//! Written by hand on nalgebra static types: the ODE crates measured here (diffsol) cost about
-//! twice as much per 1 ms tick, and a fixed-step, allocation-free, bit-deterministic stepper is
-//! exactly what the tick loop needs. The Jacobian (by finite differences) and its LU are kept
-//! across steps and refreshed only when the simplified Newton iteration converges slowly, the
-//! step size changes, or it fails.
+//! Written by hand on nalgebra static types: on a stiff toy problem measured for this project,
+//! diffsol's ESDIRK/BDF cost about 1 µs per 1 ms tick against about 0.5 µs for a hand-written
+//! TR-BDF2, and the tick loop needs a stepper that is allocation-free and bit-deterministic, with
+//! its Jacobian kept across ticks. The Jacobian (finite differences) and its LU are refreshed
+//! only when the simplified Newton iteration converges slowly, the step size changes, or it
+//! fails. `advance` chooses sub-steps by the embedded error estimate; `step` takes one fixed step.
 
 use crate::integrator::OdeSystem;
 use nalgebra::{SMatrix, SVector};
@@ -417,5 +418,96 @@ impl<const N: usize> Lu<N> {
             x[i] = (x[i] - dot) / row[i];
         }
         b.copy_from_slice(&x);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Prothero–Robinson: y' = λ (y - cos t) - sin t, exact solution y = cos t for any λ.
+    struct ProtheroRobinson(f64);
+    impl OdeSystem<1> for ProtheroRobinson {
+        fn rhs(&self, t: f64, y: &SVector<f64, 1>, dy: &mut SVector<f64, 1>) {
+            dy[0] = self.0 * (y[0] - t.cos()) - t.sin();
+        }
+        fn scales(&self) -> SVector<f64, 1> {
+            SVector::from([1.0])
+        }
+    }
+
+    #[test]
+    fn stiff_problem_is_solved_at_the_smooth_solution_accuracy() {
+        for lambda in [-1.0, -1e3, -1e6] {
+            let sys = ProtheroRobinson(lambda);
+            let mut st = TrBdf2::<1>::new();
+            let mut y = SVector::from([1.0]);
+            let h = 1e-2;
+            for k in 0..100 {
+                st.step(&sys, k as f64 * h, h, &mut y).unwrap();
+            }
+            let err = (y[0] - 1f64.cos()).abs();
+            assert!(err < 1e-5, "λ = {lambda}: error {err}");
+        }
+    }
+
+    struct Decay(f64);
+    impl OdeSystem<1> for Decay {
+        fn rhs(&self, _t: f64, y: &SVector<f64, 1>, dy: &mut SVector<f64, 1>) {
+            dy[0] = self.0 * y[0];
+        }
+        fn scales(&self) -> SVector<f64, 1> {
+            SVector::from([1.0])
+        }
+    }
+
+    #[test]
+    fn l_stable_very_stiff_modes_are_damped_in_one_step() {
+        let mut st = TrBdf2::<1>::new();
+        let mut y = SVector::from([1.0]);
+        st.step(&Decay(-1e9), 0.0, 1.0, &mut y).unwrap();
+        assert!(y[0].abs() < 1e-8, "R(-1e9) = {}", y[0]);
+    }
+
+    #[test]
+    fn adaptive_advance_meets_its_tolerance_and_adapts() {
+        for tol in [1e-4, 1e-6, 1e-8] {
+            let mut st = TrBdf2::<1>::new();
+            let mut y = SVector::from([1.0]);
+            let mut h = 0.0;
+            let mut steps = 0;
+            for k in 0..10 {
+                steps += st
+                    .advance(
+                        &Decay(-5.0),
+                        k as f64 * 0.1,
+                        (k + 1) as f64 * 0.1,
+                        &mut y,
+                        &mut h,
+                        tol,
+                        10_000,
+                    )
+                    .unwrap();
+            }
+            let err = (y[0] - (-5.0f64).exp()).abs();
+            // Global error within a modest multiple of the local tolerance; tighter tolerances
+            // need more steps.
+            assert!(
+                err < 50.0 * tol,
+                "tol {tol}: error {err} after {steps} steps"
+            );
+            println!("tol {tol:e}: {steps} steps, error {err:.2e}");
+        }
+    }
+
+    #[test]
+    fn lu_solves_a_pivoting_system() {
+        let m = SMatrix::<f64, 3, 3>::new(0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0);
+        let lu = Lu::new(m).unwrap();
+        let x = SVector::from([1.0, -2.0, 0.5]);
+        let mut b = m * x;
+        lu.solve_mut(&mut b);
+        assert!((b - x).amax() < 1e-14, "{b:?}");
+        assert!(Lu::new(SMatrix::<f64, 2, 2>::new(1.0, 2.0, 2.0, 4.0)).is_none());
     }
 }
