@@ -19,6 +19,7 @@ PACKAGES=(
   cmake
   mcap
   mcap-ros2-support
+  pymcap-cli  # GPL: a test tool only (`doctor`), never a dependency of the product
   pytest
   pytest-timeout
   ros-kilted-ament-cmake

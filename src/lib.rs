@@ -4,11 +4,15 @@
 //! - [`integrator`]: the fixed-tick implicit stepper and the adaptive reference solver.
 //! - [`sim`]: the actuator stepped tick by tick (the facade the node and the CLI use).
 //! - [`config`]: the configuration file.
+//! - [`recording`]: rosbag2-compatible MCAP recordings (no physics).
+//! - [`runs`]: runs as recordings: `simulate --out`, replay and compare.
 
 pub mod config;
 pub mod csv;
 pub mod figures;
 pub mod integrator;
 pub mod physics;
+pub mod recording;
 pub mod ros;
+pub mod runs;
 pub mod sim;

@@ -21,7 +21,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run a scenario offline (no DDS) and write its ticks as CSV.
+    /// Run a scenario offline (no DDS); record it to MCAP (--out) and/or CSV (--csv).
     Simulate {
         /// A built-in scenario (pulse, energy-10hz, energy-100hz) or a scenario file (.toml).
         scenario: String,
@@ -41,6 +41,31 @@ enum Command {
         /// CSV output file ('-' for standard output).
         #[arg(long)]
         csv: Option<PathBuf>,
+        /// MCAP recording (rosbag2-compatible) of the run.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Feed the recorded inputs of a run through a model, tick by tick, and record the result.
+    Replay {
+        /// The recording (.mcap).
+        input: PathBuf,
+        /// Contractile model (default: the recorded one).
+        #[arg(long)]
+        model: Option<String>,
+        /// Output recording (.mcap).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Compare two recorded runs: RMS and max differences, peak timing, rise times.
+    Compare {
+        a: PathBuf,
+        b: PathBuf,
+        /// Overlay plot of the forces (PNG; an SVG is written beside it).
+        #[arg(long)]
+        plot: Option<PathBuf>,
+        /// JSON instead of a table.
+        #[arg(long)]
+        json: bool,
     },
     /// Run the ROS 2 node; everything after `node` goes to it (`--ros-args ...`, see `node --help`).
     #[command(disable_help_flag = true)]
@@ -76,20 +101,22 @@ fn run(cli: Cli) -> Result<(), String> {
             rate_hz,
             substeps,
             csv,
+            out,
         } => {
             let model: ModelKind = model
                 .parse()
                 .map_err(|e: muscle_actuator::physics::model::UnknownModel| e.to_string())?;
             let cfg = load_config(&config)?;
             let sc = Scenario::resolve(&scenario, &cfg.muscles[0].params)?;
-            let run = sc.run(
-                &cfg,
-                model,
-                rate_hz,
-                substeps
-                    .map(Stepping::Fixed)
-                    .unwrap_or(default_stepping(model)),
-            )?;
+            let stepping = substeps
+                .map(Stepping::Fixed)
+                .unwrap_or(default_stepping(model));
+            let run = match &out {
+                Some(path) => muscle_actuator::runs::simulate_to_mcap(
+                    &sc, &cfg, model, rate_hz, stepping, path,
+                )?,
+                None => sc.run(&cfg, model, rate_hz, stepping)?,
+            };
             if let Some(path) = csv {
                 let write = |out: &mut dyn std::io::Write| {
                     let mut buf = std::io::BufWriter::new(out);
@@ -114,6 +141,50 @@ fn run(cli: Cli) -> Result<(), String> {
                 last.muscles[0].force,
                 last.muscles[0].fiber_length
             );
+            Ok(())
+        }
+        Command::Replay { input, model, out } => {
+            let model = model
+                .map(|m| {
+                    m.parse::<ModelKind>()
+                        .map_err(|e: muscle_actuator::physics::model::UnknownModel| e.to_string())
+                })
+                .transpose()?;
+            let s = muscle_actuator::runs::replay(&input, model, &out)?;
+            if s.compared > 0 {
+                eprintln!(
+                    "replayed {} ticks with {}: {} of {} recorded states reproduced bit for bit{}",
+                    s.ticks,
+                    s.model,
+                    s.identical,
+                    s.compared,
+                    s.first_difference
+                        .map(|t| format!(" (first difference at tick {t})"))
+                        .unwrap_or_default()
+                );
+            } else {
+                eprintln!(
+                    "replayed {} ticks with {} into {}",
+                    s.ticks,
+                    s.model,
+                    out.display()
+                );
+            }
+            if s.identical < s.compared {
+                return Err("the replay did not reproduce the recorded states".into());
+            }
+            Ok(())
+        }
+        Command::Compare { a, b, plot, json } => {
+            let c = muscle_actuator::runs::compare::compare_files(&a, &b, plot.as_deref())?;
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&c).map_err(|e| e.to_string())?
+                );
+            } else {
+                print!("{}", c.table());
+            }
             Ok(())
         }
         Command::Figures { out } => muscle_actuator::figures::write_all(&out),

@@ -39,5 +39,6 @@ pub fn decode_cdr<T: DeserializeOwned>(data: &[u8]) -> Result<T, String> {
         (0x00, 0x00) => cdr_encoding::from_bytes::<T, byteorder::BigEndian>(body),
         (a, b) => return Err(format!("unsupported CDR encapsulation {a:02x} {b:02x}")),
     };
-    r.map(|(v, _)| v).map_err(|e| format!("bad CDR message: {e}"))
+    r.map(|(v, _)| v)
+        .map_err(|e| format!("bad CDR message: {e}"))
 }

@@ -1,8 +1,8 @@
 //! Reading a recording back: every message (raw CDR) with its topic and times, and the metadata
 //! records.
 
-use mcap::records::Record;
 use mcap::read::Options;
+use mcap::records::Record;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -48,12 +48,13 @@ pub fn read_recording(path: &Path, recover: bool) -> Result<Recording, String> {
 
 /// As [`read_recording`], from memory.
 pub fn read_bytes(buf: &[u8], recover: bool) -> Result<Recording, String> {
-    let bad = |e: &dyn std::fmt::Display| format!("not a complete MCAP file (truncated or corrupted): {e}");
-    let options = if recover {
-        Options::IgnoreEndMagic.into()
-    } else {
-        enumset::EnumSet::from(Options::ValidateChunkCrcs)
+    let bad = |e: &dyn std::fmt::Display| {
+        format!("not a complete MCAP file (truncated or corrupted): {e}")
     };
+    let mut options: enumset::EnumSet<Options> = Options::ValidateChunkCrcs.into();
+    if recover {
+        options |= Options::IgnoreEndMagic;
+    }
     let mut rec = Recording::default();
     let reader = mcap::read::LinearReader::new_with_options(buf, options).map_err(|e| bad(&e))?;
     for r in reader {

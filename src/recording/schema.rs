@@ -34,7 +34,11 @@ fn dependencies(pkg: &str, text: &str) -> Vec<String> {
             continue;
         };
         // Constants (`TYPE NAME=value`) name only primitives.
-        if line.split_whitespace().nth(1).is_some_and(|n| n.contains('=')) {
+        if line
+            .split_whitespace()
+            .nth(1)
+            .is_some_and(|n| n.contains('='))
+        {
             continue;
         }
         let base = ty.split('[').next().unwrap_or(ty);

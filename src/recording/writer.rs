@@ -86,7 +86,9 @@ impl RecorderStats {
         self.state
             .lock()
             .map(|s| s.clone())
-            .unwrap_or(RecorderState::Failed("internal error: lock poisoned".into()))
+            .unwrap_or(RecorderState::Failed(
+                "internal error: lock poisoned".into(),
+            ))
     }
     fn set_state(&self, s: RecorderState) {
         if let Ok(mut g) = self.state.lock() {
@@ -368,7 +370,13 @@ impl Worker {
         }
     }
 
-    fn write(&mut self, channel: usize, log_time: u64, publish_time: u64, data: &[u8]) -> Result<(), ()> {
+    fn write(
+        &mut self,
+        channel: usize,
+        log_time: u64,
+        publish_time: u64,
+        data: &[u8],
+    ) -> Result<(), ()> {
         let Some(&id) = self.ids.get(channel) else {
             self.stats.dropped.fetch_add(1, Ordering::Relaxed);
             return Ok(());
@@ -451,7 +459,9 @@ impl Worker {
             "  duration:\n    nanoseconds: {}\n  starting_time:\n    nanoseconds_since_epoch: {start}\n",
             end - start
         ));
-        y.push_str(&format!("  message_count: {total}\n  topics_with_message_count:\n"));
+        y.push_str(&format!(
+            "  message_count: {total}\n  topics_with_message_count:\n"
+        ));
         for (c, n) in self.channels.iter().zip(&self.counts) {
             y.push_str(&format!(
                 "    - topic_metadata:\n        name: {}\n        type: {}\n        \

@@ -4,6 +4,7 @@
 //! - [`args`]: the standard ROS 2 command-line arguments, name expansion and remapping;
 //! - [`params`]: the six parameters and their rules;
 //! - [`input`]: validation of incoming commands;
+//! - [`record`]: the node's MCAP recording (off the tick thread);
 //! - [`tick`]: the fixed-rate loop on its own thread (channels in and out, never waits on DDS);
 //! - [`msgs`]: the message types, field for field as in `msg/*.msg`;
 //! - [`node`]: the DDS side (ros2-client on RustDDS): topics, services, parameters, diagnostics,
@@ -14,6 +15,7 @@ pub mod input;
 pub mod msgs;
 pub mod node;
 pub mod params;
+pub mod record;
 pub mod tick;
 
 /// The node's name unless remapped with `-r __node:=...`.

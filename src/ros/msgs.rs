@@ -146,3 +146,76 @@ pub struct TriggerResponse {
     pub message: String,
 }
 impl Message for TriggerResponse {}
+
+/// The `.msg` definitions of the recorded types (`pkg/msg/Type` → text), for the `ros2msg`
+/// schemas of recordings: ours from `msg/msg/`, the standard ones as in ROS 2 kilted (fields
+/// only).
+pub const DEFINITIONS: &[(&str, &str)] = &[
+    (
+        "muscle_actuator_msgs/msg/ActivationCommand",
+        include_str!("../../msg/msg/ActivationCommand.msg"),
+    ),
+    (
+        "muscle_actuator_msgs/msg/ExternalLoad",
+        include_str!("../../msg/msg/ExternalLoad.msg"),
+    ),
+    (
+        "muscle_actuator_msgs/msg/MuscleState",
+        include_str!("../../msg/msg/MuscleState.msg"),
+    ),
+    (
+        "muscle_actuator_msgs/msg/ActuatorState",
+        include_str!("../../msg/msg/ActuatorState.msg"),
+    ),
+    (
+        "std_msgs/msg/Header",
+        "builtin_interfaces/Time stamp\nstring frame_id\n",
+    ),
+    (
+        "builtin_interfaces/msg/Time",
+        "int32 sec\nuint32 nanosec\n",
+    ),
+    (
+        "sensor_msgs/msg/JointState",
+        "std_msgs/Header header\n\nstring[] name\nfloat64[] position\nfloat64[] velocity\nfloat64[] effort\n",
+    ),
+];
+
+/// The `.msg` text of `pkg/msg/Type`, if it is one of [`DEFINITIONS`].
+pub fn definition(type_name: &str) -> Option<&'static str> {
+    DEFINITIONS
+        .iter()
+        .find(|(n, _)| *n == type_name)
+        .map(|(_, t)| *t)
+}
+
+/// REP-2016 type hashes (`RIHS01_...`) of the recorded types, for `topic_type_hash` in
+/// recordings. They follow from the definitions above; `tests/python/test_recording.py` checks
+/// them against the hash `rosbags` computes from the schemas embedded in a recording (update
+/// them from its failure message when a `.msg` file changes).
+pub const TYPE_HASHES: &[(&str, &str)] = &[
+    (
+        "muscle_actuator_msgs/msg/ActivationCommand",
+        "RIHS01_ce7fb9cd9d358cb8c05032e923e09d976928fe6ef1b58367d2e8d7cd4053ab73",
+    ),
+    (
+        "muscle_actuator_msgs/msg/ExternalLoad",
+        "RIHS01_47f5dd3d3840d4448236aa191a63b0fc7c5098b0e170b47e0473684948ddb16f",
+    ),
+    (
+        "muscle_actuator_msgs/msg/ActuatorState",
+        "RIHS01_01dfcdb343cd8f8b5ad7a5c078b71e04d48d874374ef737c5d730dae05b1a202",
+    ),
+    (
+        "sensor_msgs/msg/JointState",
+        "RIHS01_a13ee3a330e346c9d87b5aa18d24e11690752bd33a0350f11c5882bc9179260e",
+    ),
+];
+
+/// The type hash of `pkg/msg/Type`, if known.
+pub fn type_hash(type_name: &str) -> Option<&'static str> {
+    TYPE_HASHES
+        .iter()
+        .find(|(n, _)| *n == type_name)
+        .map(|(_, h)| *h)
+}

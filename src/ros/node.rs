@@ -12,8 +12,10 @@ use super::msgs::{
     TriggerResponse,
 };
 use super::params::{self, NodeParams};
-use super::tick::{self, Command, Event, LoopIo, RunSummary, Sample, TickStats};
+use super::record;
+use super::tick::{self, Applied, Command, Event, LoopIo, RunSummary, Sample, TickStats};
 use super::DEFAULT_NODE_NAME;
+use crate::recording::{RecordSender, RecorderState};
 use futures::{FutureExt, StreamExt};
 use ros2_client::builtin_interfaces::Time;
 use ros2_client::log::LogLevel;
@@ -333,9 +335,14 @@ fn publish_loop(
     state_pub: Publisher<ActuatorState>,
     joint_pub: Publisher<JointState>,
     errors: Arc<AtomicU64>,
+    rec: Option<RecordSender>,
 ) {
     while let Ok(s) = rx.recv() {
         let (state, js) = sample_to_msgs(&s);
+        if let Some(r) = &rec {
+            record::put(r, record::CH_STATE, s.stamp_ns, &state);
+            record::put(r, record::CH_JOINT_STATES, s.stamp_ns, &js);
+        }
         if state_pub.publish(state).is_err() {
             errors.fetch_add(1, Ordering::Relaxed);
         }
@@ -368,6 +375,7 @@ fn diagnostics(
     params: &NodeParams,
     publish_errors: u64,
     prev: &mut DiagPrev,
+    recorder_status: DiagnosticStatus,
 ) -> DiagnosticArray {
     let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
     let (p50, p99, max) = stats.window();
@@ -438,6 +446,7 @@ fn diagnostics(
                 ),
             ),
             kv("states_dropped", ld(&stats.samples_dropped)),
+            kv("applied_inputs_dropped", ld(&stats.applied_dropped)),
             kv("publish_errors", publish_errors),
             kv("nonfinite_resets", nonfinite),
             kv("resets", ld(&stats.resets)),
@@ -482,17 +491,6 @@ fn diagnostics(
             kv("clamped_values", ld(&inputs.clamped_values)),
             kv("malformed", ld(&inputs.malformed)),
             kv("last_problem", last),
-        ],
-    };
-    let recorder_status = DiagnosticStatus {
-        level: DiagnosticStatus::OK,
-        name: format!("{fqn}: recorder"),
-        message: "not recording (recording is not available in this build)".into(),
-        hardware_id: fqn.into(),
-        values: vec![
-            kv("record", params.record),
-            kv("record_dir", &params.record_dir),
-            kv("state", "inactive"),
         ],
     };
     DiagnosticArray {
@@ -696,6 +694,39 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         .spinner()
         .map_err(|e| format!("cannot start the node's spinner: {e:?}"))?;
 
+    // The recording (a failure to start is reported, never fatal).
+    let mut recorder = None;
+    let mut recorder_error = String::new();
+    if record::enabled(&setup.params) {
+        match record::start(
+            &setup.params,
+            &setup.fqn,
+            &record::Topics {
+                state: &state_name,
+                joint_states: &js_name,
+                activation: &activation_name,
+                load: &load_name,
+            },
+            &actuator,
+        ) {
+            Ok(r) => recorder = Some(r),
+            Err(e) => recorder_error = e,
+        }
+    }
+    let rec_tx = recorder.as_ref().map(|r| r.sender());
+    let (applied_tx, applied_thread) = match &rec_tx {
+        Some(tx) => {
+            let (atx, arx) = mpsc::sync_channel::<Applied>(1024);
+            let tx = tx.clone();
+            let t = std::thread::Builder::new()
+                .name("record-inputs".into())
+                .spawn(move || record::applied_loop(arx, tx))
+                .map_err(|e| format!("cannot start the recorder's input thread: {e}"))?;
+            (Some(atx), Some(t))
+        }
+        None => (None, None),
+    };
+
     // The tick thread and the publisher thread.
     let stats = Arc::new(TickStats::default());
     let inputs = Arc::new(InputStats::default());
@@ -704,9 +735,10 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     let (event_tx, event_rx) = mpsc::sync_channel::<Event>(1024);
     let publish_errors = Arc::new(AtomicU64::new(0));
     let pe = publish_errors.clone();
+    let pub_rec = rec_tx.clone();
     let publisher_thread = std::thread::Builder::new()
         .name("publish".into())
-        .spawn(move || publish_loop(sample_rx, state_pub, js_pub, pe))
+        .spawn(move || publish_loop(sample_rx, state_pub, js_pub, pe, pub_rec))
         .map_err(|e| format!("cannot start the publisher thread: {e}"))?;
     let model = actuator.model();
     let rate = actuator.rate_hz();
@@ -719,6 +751,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             events: event_tx,
             stats: stats.clone(),
             stop: stop.clone(),
+            applied: applied_tx,
         },
     )
     .map_err(|e| format!("cannot start the tick thread: {e}"))?;
@@ -748,6 +781,9 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             inputs.activation_received.fetch_add(1, Ordering::Relaxed);
             match r {
                 Ok((msg, _info)) => {
+                    if let Some(tx) = &rec_tx {
+                        record::put(tx, record::CH_ACTIVATION, msg.header.stamp.to_nanos(), &msg);
+                    }
                     let known = shared
                         .names
                         .read()
@@ -804,6 +840,9 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             inputs.load_received.fetch_add(1, Ordering::Relaxed);
             match r {
                 Ok((msg, _info)) => {
+                    if let Some(tx) = &rec_tx {
+                        record::put(tx, record::CH_LOAD, msg.header.stamp.to_nanos(), &msg);
+                    }
                     let known = shared
                         .names
                         .read()
@@ -865,9 +904,28 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     };
     let diag_task = async {
         let mut prev = DiagPrev::default();
+        let mut failure_reported = false;
+        if !recorder_error.is_empty() {
+            logger.error(&format!("not recording: {recorder_error}"));
+        } else if let Some(r) = &recorder {
+            logger.info(&format!("recording to {}", r.stats().path.display()));
+        }
         loop {
             smol::Timer::after(Duration::from_secs(1)).await;
             let p = shared.params.lock().map(|p| p.clone()).unwrap_or_default();
+            let rec_status = match &recorder {
+                Some(r) => {
+                    if let RecorderState::Failed(e) = r.stats().state() {
+                        if !failure_reported {
+                            failure_reported = true;
+                            logger.error(&format!("{e}; the simulation goes on without it"));
+                        }
+                    }
+                    record::Status::Running(r)
+                }
+                None if !recorder_error.is_empty() => record::Status::StartFailed(&recorder_error),
+                None => record::Status::Disabled,
+            };
             let msg = diagnostics(
                 &setup.fqn,
                 &stats,
@@ -875,6 +933,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                 &p,
                 publish_errors.load(Ordering::Relaxed),
                 &mut prev,
+                record::diagnostic(&setup.fqn, &setup.params, &rec_status),
             );
             if let Some(st) = msg.status.first() {
                 if st.level == DiagnosticStatus::ERROR
@@ -964,6 +1023,24 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     drop(cmd_tx);
     drop(shared);
     let _ = publisher_thread.join();
+    if let Some(t) = applied_thread {
+        let _ = t.join();
+    }
+    drop(rec_tx);
+    if let Some(r) = recorder {
+        let path = r.stats().path.clone();
+        let (written, dropped) = (
+            r.stats().written.load(Ordering::Relaxed),
+            r.stats().dropped.load(Ordering::Relaxed),
+        );
+        match r.finish() {
+            RecorderState::Failed(e) => logger.error(&e),
+            _ => logger.info(&format!(
+                "recording {} finished: {written} messages, {dropped} dropped",
+                path.display()
+            )),
+        }
+    }
     logger.info(&format!(
         "stopped after {} ticks: lateness p50 {:.1} us, p99 {:.1} us, max {:.1} us; {} overruns, \
          {} skipped; mean step {:.2} us",

@@ -32,7 +32,7 @@ pub struct NodeParams {
     pub config: String,
     /// Record to MCAP.
     pub record: bool,
-    /// Directory for recordings.
+    /// Directory for recordings ("" = no recording).
     pub record_dir: String,
 }
 
@@ -127,13 +127,8 @@ impl NodeParams {
                     ))
                 }
             },
-            RECORD_DIR => {
-                let d = as_string(value)?;
-                if d.is_empty() {
-                    return Err("record_dir must not be empty".into());
-                }
-                self.record_dir = d;
-            }
+            // Empty disables recording, as `record: false` does.
+            RECORD_DIR => self.record_dir = as_string(value)?,
             other => {
                 return Err(format!(
                     "unknown parameter {other:?} (known: {})",

@@ -39,6 +39,20 @@ pub struct Sample {
     pub joints: Vec<JointSnapshot>,
 }
 
+/// Inputs as the tick loop applied them, for the recorder: they take effect for the step from
+/// `tick` to `tick + 1`. The values are moved from the command (nothing is allocated).
+#[derive(Debug, Clone)]
+pub struct Applied {
+    /// The actuator's tick when they took effect.
+    pub tick: u64,
+    /// The tick rate then, Hz.
+    pub rate_hz: f64,
+    /// Excitations (true: values are (muscle index, u)) or external torques (joint index, N m).
+    pub excitation: bool,
+    pub names: Arc<[String]>,
+    pub values: Vec<(usize, f64)>,
+}
+
 /// Something the log should say (the loop itself never logs).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
@@ -69,6 +83,8 @@ pub struct TickStats {
     pub skipped: AtomicU64,
     /// States dropped because the publisher was behind.
     pub samples_dropped: AtomicU64,
+    /// Applied inputs the recorder channel had no room for.
+    pub applied_dropped: AtomicU64,
     /// Resets after a non-finite state.
     pub nonfinite_resets: AtomicU64,
     /// Resets on request.
@@ -178,6 +194,8 @@ pub struct LoopIo {
     pub events: SyncSender<Event>,
     pub stats: Arc<TickStats>,
     pub stop: Arc<AtomicBool>,
+    /// Where applied inputs go for the recording (never waited on: dropped when full).
+    pub applied: Option<SyncSender<Applied>>,
 }
 
 /// After this many periods behind, the loop stops catching up and restarts its schedule.
@@ -219,6 +237,27 @@ fn wall_ns() -> i64 {
         .unwrap_or(0)
 }
 
+/// Passes applied inputs to the recorder, if any (never waits).
+fn hand_applied(
+    io: &LoopIo,
+    actuator: &Actuator,
+    excitation: bool,
+    names: &Arc<[String]>,
+    values: Vec<(usize, f64)>,
+) {
+    if let Some(tx) = &io.applied {
+        if let Err(TrySendError::Full(_)) = tx.try_send(Applied {
+            tick: actuator.tick(),
+            rate_hz: actuator.rate_hz(),
+            excitation,
+            names: names.clone(),
+            values,
+        }) {
+            io.stats.applied_dropped.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+}
+
 /// Runs the loop until `io.stop` is set (or the command channel closes). Ticks at the actuator's
 /// rate against absolute deadlines; a tick that starts more than one period late is an overrun.
 pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSummary {
@@ -255,20 +294,22 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         loop {
             match io.commands.try_recv() {
                 Ok(Command::Excitation(v)) => {
-                    for (i, u) in v {
+                    for &(i, u) in &v {
                         if let Some(slot) = excitation.get_mut(i) {
                             *slot = u;
                         }
                         actuator.set_excitation(i, u);
                     }
+                    hand_applied(&io, &actuator, true, &muscle_names, v);
                 }
                 Ok(Command::Load(v)) => {
-                    for (i, t) in v {
+                    for &(i, t) in &v {
                         if let Some(slot) = load.get_mut(i) {
                             *slot = t;
                         }
                         actuator.set_external_torque(i, t);
                     }
+                    hand_applied(&io, &actuator, false, &joint_names, v);
                 }
                 Ok(Command::Reset(reply)) => {
                     let before = actuator.tick();

@@ -41,6 +41,10 @@ def wait_until(predicate, timeout, interval=0.01, what="condition"):
         time.sleep(interval)
 
 
+# Nodes run here, so that their default recordings (`runs/`) land in a scratch directory.
+NODE_CWD = tempfile.mkdtemp(prefix="muscle_actuator_nodes_")
+
+
 class NodeProcess:
     """`muscle_actuator node --ros-args -r __ns:=NS ...` as a child process."""
 
@@ -87,7 +91,7 @@ class NodeProcess:
 
     def start(self):
         self.proc = subprocess.Popen(
-            self.command(), stdout=self.log, stderr=subprocess.STDOUT, env=self.env
+            self.command(), stdout=self.log, stderr=subprocess.STDOUT, env=self.env, cwd=NODE_CWD
         )
         return self
 

@@ -1,0 +1,211 @@
+//! The node's recording (parameters `record`, `record_dir`): every input as received, every
+//! state as published, and the inputs as the tick loop applied them (stamped with the tick they
+//! took effect at: header stamp = tick / rate), which is what `replay` feeds back.
+
+use super::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use super::msgs::{DiagnosticStatus, Header, KeyValue};
+use super::params::NodeParams;
+use super::tick::Applied;
+use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
+use crate::runs::{
+    self, channel, AttachmentMeta, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
+    APPLIED_LOAD_SUFFIX, JOINT_STATE_TYPE, LOAD_TYPE, STATE_TYPE,
+};
+use crate::sim::Actuator;
+use ros2_client::builtin_interfaces::Time;
+use std::path::PathBuf;
+use std::sync::atomic::Ordering;
+use std::sync::mpsc::Receiver;
+
+pub const CH_STATE: usize = 0;
+pub const CH_JOINT_STATES: usize = 1;
+pub const CH_ACTIVATION: usize = 2;
+pub const CH_LOAD: usize = 3;
+pub const CH_APPLIED_ACTIVATION: usize = 4;
+pub const CH_APPLIED_LOAD: usize = 5;
+
+/// The resolved topic names the node uses.
+pub struct Topics<'a> {
+    pub state: &'a str,
+    pub joint_states: &'a str,
+    pub activation: &'a str,
+    pub load: &'a str,
+}
+
+/// Whether these parameters ask for a recording.
+pub fn enabled(p: &NodeParams) -> bool {
+    p.record && !p.record_dir.trim().is_empty()
+}
+
+/// The file for a run of node `fqn` started at `start_ns`: `DIR/<name>_<UTC time>.mcap`.
+pub fn file_path(p: &NodeParams, fqn: &str, start_ns: i64) -> PathBuf {
+    let t = runs::iso8601(start_ns)
+        .replace([':', '-'], "")
+        .replace('.', "-");
+    let name = fqn.trim_start_matches('/').replace('/', "_");
+    PathBuf::from(&p.record_dir).join(format!("{name}_{t}.mcap"))
+}
+
+/// Starts the recording of a node run.
+pub fn start(
+    p: &NodeParams,
+    fqn: &str,
+    topics: &Topics,
+    actuator: &Actuator,
+) -> Result<Recorder, String> {
+    let start_ns = runs::now_ns();
+    let params_json = {
+        let mut m = serde_json::Map::new();
+        m.insert("model".into(), p.model.name().into());
+        m.insert("rate_hz".into(), p.rate_hz.into());
+        m.insert("publish_rate_hz".into(), p.publish_rate_hz.into());
+        m.insert("config".into(), p.config.clone().into());
+        m.insert("record".into(), p.record.into());
+        m.insert("record_dir".into(), p.record_dir.clone().into());
+        serde_json::Value::Object(m).to_string()
+    };
+    let meta = RunMeta {
+        source: format!("node {fqn}"),
+        model: actuator.model(),
+        rate_hz: actuator.rate_hz(),
+        stepping: actuator.simulation().stepping(),
+        attachment: AttachmentMeta::Joint,
+        config: actuator.config().clone(),
+        parameters_json: Some(params_json),
+        start_time_ns: start_ns,
+        muscles: actuator.muscle_names().to_vec(),
+        joints: actuator.joint_names().to_vec(),
+    };
+    let channels = vec![
+        channel(topics.state, STATE_TYPE)?,
+        channel(topics.joint_states, JOINT_STATE_TYPE)?,
+        channel(topics.activation, ACTIVATION_TYPE)?,
+        channel(topics.load, LOAD_TYPE)?,
+        channel(
+            &format!("{fqn}{APPLIED_ACTIVATION_SUFFIX}"),
+            ACTIVATION_TYPE,
+        )?,
+        channel(&format!("{fqn}{APPLIED_LOAD_SUFFIX}"), LOAD_TYPE)?,
+    ];
+    Recorder::start(
+        &file_path(p, fqn, start_ns),
+        channels,
+        vec![(runs::METADATA_NAME.into(), meta.to_map()?)],
+        RecorderOptions::default(),
+    )
+}
+
+/// Serializes `msg` and hands it to the recorder (log time: now).
+pub fn put<T: serde::Serialize>(tx: &RecordSender, ch: usize, publish_ns: i64, msg: &T) {
+    match encode_cdr(msg) {
+        Ok(data) => {
+            let now = runs::now_ns().max(0) as u64;
+            tx.record(ch, now, publish_ns.max(0) as u64, data);
+        }
+        Err(_) => {
+            tx.stats().dropped.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+}
+
+/// The thread that turns applied inputs into messages for the recorder.
+pub fn applied_loop(rx: Receiver<Applied>, tx: RecordSender) {
+    while let Ok(a) = rx.recv() {
+        let ns = runs::tick_ns(a.tick, a.rate_hz) as i64;
+        let header = Header {
+            stamp: Time::from_nanos(ns),
+            frame_id: String::new(),
+        };
+        let names: Vec<String> = a
+            .values
+            .iter()
+            .map(|(i, _)| a.names.get(*i).cloned().unwrap_or_default())
+            .collect();
+        let values: Vec<f64> = a.values.iter().map(|(_, v)| *v).collect();
+        if a.excitation {
+            let m = ActivationCommand {
+                header,
+                muscle: names,
+                excitation: values,
+            };
+            put(&tx, CH_APPLIED_ACTIVATION, ns, &m);
+        } else {
+            let m = ExternalLoad {
+                header,
+                joint: names,
+                torque: values,
+            };
+            put(&tx, CH_APPLIED_LOAD, ns, &m);
+        }
+    }
+}
+
+fn kv(key: &str, value: impl ToString) -> KeyValue {
+    KeyValue {
+        key: key.into(),
+        value: value.to_string(),
+    }
+}
+
+/// What the recorder looks like now, for /diagnostics.
+pub enum Status<'a> {
+    Disabled,
+    /// Could not start.
+    StartFailed(&'a str),
+    Running(&'a Recorder),
+}
+
+/// The recorder's diagnostic status.
+pub fn diagnostic(fqn: &str, params: &NodeParams, status: &Status) -> DiagnosticStatus {
+    let mut values = vec![
+        kv("record", params.record),
+        kv("record_dir", &params.record_dir),
+    ];
+    let (level, message, state) = match status {
+        Status::Disabled => (
+            DiagnosticStatus::OK,
+            "not recording (record is false or record_dir is empty)".to_string(),
+            "inactive",
+        ),
+        Status::StartFailed(e) => (
+            DiagnosticStatus::ERROR,
+            format!("not recording: {e}"),
+            "failed",
+        ),
+        Status::Running(r) => {
+            let st = r.stats();
+            values.push(kv("file", st.path.display()));
+            values.push(kv("messages_written", st.written.load(Ordering::Relaxed)));
+            values.push(kv("messages_dropped", st.dropped.load(Ordering::Relaxed)));
+            values.push(kv("bytes", st.message_bytes.load(Ordering::Relaxed)));
+            match st.state() {
+                RecorderState::Recording => {
+                    let dropped = st.dropped.load(Ordering::Relaxed);
+                    (
+                        if dropped > 0 {
+                            DiagnosticStatus::WARN
+                        } else {
+                            DiagnosticStatus::OK
+                        },
+                        format!("recording to {}", st.path.display()),
+                        "recording",
+                    )
+                }
+                RecorderState::Finished => (
+                    DiagnosticStatus::OK,
+                    "recording finished".to_string(),
+                    "finished",
+                ),
+                RecorderState::Failed(e) => (DiagnosticStatus::ERROR, e, "failed"),
+            }
+        }
+    };
+    values.push(kv("state", state));
+    DiagnosticStatus {
+        level,
+        name: format!("{fqn}: recorder"),
+        message,
+        hardware_id: fqn.into(),
+        values,
+    }
+}

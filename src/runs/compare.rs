@@ -1,0 +1,316 @@
+//! `compare A B`: the differences between two recorded runs, per muscle and joint.
+
+use super::{load_run, LoadedRun};
+use crate::figures::plot::{write_chart, Chart, Series};
+use plotters::style::RGBColor;
+use serde::Serialize;
+use std::path::Path;
+
+/// Differences of one signal.
+#[derive(Debug, Clone, Serialize)]
+pub struct SignalDiff {
+    /// `muscle.force`, `joint.position`, ...
+    pub signal: String,
+    pub rms_diff: f64,
+    pub max_abs_diff: f64,
+    /// Time of the largest difference, s.
+    pub max_diff_time: f64,
+    pub peak_a: f64,
+    pub peak_b: f64,
+    /// Time of the peak (largest absolute value), s.
+    pub peak_time_a: f64,
+    pub peak_time_b: f64,
+    /// 10 %–90 % rise time of the first rise towards the peak, s (None: no rise).
+    pub rise_time_a: Option<f64>,
+    pub rise_time_b: Option<f64>,
+}
+
+/// The comparison.
+#[derive(Debug, Clone, Serialize)]
+pub struct Comparison {
+    pub model_a: String,
+    pub model_b: String,
+    /// The compared time span, s.
+    pub start: f64,
+    pub end: f64,
+    /// Samples compared.
+    pub samples: usize,
+    pub signals: Vec<SignalDiff>,
+}
+
+/// (time, value) series of every compared signal of a run.
+fn series(run: &LoadedRun) -> Vec<(String, Vec<(f64, f64)>)> {
+    let rate = run.meta.rate_hz;
+    let mut out: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let mut push = |name: String, t: f64, v: f64| {
+        if let Some(s) = out.iter_mut().find(|(n, _)| *n == name) {
+            s.1.push((t, v));
+        } else {
+            out.push((name, vec![(t, v)]));
+        }
+    };
+    for s in &run.states {
+        let t = s.tick as f64 / rate;
+        for m in &s.muscles {
+            push(format!("{}.force", m.name), t, m.force);
+            push(format!("{}.fiber_length", m.name), t, m.fiber_length);
+            push(format!("{}.stiffness", m.name), t, m.stiffness);
+        }
+        for (i, j) in s.joint.iter().enumerate() {
+            let at = |v: &Vec<f64>| v.get(i).copied().unwrap_or(f64::NAN);
+            push(format!("{j}.position"), t, at(&s.position));
+            push(format!("{j}.torque"), t, at(&s.torque));
+            push(format!("{j}.stiffness"), t, at(&s.stiffness));
+        }
+    }
+    out
+}
+
+/// Linear interpolation of a time-sorted series at t (inside its span).
+fn interp(s: &[(f64, f64)], t: f64) -> Option<f64> {
+    let i = s.partition_point(|p| p.0 < t);
+    if i < s.len() && s[i].0 == t {
+        return Some(s[i].1);
+    }
+    if i == 0 || i >= s.len() {
+        return None;
+    }
+    let (t0, v0) = s[i - 1];
+    let (t1, v1) = s[i];
+    Some(v0 + (v1 - v0) * (t - t0) / (t1 - t0))
+}
+
+fn peak(s: &[(f64, f64)]) -> (f64, f64) {
+    s.iter()
+        .copied()
+        .fold((f64::NAN, 0.0), |(bt, bv): (f64, f64), (t, v)| {
+            if bt.is_nan() || v.abs() > bv.abs() {
+                (t, v)
+            } else {
+                (bt, bv)
+            }
+        })
+}
+
+/// 10 %–90 % rise time from the series' start value towards its peak.
+fn rise_time(s: &[(f64, f64)]) -> Option<f64> {
+    let (tp, vp) = peak(s);
+    let v0 = s.first()?.1;
+    let span = vp - v0;
+    if span.abs() < 1e-12 * vp.abs().max(1e-300) || span == 0.0 {
+        return None;
+    }
+    let crossing = |frac: f64| {
+        s.iter()
+            .take_while(|p| p.0 <= tp)
+            .find(|p| (p.1 - v0) / span >= frac)
+            .map(|p| p.0)
+    };
+    Some(crossing(0.9)? - crossing(0.1)?)
+}
+
+fn sorted_names(run: &LoadedRun, joints: bool) -> Vec<String> {
+    let mut v = if joints {
+        run.meta.joints.clone()
+    } else {
+        run.meta.muscles.clone()
+    };
+    v.sort();
+    v
+}
+
+/// Compares two runs. Refuses runs with different muscles or joints, or without common time.
+pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> {
+    if sorted_names(a, false) != sorted_names(b, false) {
+        return Err(format!(
+            "the runs cannot be compared: different muscles ({} vs {})",
+            a.meta.muscles.join(", "),
+            b.meta.muscles.join(", ")
+        ));
+    }
+    if sorted_names(a, true) != sorted_names(b, true) {
+        return Err(format!(
+            "the runs cannot be compared: different joints ([{}] vs [{}])",
+            a.meta.joints.join(", "),
+            b.meta.joints.join(", ")
+        ));
+    }
+    let sa = series(a);
+    let sb = series(b);
+    let span = |s: &[(String, Vec<(f64, f64)>)]| {
+        s.first()
+            .and_then(|(_, v)| Some((v.first()?.0, v.last()?.0)))
+    };
+    let (Some((a0, a1)), Some((b0, b1))) = (span(&sa), span(&sb)) else {
+        return Err("the runs cannot be compared: a run holds no actuator state".into());
+    };
+    let (start, end) = (a0.max(b0), a1.min(b1));
+    if start >= end {
+        return Err(format!(
+            "the runs cannot be compared: no overlap in time (A {a0}..{a1} s, B {b0}..{b1} s)"
+        ));
+    }
+    let mut signals = Vec::new();
+    let mut samples = 0;
+    for (name, va) in &sa {
+        let Some((_, vb)) = sb.iter().find(|(n, _)| n == name) else {
+            continue;
+        };
+        let va: Vec<(f64, f64)> = va
+            .iter()
+            .copied()
+            .filter(|p| p.0 >= start && p.0 <= end)
+            .collect();
+        let vb: Vec<(f64, f64)> = vb
+            .iter()
+            .copied()
+            .filter(|p| p.0 >= start && p.0 <= end)
+            .collect();
+        let (mut sum2, mut n, mut max, mut tmax) = (0.0, 0usize, 0.0f64, start);
+        for &(t, x) in &va {
+            if let Some(y) = interp(&vb, t) {
+                let d = x - y;
+                sum2 += d * d;
+                n += 1;
+                if d.abs() > max {
+                    max = d.abs();
+                    tmax = t;
+                }
+            }
+        }
+        samples = samples.max(n);
+        let (pta, pa) = peak(&va);
+        let (ptb, pb) = peak(&vb);
+        signals.push(SignalDiff {
+            signal: name.clone(),
+            rms_diff: if n > 0 {
+                (sum2 / n as f64).sqrt()
+            } else {
+                f64::NAN
+            },
+            max_abs_diff: max,
+            max_diff_time: tmax,
+            peak_a: pa,
+            peak_b: pb,
+            peak_time_a: pta,
+            peak_time_b: ptb,
+            rise_time_a: rise_time(&va),
+            rise_time_b: rise_time(&vb),
+        });
+    }
+    Ok(Comparison {
+        model_a: a.meta.model.name().into(),
+        model_b: b.meta.model.name().into(),
+        start,
+        end,
+        samples,
+        signals,
+    })
+}
+
+impl Comparison {
+    /// A readable table.
+    pub fn table(&self) -> String {
+        let opt = |v: Option<f64>| v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "-".into());
+        let mut s = format!(
+            "A: {}   B: {}   compared {:.4}..{:.4} s ({} samples)\n",
+            self.model_a, self.model_b, self.start, self.end, self.samples
+        );
+        s.push_str(&format!(
+            "{:<26} {:>12} {:>12} {:>9} {:>12} {:>12} {:>9} {:>9} {:>9} {:>9}\n",
+            "signal",
+            "rms diff",
+            "max diff",
+            "at s",
+            "peak A",
+            "peak B",
+            "t peak A",
+            "t peak B",
+            "rise A",
+            "rise B"
+        ));
+        for d in &self.signals {
+            s.push_str(&format!(
+                "{:<26} {:>12.5e} {:>12.5e} {:>9.4} {:>12.5e} {:>12.5e} {:>9.4} {:>9.4} {:>9} {:>9}\n",
+                d.signal,
+                d.rms_diff,
+                d.max_abs_diff,
+                d.max_diff_time,
+                d.peak_a,
+                d.peak_b,
+                d.peak_time_a,
+                d.peak_time_b,
+                opt(d.rise_time_a),
+                opt(d.rise_time_b)
+            ));
+        }
+        s
+    }
+}
+
+/// Overlay plot of the muscles' forces (A solid, B dashed) as `out` (PNG; an SVG beside it).
+pub fn plot(a: &LoadedRun, b: &LoadedRun, out: &Path) -> Result<(), String> {
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(148, 103, 189),
+    ];
+    let sa = series(a);
+    let sb = series(b);
+    let mut labels = Vec::new();
+    let mut data = Vec::new();
+    for (i, m) in a.meta.muscles.iter().enumerate() {
+        let key = format!("{m}.force");
+        for (run, s, dashed) in [(a, &sa, false), (b, &sb, true)] {
+            if let Some((_, pts)) = s.iter().find(|(n, _)| *n == key) {
+                labels.push(format!("{m} ({})", run.meta.model.name()));
+                data.push((colors[i % colors.len()], pts.clone(), dashed));
+            }
+        }
+    }
+    let series: Vec<Series> = data
+        .into_iter()
+        .zip(&labels)
+        .map(|((color, points, dashed), label)| Series {
+            label,
+            color,
+            points,
+            dashed,
+        })
+        .collect();
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let stem = out
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .ok_or_else(|| format!("bad plot file name {}", out.display()))?;
+    let title = format!(
+        "Tendon force: {} (solid) vs {} (dashed)",
+        a.meta.model.name(),
+        b.meta.model.name()
+    );
+    write_chart(
+        dir,
+        stem,
+        &Chart {
+            title: &title,
+            x_label: "time (s)",
+            y_label: "force (N)",
+            series,
+        },
+    )
+}
+
+/// `compare A B`: loads both (strictly), compares, optionally plots.
+pub fn compare_files(a: &Path, b: &Path, plot_out: Option<&Path>) -> Result<Comparison, String> {
+    let ra = load_run(a)?;
+    let rb = load_run(b)?;
+    let c = compare_runs(&ra, &rb)?;
+    if let Some(p) = plot_out {
+        plot(&ra, &rb, p)?;
+    }
+    Ok(c)
+}

@@ -1,0 +1,741 @@
+//! Runs as recordings: the topics and the `muscle_actuator` metadata record of a run file,
+//! `simulate --out` ([`simulate_to_mcap`]), [`replay`] and [`compare`].
+//!
+//! Inputs are recorded stamped with the tick at which they take effect: header stamp = that
+//! tick's simulated time (tick / rate), so tick = round(stamp · rate). Offline runs carry them on
+//! the input topics themselves; the node records inputs as received on the input topics and, as
+//! applied by the tick loop, on `<node>/applied/activation` and `<node>/applied/external_load`.
+
+pub mod compare;
+
+use crate::config::ActuatorConfig;
+use crate::physics::model::ModelKind;
+use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::recording::{
+    self, qos_yaml, read_recording, schema::ros2msg_schema, ChannelSpec, Recorder, RecorderOptions,
+    RecorderState, Recording,
+};
+use crate::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
+use crate::ros::msgs::{definition, type_hash, Header, JointState};
+use crate::ros::node::sample_to_msgs;
+use crate::ros::tick::Sample;
+use crate::sim::actuator::DEFAULT_PATH_PRESTRETCH;
+use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
+use crate::sim::simulation::{default_stepping, Simulation, Stepping};
+use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use ros2_client::builtin_interfaces::Time;
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Arc;
+
+pub const STATE_TOPIC: &str = "/muscle_actuator/state";
+pub const JOINT_STATES_TOPIC: &str = "/joint_states";
+pub const ACTIVATION_TOPIC: &str = "/muscle_actuator/activation";
+pub const LOAD_TOPIC: &str = "/muscle_actuator/external_load";
+/// Suffixes (after the node's name) of the node's applied-input topics.
+pub const APPLIED_ACTIVATION_SUFFIX: &str = "/applied/activation";
+pub const APPLIED_LOAD_SUFFIX: &str = "/applied/external_load";
+
+pub const STATE_TYPE: &str = "muscle_actuator_msgs/msg/ActuatorState";
+pub const JOINT_STATE_TYPE: &str = "sensor_msgs/msg/JointState";
+pub const ACTIVATION_TYPE: &str = "muscle_actuator_msgs/msg/ActivationCommand";
+pub const LOAD_TYPE: &str = "muscle_actuator_msgs/msg/ExternalLoad";
+
+/// Name of our metadata record.
+pub const METADATA_NAME: &str = "muscle_actuator";
+
+/// The channel of `topic` with type `type_name` (reliable, volatile, depth 10, as the node).
+pub fn channel(topic: &str, type_name: &str) -> Result<ChannelSpec, String> {
+    Ok(ChannelSpec {
+        topic: topic.into(),
+        type_name: type_name.into(),
+        schema: ros2msg_schema(type_name, &definition)?,
+        qos_yaml: qos_yaml(true, false, 10),
+        type_hash: type_hash(type_name).map(String::from),
+    })
+}
+
+/// How the muscles were attached in a run.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AttachmentMeta {
+    Joint,
+    Clamped { length: f64 },
+    Force { initial_force: f64 },
+}
+
+/// What the `muscle_actuator` metadata record holds: everything needed to rebuild the run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunMeta {
+    /// What made the run (`simulate pulse`, `node /muscle_actuator`, `replay ...`).
+    pub source: String,
+    pub model: ModelKind,
+    pub rate_hz: f64,
+    pub stepping: Stepping,
+    pub attachment: AttachmentMeta,
+    pub config: ActuatorConfig,
+    /// The node's parameters (JSON), for node runs.
+    pub parameters_json: Option<String>,
+    /// Wall-clock start, ns since the Unix epoch.
+    pub start_time_ns: i64,
+    pub muscles: Vec<String>,
+    pub joints: Vec<String>,
+}
+
+fn stepping_text(s: Stepping) -> String {
+    match s {
+        Stepping::Adaptive {
+            tolerance,
+            max_substeps,
+        } => format!("adaptive {tolerance:e} {max_substeps}"),
+        Stepping::Fixed(n) => format!("fixed {n}"),
+    }
+}
+
+fn parse_stepping(s: &str) -> Option<Stepping> {
+    let parts: Vec<&str> = s.split_whitespace().collect();
+    match parts.as_slice() {
+        ["adaptive", t, m] => Some(Stepping::Adaptive {
+            tolerance: t.parse().ok()?,
+            max_substeps: m.parse().ok()?,
+        }),
+        ["fixed", n] => Some(Stepping::Fixed(n.parse().ok()?)),
+        _ => None,
+    }
+}
+
+/// Now, ns since the Unix epoch.
+pub fn now_ns() -> i64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_nanos() as i64)
+        .unwrap_or(0)
+}
+
+/// `YYYY-MM-DDTHH:MM:SS.mmmZ` of ns since the epoch (UTC).
+pub fn iso8601(ns: i64) -> String {
+    let secs = ns.div_euclid(1_000_000_000);
+    let ms = ns.rem_euclid(1_000_000_000) / 1_000_000;
+    let days = secs.div_euclid(86_400);
+    let sod = secs.rem_euclid(86_400);
+    // Civil date from days since 1970-01-01 (H. Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}.{ms:03}Z",
+        sod / 3600,
+        sod / 60 % 60,
+        sod % 60
+    )
+}
+
+impl RunMeta {
+    /// The metadata record's map.
+    pub fn to_map(&self) -> Result<BTreeMap<String, String>, String> {
+        let mut m = BTreeMap::new();
+        let mut put = |k: &str, v: String| {
+            m.insert(k.to_string(), v);
+        };
+        put("source", self.source.clone());
+        put("model", self.model.name().into());
+        put("rate_hz", format!("{:?}", self.rate_hz));
+        put("stepping", stepping_text(self.stepping));
+        match &self.attachment {
+            AttachmentMeta::Joint => put("attachment", "joint".into()),
+            AttachmentMeta::Clamped { length } => {
+                put("attachment", "clamped".into());
+                put("length", format!("{length:?}"));
+            }
+            AttachmentMeta::Force { initial_force } => {
+                put("attachment", "force".into());
+                put("initial_force", format!("{initial_force:?}"));
+            }
+        }
+        put(
+            "config_toml",
+            toml::to_string(&self.config).map_err(|e| format!("configuration as TOML: {e}"))?,
+        );
+        if let Some(p) = &self.parameters_json {
+            put("parameters_json", p.clone());
+        }
+        put("start_time_ns", self.start_time_ns.to_string());
+        put("start_time", iso8601(self.start_time_ns));
+        put("muscles", self.muscles.join(","));
+        put("joints", self.joints.join(","));
+        put("program_version", env!("CARGO_PKG_VERSION").into());
+        put("program", "muscle_actuator".into());
+        Ok(m)
+    }
+
+    /// Back from the record (fails with the missing or bad key).
+    pub fn from_map(m: &BTreeMap<String, String>) -> Result<Self, String> {
+        let get = |k: &str| {
+            m.get(k)
+                .ok_or_else(|| format!("metadata record {METADATA_NAME:?} has no {k:?}"))
+        };
+        let bad = |k: &str, v: &str| format!("metadata {METADATA_NAME}.{k} = {v:?} is invalid");
+        let f64_of = |k: &str| -> Result<f64, String> {
+            let v = get(k)?;
+            v.parse::<f64>().map_err(|_| bad(k, v))
+        };
+        let model: ModelKind = get("model")?
+            .parse()
+            .map_err(|e: crate::physics::model::UnknownModel| e.to_string())?;
+        let stepping =
+            parse_stepping(get("stepping")?).ok_or_else(|| bad("stepping", &m["stepping"]))?;
+        let attachment = match get("attachment")?.as_str() {
+            "joint" => AttachmentMeta::Joint,
+            "clamped" => AttachmentMeta::Clamped {
+                length: f64_of("length")?,
+            },
+            "force" => AttachmentMeta::Force {
+                initial_force: f64_of("initial_force")?,
+            },
+            other => return Err(bad("attachment", other)),
+        };
+        let config = ActuatorConfig::from_toml_str(get("config_toml")?)
+            .map_err(|e| format!("metadata {METADATA_NAME}.config_toml: {e}"))?;
+        let list = |k: &str| -> Vec<String> {
+            m.get(k)
+                .map(|s| {
+                    s.split(',')
+                        .filter(|x| !x.is_empty())
+                        .map(String::from)
+                        .collect()
+                })
+                .unwrap_or_default()
+        };
+        Ok(RunMeta {
+            source: m.get("source").cloned().unwrap_or_default(),
+            model,
+            rate_hz: f64_of("rate_hz")?,
+            stepping,
+            attachment,
+            config,
+            parameters_json: m.get("parameters_json").cloned(),
+            start_time_ns: m
+                .get("start_time_ns")
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(0),
+            muscles: list("muscles"),
+            joints: list("joints"),
+        })
+    }
+
+    /// The simulation this run describes, in its initial state (with model `model`).
+    pub fn build(&self, model: ModelKind, stepping: Stepping) -> Result<Simulation, String> {
+        self.config.validate().map_err(|e| e.to_string())?;
+        let first = &self.config.muscles[0];
+        let (params, attachment, initial) = match &self.attachment {
+            AttachmentMeta::Joint => {
+                // As `Actuator::with_stepping`.
+                let params: Vec<_> = self
+                    .config
+                    .muscles
+                    .iter()
+                    .map(|m| m.params.clone())
+                    .collect();
+                let path_length = self
+                    .config
+                    .joint
+                    .path_length
+                    .unwrap_or(params[0].l_opt + params[0].l_ts + DEFAULT_PATH_PRESTRETCH);
+                (
+                    params,
+                    Attachment::Joint {
+                        params: self.config.joint.clone(),
+                        path_length,
+                    },
+                    Inputs::default(),
+                )
+            }
+            AttachmentMeta::Clamped { length } => (
+                vec![first.params.clone()],
+                Attachment::Clamped { length: *length },
+                Inputs::default(),
+            ),
+            AttachmentMeta::Force { initial_force } => (
+                vec![first.params.clone()],
+                Attachment::ForceDriven,
+                Inputs {
+                    tendon_force: *initial_force,
+                    ..Inputs::default()
+                },
+            ),
+        };
+        let plant = Plant::new(&params, model, attachment)?;
+        Simulation::new(plant, self.rate_hz, stepping, initial)
+    }
+}
+
+/// Simulated time of `tick` at `rate_hz`, ns.
+pub fn tick_ns(tick: u64, rate_hz: f64) -> u64 {
+    (tick as f64 * 1e9 / rate_hz).round() as u64
+}
+
+/// The tick whose simulated time is `ns`.
+pub fn ns_tick(ns: u64, rate_hz: f64) -> u64 {
+    (ns as f64 * rate_hz / 1e9).round() as u64
+}
+
+fn stamp(ns: u64) -> Header {
+    Header {
+        stamp: Time::from_nanos(ns as i64),
+        frame_id: String::new(),
+    }
+}
+
+fn header_ns(h: &Header) -> u64 {
+    h.stamp.to_nanos().max(0) as u64
+}
+
+/// The state messages of a tick (as the node publishes them; `stamp_ns` in the headers).
+pub fn state_msgs(
+    tick: u64,
+    stamp_ns: i64,
+    model: ModelKind,
+    muscle_names: &[String],
+    joint_names: &[String],
+    muscles: &[MuscleSnapshot],
+    joints: &[JointSnapshot],
+) -> (ActuatorState, JointState) {
+    let sample = Sample {
+        tick,
+        stamp_ns,
+        model,
+        muscle_names: Arc::from(muscle_names),
+        joint_names: Arc::from(joint_names),
+        muscles: muscles.to_vec(),
+        joints: joints.to_vec(),
+    };
+    sample_to_msgs(&sample)
+}
+
+/// Writes a run to MCAP tick by tick: states, joint states (with a joint) and inputs (when they
+/// change), log time = simulated time.
+struct RunWriter {
+    rec: Recorder,
+    has_joint: bool,
+    rate_hz: f64,
+    model: ModelKind,
+    muscles: Vec<String>,
+    joints: Vec<String>,
+    last: Option<Inputs>,
+}
+
+const CH_STATE: usize = 0;
+const CH_ACTIVATION: usize = 1;
+const CH_JOINT: usize = 2;
+const CH_LOAD: usize = 3;
+
+impl RunWriter {
+    fn start(path: &Path, meta: &RunMeta) -> Result<Self, String> {
+        let has_joint = meta.attachment == AttachmentMeta::Joint;
+        let mut channels = vec![
+            channel(STATE_TOPIC, STATE_TYPE)?,
+            channel(ACTIVATION_TOPIC, ACTIVATION_TYPE)?,
+        ];
+        if has_joint {
+            channels.push(channel(JOINT_STATES_TOPIC, JOINT_STATE_TYPE)?);
+            channels.push(channel(LOAD_TOPIC, LOAD_TYPE)?);
+        }
+        let rec = Recorder::start(
+            path,
+            channels,
+            vec![(METADATA_NAME.into(), meta.to_map()?)],
+            RecorderOptions::default(),
+        )?;
+        Ok(Self {
+            rec,
+            has_joint,
+            rate_hz: meta.rate_hz,
+            model: meta.model,
+            muscles: meta.muscles.clone(),
+            joints: if has_joint {
+                meta.joints.clone()
+            } else {
+                vec![]
+            },
+            last: None,
+        })
+    }
+
+    fn put<T: serde::Serialize>(&self, ch: usize, ns: u64, msg: &T) -> Result<(), String> {
+        let data = recording::encode_cdr(msg)?;
+        if self.rec.record_blocking(ch, ns, ns, data) {
+            Ok(())
+        } else {
+            Err(match self.rec.stats().state() {
+                RecorderState::Failed(e) => e,
+                _ => "the recording stopped".into(),
+            })
+        }
+    }
+
+    /// Inputs that take effect at `tick` (written when they change).
+    fn inputs(&mut self, tick: u64, inputs: &Inputs) -> Result<(), String> {
+        let ns = tick_ns(tick, self.rate_hz);
+        let prev = self.last;
+        self.last = Some(*inputs);
+        let n = self.muscles.len();
+        if prev.map(|p| p.excitation) != Some(inputs.excitation) {
+            self.put(
+                CH_ACTIVATION,
+                ns,
+                &ActivationCommand {
+                    header: stamp(ns),
+                    muscle: self.muscles.clone(),
+                    excitation: inputs.excitation[..n].to_vec(),
+                },
+            )?;
+        }
+        if self.has_joint
+            && prev.map(|p| p.external_torque.to_bits()) != Some(inputs.external_torque.to_bits())
+        {
+            self.put(
+                CH_LOAD,
+                ns,
+                &ExternalLoad {
+                    header: stamp(ns),
+                    joint: self.joints.clone(),
+                    torque: vec![inputs.external_torque],
+                },
+            )?;
+        }
+        Ok(())
+    }
+
+    fn state(
+        &self,
+        tick: u64,
+        muscles: &[MuscleSnapshot],
+        joint: Option<JointSnapshot>,
+    ) -> Result<(), String> {
+        let ns = tick_ns(tick, self.rate_hz);
+        let joints: Vec<JointSnapshot> = joint.into_iter().collect();
+        let (state, js) = state_msgs(
+            tick,
+            ns as i64,
+            self.model,
+            &self.muscles,
+            &self.joints,
+            muscles,
+            &joints,
+        );
+        self.put(CH_STATE, ns, &state)?;
+        if self.has_joint {
+            self.put(CH_JOINT, ns, &js)?;
+        }
+        Ok(())
+    }
+
+    fn finish(self) -> Result<(), String> {
+        match self.rec.finish() {
+            RecorderState::Failed(e) => Err(e),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Runs a scenario (as [`Scenario::run`]) and records it to `out`.
+pub fn simulate_to_mcap(
+    sc: &Scenario,
+    cfg: &ActuatorConfig,
+    model: ModelKind,
+    rate_hz: f64,
+    stepping: Stepping,
+    out: &Path,
+) -> Result<Run, String> {
+    let mut runner = sc.runner(cfg, model, rate_hz, stepping)?;
+    let first = &cfg.muscles[0];
+    let (attachment, muscles, joints) = match sc.attachment {
+        SetupKind::Joint => (
+            AttachmentMeta::Joint,
+            cfg.muscles.iter().map(|m| m.name.clone()).collect(),
+            vec![cfg.joint.name.clone()],
+        ),
+        SetupKind::Clamped => (
+            AttachmentMeta::Clamped {
+                length: sc.length.unwrap_or(first.params.l_opt + first.params.l_ts),
+            },
+            vec![first.name.clone()],
+            vec![],
+        ),
+        SetupKind::Force => (
+            AttachmentMeta::Force {
+                initial_force: sc.initial_force,
+            },
+            vec![first.name.clone()],
+            vec![],
+        ),
+    };
+    let meta = RunMeta {
+        source: format!("simulate {}", sc.name),
+        model,
+        rate_hz,
+        stepping,
+        attachment,
+        config: cfg.clone(),
+        parameters_json: None,
+        start_time_ns: now_ns(),
+        muscles,
+        joints,
+    };
+    let mut w = RunWriter::start(out, &meta)?;
+    let ticks = (sc.duration * rate_hz).round() as u64;
+    let mut records: Vec<Record> = Vec::with_capacity(ticks as usize + 1);
+    let r0 = runner.record();
+    w.state(0, &r0.muscles, r0.joint)?;
+    records.push(r0);
+    for k in 0..ticks {
+        // The inputs `step` applies: the schedules at the tick's start.
+        let inputs = runner.inputs_at(runner.simulation().time());
+        w.inputs(k, &inputs)?;
+        runner.step()?;
+        let r = runner.record();
+        w.state(k + 1, &r.muscles, r.joint)?;
+        records.push(r);
+    }
+    w.finish()?;
+    Ok(Run {
+        scenario: sc.name.clone(),
+        model,
+        rate_hz,
+        muscle_names: meta.muscles.clone(),
+        records,
+    })
+}
+
+/// A recorded run, decoded: metadata, states by tick, inputs by the tick they take effect.
+pub struct LoadedRun {
+    pub meta: RunMeta,
+    pub states: Vec<ActuatorState>,
+    /// (tick, muscle names, excitations), in order.
+    pub activations: Vec<(u64, Vec<String>, Vec<f64>)>,
+    /// (tick, joint names, torques), in order.
+    pub loads: Vec<(u64, Vec<String>, Vec<f64>)>,
+}
+
+/// Reads a run file strictly (a truncated or corrupted file is an error).
+pub fn load_run(path: &Path) -> Result<LoadedRun, String> {
+    let rec = read_recording(path, false)?;
+    load_from(&rec).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
+    let meta_map = rec.metadata.get(METADATA_NAME).ok_or_else(|| {
+        format!("no {METADATA_NAME:?} metadata record: not a muscle_actuator recording")
+    })?;
+    let meta = RunMeta::from_map(meta_map)?;
+    let decode_err = |topic: &str, e: String| format!("message on {topic}: {e}");
+    let mut states = Vec::new();
+    for m in rec.messages.iter().filter(|m| m.type_name == STATE_TYPE) {
+        states.push(
+            recording::decode_cdr::<ActuatorState>(&m.data).map_err(|e| decode_err(&m.topic, e))?,
+        );
+    }
+    let applied_act = rec
+        .messages
+        .iter()
+        .any(|m| m.type_name == ACTIVATION_TYPE && m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX));
+    let applied_load = rec
+        .messages
+        .iter()
+        .any(|m| m.type_name == LOAD_TYPE && m.topic.ends_with(APPLIED_LOAD_SUFFIX));
+    let mut activations = Vec::new();
+    let mut loads = Vec::new();
+    for m in &rec.messages {
+        if m.type_name == ACTIVATION_TYPE
+            && (!applied_act || m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX))
+        {
+            let a: ActivationCommand =
+                recording::decode_cdr(&m.data).map_err(|e| decode_err(&m.topic, e))?;
+            let tick = ns_tick(header_ns(&a.header), meta.rate_hz);
+            activations.push((tick, a.muscle, a.excitation));
+        } else if m.type_name == LOAD_TYPE
+            && (!applied_load || m.topic.ends_with(APPLIED_LOAD_SUFFIX))
+        {
+            let l: ExternalLoad =
+                recording::decode_cdr(&m.data).map_err(|e| decode_err(&m.topic, e))?;
+            let tick = ns_tick(header_ns(&l.header), meta.rate_hz);
+            loads.push((tick, l.joint, l.torque));
+        }
+    }
+    Ok(LoadedRun {
+        meta,
+        states,
+        activations,
+        loads,
+    })
+}
+
+/// What a replay did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReplaySummary {
+    pub model: ModelKind,
+    /// Ticks simulated.
+    pub ticks: u64,
+    /// Recorded states compared with the replay (same model only).
+    pub compared: u64,
+    /// Of those, identical in every field bit for bit (header stamps aside).
+    pub identical: u64,
+    /// The first tick that differed.
+    pub first_difference: Option<u64>,
+}
+
+/// The bits of a state's simulated fields (everything but the header).
+fn state_bits(s: &ActuatorState) -> Vec<u64> {
+    let mut v = vec![s.tick];
+    for a in [
+        &s.position,
+        &s.velocity,
+        &s.torque,
+        &s.external_torque,
+        &s.stiffness,
+    ] {
+        v.extend(a.iter().map(|x| x.to_bits()));
+    }
+    for m in &s.muscles {
+        v.extend(
+            [
+                m.excitation,
+                m.activation,
+                m.force,
+                m.ce_force,
+                m.pe_force,
+                m.fiber_length,
+                m.fiber_velocity,
+                m.tendon_length,
+                m.stiffness,
+                m.mtu_stiffness,
+                m.q0,
+                m.q1,
+                m.q2,
+                m.tendon_energy,
+                m.fiber_energy,
+                m.crossbridge_energy,
+            ]
+            .iter()
+            .map(|x| x.to_bits()),
+        );
+    }
+    v
+}
+
+/// Feeds the recorded inputs of `input` at their ticks through `model` (default: the recorded
+/// one) and records the result to `out`. With the recorded model every recorded state comes back
+/// bit for bit (the summary says how many were compared and matched).
+pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<ReplaySummary, String> {
+    let run = load_run(input)?;
+    let meta = &run.meta;
+    if let AttachmentMeta::Force { .. } = meta.attachment {
+        return Err(format!(
+            "{}: a force-driven run (its tendon-force input is not a recorded topic) cannot be replayed",
+            input.display()
+        ));
+    }
+    for w in run.states.windows(2) {
+        if w[1].tick <= w[0].tick {
+            return Err(format!(
+                "{}: the run was reset or rebuilt (tick {} followed by {}); replay covers runs \
+                 without resets or parameter changes",
+                input.display(),
+                w[0].tick,
+                w[1].tick
+            ));
+        }
+    }
+    let last_tick = run
+        .states
+        .last()
+        .map(|s| s.tick)
+        .ok_or_else(|| format!("{}: the recording holds no actuator state", input.display()))?;
+    let model = model.unwrap_or(meta.model);
+    let stepping = if model == meta.model {
+        meta.stepping
+    } else {
+        default_stepping(model)
+    };
+    let mut sim = meta.build(model, stepping)?;
+    let mut out_meta = meta.clone();
+    out_meta.model = model;
+    out_meta.stepping = stepping;
+    out_meta.source = format!("replay of {} ({})", input.display(), meta.source);
+    out_meta.start_time_ns = now_ns();
+    out_meta.parameters_json = None;
+    let mut w = RunWriter::start(out, &out_meta)?;
+    let mut by_tick: BTreeMap<u64, &ActuatorState> = BTreeMap::new();
+    for s in &run.states {
+        by_tick.insert(s.tick, s);
+    }
+    let n_muscles = meta.muscles.len();
+    let snapshot = |sim: &Simulation| -> (Vec<MuscleSnapshot>, Option<JointSnapshot>) {
+        (
+            (0..n_muscles).map(|i| sim.muscle_snapshot(i)).collect(),
+            sim.joint_snapshot(),
+        )
+    };
+    let mut summary = ReplaySummary {
+        model,
+        ticks: last_tick,
+        compared: 0,
+        identical: 0,
+        first_difference: None,
+    };
+    let mut check = |tick: u64, muscles: &[MuscleSnapshot], joint: Option<JointSnapshot>| {
+        if model != meta.model {
+            return;
+        }
+        if let Some(rec) = by_tick.get(&tick) {
+            let joints: Vec<JointSnapshot> = joint.into_iter().collect();
+            let (mine, _) = state_msgs(tick, 0, model, &meta.muscles, &rec.joint, muscles, &joints);
+            summary.compared += 1;
+            if state_bits(&mine) == state_bits(rec) {
+                summary.identical += 1;
+            } else if summary.first_difference.is_none() {
+                summary.first_difference = Some(tick);
+            }
+        }
+    };
+    let (m0, j0) = snapshot(&sim);
+    if by_tick.contains_key(&0) {
+        w.state(0, &m0, j0)?;
+        check(0, &m0, j0);
+    }
+    let mut acts = run.activations.iter().peekable();
+    let mut loads = run.loads.iter().peekable();
+    let mut inputs = *sim.inputs();
+    for k in 0..last_tick {
+        while let Some((_, names, values)) = acts.next_if(|a| a.0 <= k) {
+            for (n, u) in names.iter().zip(values) {
+                if let Some(i) = meta.muscles.iter().position(|m| m == n) {
+                    if u.is_finite() && i < 2 {
+                        inputs.excitation[i] = u.clamp(0.0, 1.0);
+                    }
+                }
+            }
+        }
+        while let Some((_, names, values)) = loads.next_if(|l| l.0 <= k) {
+            for (n, t) in names.iter().zip(values) {
+                if meta.joints.first() == Some(n) && t.is_finite() {
+                    inputs.external_torque = *t;
+                }
+            }
+        }
+        sim.set_inputs(inputs);
+        w.inputs(k, &inputs)?;
+        sim.step()
+            .map_err(|e| format!("replay with {model} failed at tick {k}: {e}"))?;
+        let (m, j) = snapshot(&sim);
+        w.state(k + 1, &m, j)?;
+        check(k + 1, &m, j);
+    }
+    w.finish()?;
+    Ok(summary)
+}
