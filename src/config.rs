@@ -17,6 +17,7 @@
 //! Anything left out keeps its embedded default (Table 1 of the paper, MODEL.md §1).
 
 use crate::physics::params::{JointParams, MuscleParams, ParamError};
+use crate::physics::plant::Attachment;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -86,7 +87,28 @@ pub enum ConfigError {
     Invalid(Vec<ParamError>),
 }
 
+/// Extra length of both paths over lopt + l_ts at θ = 0 (MODEL.md §8 default geometry), m.
+pub const DEFAULT_PATH_PRESTRETCH: f64 = 0.002;
+
 impl ActuatorConfig {
+    /// The muscles' parameters, agonist first.
+    pub fn muscle_params(&self) -> Vec<MuscleParams> {
+        self.muscles.iter().map(|m| m.params.clone()).collect()
+    }
+
+    /// The joint attachment of the two muscles: the configured path length, or
+    /// lopt + l_ts + 2 mm of the agonist.
+    pub fn joint_attachment(&self) -> Attachment {
+        let path_length = self.joint.path_length.unwrap_or_else(|| {
+            let p = &self.muscles[0].params;
+            p.l_opt + p.l_ts + DEFAULT_PATH_PRESTRETCH
+        });
+        Attachment::Joint {
+            params: self.joint.clone(),
+            path_length,
+        }
+    }
+
     /// Reads and validates a TOML configuration file.
     pub fn from_file(path: &Path) -> Result<Self, ConfigError> {
         let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Io {

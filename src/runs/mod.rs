@@ -19,7 +19,6 @@ use crate::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, E
 use crate::ros::msgs::{definition, type_hash, Header, JointState};
 use crate::ros::node::sample_to_msgs;
 use crate::ros::tick::Sample;
-use crate::sim::actuator::DEFAULT_PATH_PRESTRETCH;
 use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
 use crate::sim::simulation::{default_stepping, Simulation, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
@@ -233,28 +232,11 @@ impl RunMeta {
         self.config.validate().map_err(|e| e.to_string())?;
         let first = &self.config.muscles[0];
         let (params, attachment, initial) = match &self.attachment {
-            AttachmentMeta::Joint => {
-                // As `Actuator::with_stepping`.
-                let params: Vec<_> = self
-                    .config
-                    .muscles
-                    .iter()
-                    .map(|m| m.params.clone())
-                    .collect();
-                let path_length = self
-                    .config
-                    .joint
-                    .path_length
-                    .unwrap_or(params[0].l_opt + params[0].l_ts + DEFAULT_PATH_PRESTRETCH);
-                (
-                    params,
-                    Attachment::Joint {
-                        params: self.config.joint.clone(),
-                        path_length,
-                    },
-                    Inputs::default(),
-                )
-            }
+            AttachmentMeta::Joint => (
+                self.config.muscle_params(),
+                self.config.joint_attachment(),
+                Inputs::default(),
+            ),
             AttachmentMeta::Clamped { length } => (
                 vec![first.params.clone()],
                 Attachment::Clamped { length: *length },

@@ -6,12 +6,9 @@
 
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
-use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::physics::plant::{Inputs, Plant};
 use crate::sim::simulation::{default_stepping, Simulation, StepError, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
-
-/// Extra length of both paths over lopt + l_ts at θ = 0 (MODEL.md §8 default geometry), m.
-pub const DEFAULT_PATH_PRESTRETCH: f64 = 0.002;
 
 /// A simulated antagonistic actuator (one joint, two muscles).
 #[derive(Debug, Clone)]
@@ -39,16 +36,7 @@ impl Actuator {
         stepping: Stepping,
     ) -> Result<Self, String> {
         config.validate().map_err(|e| e.to_string())?;
-        let params: Vec<_> = config.muscles.iter().map(|m| m.params.clone()).collect();
-        let path_length = config
-            .joint
-            .path_length
-            .unwrap_or(params[0].l_opt + params[0].l_ts + DEFAULT_PATH_PRESTRETCH);
-        let attachment = Attachment::Joint {
-            params: config.joint.clone(),
-            path_length,
-        };
-        let plant = Plant::new(&params, model, attachment)?;
+        let plant = Plant::new(&config.muscle_params(), model, config.joint_attachment())?;
         let sim = Simulation::new(plant, rate_hz, stepping, Inputs::default())?;
         let mut actuator = Self {
             config: config.clone(),

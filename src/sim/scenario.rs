@@ -6,7 +6,6 @@ use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
 use crate::physics::params::MuscleParams;
 use crate::physics::plant::{Attachment, Inputs, Plant};
-use crate::sim::actuator::DEFAULT_PATH_PRESTRETCH;
 use crate::sim::schedule::Schedule;
 use crate::sim::simulation::{Simulation, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
@@ -255,21 +254,11 @@ impl Scenario {
         config.validate().map_err(|e| e.to_string())?;
         let first = &config.muscles[0];
         let (params, names, attachment) = match self.attachment {
-            SetupKind::Joint => {
-                let params: Vec<_> = config.muscles.iter().map(|m| m.params.clone()).collect();
-                let path_length = config
-                    .joint
-                    .path_length
-                    .unwrap_or(params[0].l_opt + params[0].l_ts + DEFAULT_PATH_PRESTRETCH);
-                (
-                    params,
-                    config.muscles.iter().map(|m| m.name.clone()).collect(),
-                    Attachment::Joint {
-                        params: config.joint.clone(),
-                        path_length,
-                    },
-                )
-            }
+            SetupKind::Joint => (
+                config.muscle_params(),
+                config.muscles.iter().map(|m| m.name.clone()).collect(),
+                config.joint_attachment(),
+            ),
             SetupKind::Clamped => (
                 vec![first.params.clone()],
                 vec![first.name.clone()],
