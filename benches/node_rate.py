@@ -8,12 +8,14 @@ Run through benches/node_rate.sh (builds, sets up the venv, loopback-only networ
 """
 
 import argparse
+import glob
 import json
 import os
 import signal
 import statistics
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 
@@ -64,15 +66,19 @@ def main():
     ap.add_argument("--rate", type=float, default=1000.0)
     ap.add_argument("--command-rate", type=float, default=100.0)
     ap.add_argument("--json", help="write the figures here too")
+    ap.add_argument("--record", choices=["on", "off"], default="on",
+                    help="record to MCAP (the node's default) or not, to compare the tick lateness")
     ap.add_argument("--echo-server", action="store_true", help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.echo_server:
         return echo_server()
 
     env = dict(os.environ, MUSCLE_ACTUATOR_TICK_SUMMARY="1")
+    a.record_dir = tempfile.mkdtemp(prefix="node_rate_")
     node_proc = subprocess.Popen(
         [a.bin, "node", "--ros-args", "-r", "__ns:=/bench", "-p", f"model:={a.model}",
-         "-p", f"rate_hz:={float(a.rate)}", "--log-level", "error"],
+         "-p", f"rate_hz:={float(a.rate)}", "-p", f"record:={'true' if a.record == 'on' else 'false'}",
+         "-p", f"record_dir:={a.record_dir}", "--log-level", "error"],
         stderr=subprocess.PIPE, text=True, env=env,
     )
     echo_proc = subprocess.Popen([sys.executable, __file__, "--bin", a.bin, "--echo-server"])
@@ -82,6 +88,20 @@ def main():
         for p in (node_proc, echo_proc):
             if p.poll() is None:
                 p.kill()
+
+
+def thread_cpu_seconds(pid, name):
+    """CPU time (user + system) of the process's threads called `name`, s."""
+    total = 0
+    for comm in glob.glob(f"/proc/{pid}/task/*/comm"):
+        try:
+            if open(comm).read().strip() != name:
+                continue
+            fields = open(comm[:-4] + "stat").read().rsplit(")", 1)[1].split()
+            total += int(fields[11]) + int(fields[12])  # utime, stime (clock ticks)
+        except OSError:
+            pass
+    return total / os.sysconf("SC_CLK_TCK")
 
 
 def run_client(a, node_proc, echo_proc):
@@ -131,6 +151,7 @@ def run_client(a, node_proc, echo_proc):
 
     period = 1.0 / a.command_rate
     n = 0
+    rec_cpu0 = thread_cpu_seconds(node_proc.pid, "recorder")
     t_start = time.monotonic()
     next_t = t_start
     sent = 0
@@ -155,6 +176,7 @@ def run_client(a, node_proc, echo_proc):
         time.sleep(max(0.0, next_t - time.monotonic()))
     time.sleep(0.5)
     wall = time.monotonic() - t_start
+    rec_cpu = thread_cpu_seconds(node_proc.pid, "recorder") - rec_cpu0
     n_states = states[0]
     node_proc.send_signal(signal.SIGINT)
     _, err = node_proc.communicate(timeout=10)
@@ -178,9 +200,21 @@ def run_client(a, node_proc, echo_proc):
         "tick": tick,
         "command_to_state": summary(lat),
         "rclpy_echo_round_trip": summary(echo),
+        "record": a.record,
     }
+    if a.record == "on":
+        files = glob.glob(os.path.join(a.record_dir, "*.mcap"))
+        size = sum(os.path.getsize(f) for f in files)
+        res["recording"] = {"files": len(files), "bytes": size,
+                            "bytes_per_s": size / wall if wall > 0 else float("nan"),
+                            "recorder_thread_cpu_percent": 100.0 * rec_cpu / wall}
     t = tick
-    print(f"node {a.model} at {a.rate:.0f} Hz for {wall:.1f} s; client commanding at {a.command_rate:.0f} Hz")
+    print(f"node {a.model} at {a.rate:.0f} Hz for {wall:.1f} s, recording {a.record}; "
+          f"client commanding at {a.command_rate:.0f} Hz")
+    if "recording" in res:
+        r = res["recording"]
+        print(f"  recording: {r['bytes'] / 1e6:.2f} MB in {r['files']} file(s), {r['bytes_per_s'] / 1e3:.1f} kB per s; "
+              f"recorder thread {r['recorder_thread_cpu_percent']:.2f}% of one core")
     if t:
         print(f"  ticks {t['ticks']} (about {expected_ticks:.0f} expected), ticks later than one period: "
               f"{t['overruns']}, skipped: {t['skipped']}")

@@ -357,9 +357,16 @@ struct Worker {
 }
 
 impl Worker {
-    fn fail(&mut self, what: &str, e: impl std::fmt::Display) {
+    fn fail(&mut self, what: &str, e: impl std::error::Error) {
+        // The whole chain: the mcap error alone hides the OS reason (e.g. "No space left").
+        let mut text = e.to_string();
+        let mut source = e.source();
+        while let Some(s) = source {
+            text.push_str(&format!(": {s}"));
+            source = s.source();
+        }
         let msg = format!(
-            "recording {} stopped: {what}: {e}",
+            "recording {} stopped: {what}: {text}",
             self.stats.path.display()
         );
         self.stats.set_state(RecorderState::Failed(msg));

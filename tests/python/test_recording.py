@@ -250,3 +250,47 @@ def test_unwritable_record_dir_keeps_the_node_running(peer, workdir):
     finally:
         assert node.stop() == 0
     assert "not recording" in node.output()
+
+
+class NodeOnSmallDisk(NodeProcess):
+    """The node in a private mount namespace whose record_dir is a tmpfs of `size`."""
+
+    def __init__(self, namespace, mount_point, size, ros_args=()):
+        super().__init__(namespace, ["-p", f"record_dir:={mount_point}", *ros_args])
+        self.mount_point = str(mount_point)
+        self.size = size
+
+    def command(self):
+        script = 'mount -t tmpfs -o size="$1" tmpfs "$2" && shift 2 && exec "$@"'
+        return ["unshare", "-m", "--propagation", "private", "sh", "-c", script, "sh",
+                self.size, self.mount_point, *super().command()]
+
+
+def test_full_disk_stops_the_recording_not_the_node(peer, workdir):
+    if os.geteuid() != 0 or subprocess.run(["unshare", "-m", "true"]).returncode != 0:
+        pytest.skip("needs root to mount a private tmpfs")
+    mount_point = workdir / "small_disk"
+    mount_point.mkdir()
+    # About 90 kB per simulated second at 1 kHz: 256 kB fills within a few seconds.
+    node = NodeOnSmallDisk("/t_full", mount_point, "256k").start()
+    try:
+        diags = peer.subscribe(DiagnosticArray, "/diagnostics")
+        states = peer.subscribe(ActuatorState, "/t_full/muscle_actuator/state")
+
+        def recorder_error():
+            for d in diags.msgs():
+                for st in d.status:
+                    if st.name == "/t_full/muscle_actuator: recorder" and st.level in (2, b"\x02"):
+                        return st
+            return None
+
+        st = wait_until(recorder_error, 30.0, what="the recorder's error on /diagnostics")
+        # The simulation goes on: states keep coming, ticks keep advancing.
+        first = states.wait(timeout=10.0, what="a state after the disk filled")
+        time.sleep(1.0)
+        later = states.msgs()[-1]
+        assert later.tick > first.tick + 500, (first.tick, later.tick)
+        assert node.alive()
+        assert "No space left on device" in st.message, st.message
+    finally:
+        assert node.stop() == 0
