@@ -52,7 +52,10 @@ impl Actuator {
 
     fn refresh(&mut self) {
         self.muscles = [self.sim.muscle_snapshot(0), self.sim.muscle_snapshot(1)];
-        self.joint = self.sim.joint_snapshot().unwrap_or_default();
+        self.joint = self
+            .sim
+            .joint_snapshot_with(&self.muscles)
+            .unwrap_or_default();
     }
 
     /// The model that drives the muscles.

@@ -461,12 +461,21 @@ impl Simulation {
 
     /// The joint's published state (None without a joint).
     pub fn joint_snapshot(&self) -> Option<JointSnapshot> {
+        if !matches!(self.plant.attachment, Attachment::Joint { .. }) {
+            return None;
+        }
+        let muscles = [self.muscle_snapshot(0), self.muscle_snapshot(1)];
+        self.joint_snapshot_with(&muscles)
+    }
+
+    /// The joint's published state from the muscles' snapshots just taken (agonist,
+    /// antagonist), without computing them again.
+    pub fn joint_snapshot_with(&self, muscles: &[MuscleSnapshot; 2]) -> Option<JointSnapshot> {
         let Attachment::Joint { params, .. } = &self.plant.attachment else {
             return None;
         };
         let y = self.state();
-        let ago = self.muscle_snapshot(0);
-        let ant = self.muscle_snapshot(1);
+        let [ago, ant] = muscles;
         Some(JointSnapshot {
             position: y[0],
             velocity: y[1],
