@@ -774,6 +774,13 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             }
         }
     };
+    // An input problem: kept as the last one for /diagnostics, and logged (rate-limited).
+    let input_problem = |key: &str, msg: String| {
+        if let Ok(mut l) = inputs.last_problem.lock() {
+            *l = msg.clone();
+        }
+        report(key, Severity::Warn, msg);
+    };
 
     let activation_task = async {
         let mut stream = std::pin::pin!(activation_sub.async_stream());
@@ -805,10 +812,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                                     "activation: excitation outside [0, 1] clamped: {}",
                                     what.join(", ")
                                 );
-                                if let Ok(mut l) = inputs.last_problem.lock() {
-                                    *l = m.clone();
-                                }
-                                report("clamped", Severity::Warn, m);
+                                input_problem("clamped", m);
                             }
                             shared.send(Command::Excitation(acc.values));
                         }
@@ -816,10 +820,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                             inputs.activation_rejected.fetch_add(1, Ordering::Relaxed);
                             inputs.count_rejection(&rej);
                             let m = format!("activation command rejected: {rej}");
-                            if let Ok(mut l) = inputs.last_problem.lock() {
-                                *l = m.clone();
-                            }
-                            report(rej.kind(), Severity::Warn, m);
+                            input_problem(rej.kind(), m);
                         }
                     }
                 }
@@ -854,10 +855,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                             inputs.load_rejected.fetch_add(1, Ordering::Relaxed);
                             inputs.count_rejection(&rej);
                             let m = format!("external load rejected: {rej}");
-                            if let Ok(mut l) = inputs.last_problem.lock() {
-                                *l = m.clone();
-                            }
-                            report(rej.kind(), Severity::Warn, m);
+                            input_problem(rej.kind(), m);
                         }
                     }
                 }

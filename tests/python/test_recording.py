@@ -228,6 +228,15 @@ def test_sigkill_loses_at_most_about_a_second(workdir):
     assert killed_at - max(states) < 1.5e9, (killed_at - max(states)) / 1e9
 
 
+def recorder_error(diags, fqn):
+    """The node's recorder status on /diagnostics if it is at level ERROR, else None."""
+    for d in diags.msgs():
+        for st in d.status:
+            if st.name == f"{fqn}: recorder" and st.level in (2, b"\x02"):
+                return st
+    return None
+
+
 def test_unwritable_record_dir_keeps_the_node_running(peer, workdir):
     blocker = workdir / "a_file"
     blocker.write_text("not a directory")
@@ -236,14 +245,7 @@ def test_unwritable_record_dir_keeps_the_node_running(peer, workdir):
         diags = peer.subscribe(DiagnosticArray, "/diagnostics")
         states = peer.subscribe(ActuatorState, "/t_norec/muscle_actuator/state")
 
-        def recorder_error():
-            for d in diags.msgs():
-                for st in d.status:
-                    if st.name == "/t_norec/muscle_actuator: recorder" and st.level in (2, b"\x02"):
-                        return st
-            return None
-
-        st = wait_until(recorder_error, 15.0, what="the recorder's error on /diagnostics")
+        st = wait_until(lambda: recorder_error(diags, "/t_norec/muscle_actuator"), 15.0, what="the recorder's error on /diagnostics")
         assert "a_file" in st.message
         states.wait(timeout=10.0, what="a state")
         assert node.alive()
@@ -277,14 +279,7 @@ def test_full_disk_stops_the_recording_not_the_node(peer, workdir):
         diags = peer.subscribe(DiagnosticArray, "/diagnostics")
         states = peer.subscribe(ActuatorState, "/t_full/muscle_actuator/state")
 
-        def recorder_error():
-            for d in diags.msgs():
-                for st in d.status:
-                    if st.name == "/t_full/muscle_actuator: recorder" and st.level in (2, b"\x02"):
-                        return st
-            return None
-
-        st = wait_until(recorder_error, 30.0, what="the recorder's error on /diagnostics")
+        st = wait_until(lambda: recorder_error(diags, "/t_full/muscle_actuator"), 30.0, what="the recorder's error on /diagnostics")
         # The simulation goes on: states keep coming, ticks keep advancing.
         first = states.wait(timeout=10.0, what="a state after the disk filled")
         time.sleep(1.0)
