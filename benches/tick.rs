@@ -24,7 +24,7 @@ fn working_actuator(model: ModelKind) -> Actuator {
 
 fn tick(c: &mut Criterion) {
     let mut g = c.benchmark_group("tick_default_actuator");
-    for model in ModelKind::ALL {
+    for model in ModelKind::all() {
         let mut act = working_actuator(model);
         let mut k = 0u64;
         g.bench_function(model.name(), |b| {
@@ -44,7 +44,7 @@ fn tick(c: &mut Criterion) {
 /// excitation step from rest (time per 20 ticks; divide by 20 for the mean per tick).
 fn tick_transient(c: &mut Criterion) {
     let mut g = c.benchmark_group("twenty_ticks_after_excitation_step");
-    for model in [ModelKind::Hill, ModelKind::Huxley] {
+    for model in [ModelKind::HILL, ModelKind::HUXLEY] {
         let rest = Actuator::new(&ActuatorConfig::default(), model, 1000.0).unwrap();
         g.bench_function(model.name(), |b| {
             b.iter_batched(
@@ -71,7 +71,7 @@ fn simulate_pulse(c: &mut Criterion) {
     let sc = Scenario::built_in("pulse", &MuscleParams::default()).unwrap();
     let mut g = c.benchmark_group("simulate_pulse_3s");
     g.sample_size(10);
-    for model in [ModelKind::Hill, ModelKind::Huxley] {
+    for model in [ModelKind::HILL, ModelKind::HUXLEY] {
         g.bench_function(model.name(), |b| {
             b.iter_batched(
                 || (),

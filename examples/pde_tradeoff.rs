@@ -28,7 +28,7 @@ fn main() {
             let run = sc
                 .run(
                     &cfg,
-                    ModelKind::HuxleyPde,
+                    ModelKind::HUXLEY_PDE,
                     1000.0,
                     Stepping::Fixed(substeps),
                 )

@@ -1,62 +1,42 @@
-//! CSV output of a scenario run: one row per tick per muscle.
+//! CSV output of a run: one row per tick per muscle.
+//!
+//! Columns: `time`, `name` (the muscle), the `MuscleState` fields in `.msg` order, then for each
+//! joint J of the run `J.position`, `J.velocity`, `J.torque`, `J.external_torque`,
+//! `J.stiffness` (the `ActuatorState` per-joint fields), filled on the rows of the muscles that
+//! span J and empty on the others. The field lists are those of [`crate::sim::snapshot`].
 
 use crate::sim::scenario::Run;
+use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use std::io::Write;
 
-/// The `MuscleState.msg` field names after `name`, in message order.
-pub const MUSCLE_FIELDS: [&str; 16] = [
-    "excitation",
-    "activation",
-    "force",
-    "ce_force",
-    "pe_force",
-    "fiber_length",
-    "fiber_velocity",
-    "tendon_length",
-    "stiffness",
-    "mtu_stiffness",
-    "q0",
-    "q1",
-    "q2",
-    "tendon_energy",
-    "fiber_energy",
-    "crossbridge_energy",
-];
-
-/// Writes `time,name,<MuscleState fields>[,joint_position,joint_velocity,joint_stiffness]`.
-pub fn write_csv(run: &Run, out: &mut impl Write) -> std::io::Result<()> {
-    let has_joint = run.records.first().is_some_and(|r| r.joint.is_some());
-    write!(out, "time,name,{}", MUSCLE_FIELDS.join(","))?;
-    if has_joint {
-        write!(out, ",joint_position,joint_velocity,joint_stiffness")?;
+/// The header line's columns for a run with these joints.
+pub fn header(joint_names: &[String]) -> Vec<String> {
+    let mut cols = vec!["time".to_string(), "name".to_string()];
+    cols.extend(MuscleSnapshot::FIELDS.iter().map(|f| f.to_string()));
+    for j in joint_names {
+        cols.extend(JointSnapshot::FIELDS.iter().map(|f| format!("{j}.{f}")));
     }
-    writeln!(out)?;
+    cols
+}
+
+/// Writes the run as CSV.
+pub fn write_csv(run: &Run, out: &mut impl Write) -> std::io::Result<()> {
+    writeln!(out, "{}", header(&run.joint_names).join(","))?;
+    let blank = ",".repeat(JointSnapshot::FIELDS.len());
     for rec in &run.records {
-        for (m, name) in rec.muscles.iter().zip(&run.muscle_names) {
-            let v = [
-                m.excitation,
-                m.activation,
-                m.force,
-                m.ce_force,
-                m.pe_force,
-                m.fiber_length,
-                m.fiber_velocity,
-                m.tendon_length,
-                m.stiffness,
-                m.mtu_stiffness,
-                m.q0,
-                m.q1,
-                m.q2,
-                m.tendon_energy,
-                m.fiber_energy,
-                m.crossbridge_energy,
-            ];
+        for (i, (m, name)) in rec.muscles.iter().zip(&run.muscle_names).enumerate() {
             write!(out, "{},{}", rec.time, name)?;
-            for x in v {
+            for x in m.values() {
                 write!(out, ",{x}")?;
             }
-            if let Some(j) = &rec.joint {
-                write!(out, ",{},{},{}", j.position, j.velocity, j.stiffness)?;
+            for (j, joint) in rec.joints.iter().enumerate() {
+                if run.muscle_joints.get(i).is_some_and(|js| js.contains(&j)) {
+                    for x in joint.values() {
+                        write!(out, ",{x}")?;
+                    }
+                } else {
+                    out.write_all(blank.as_bytes())?;
+                }
             }
             writeln!(out)?;
         }

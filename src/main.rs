@@ -83,7 +83,7 @@ enum Command {
 
 fn load_config(path: &Option<PathBuf>) -> Result<ActuatorConfig, String> {
     let cfg = match path {
-        Some(p) => ActuatorConfig::from_file(p).map_err(|e| e.to_string())?,
+        Some(p) => ActuatorConfig::resolve(&p.to_string_lossy()).map_err(|e| e.to_string())?,
         None => ActuatorConfig::default(),
     };
     for w in cfg.warnings() {

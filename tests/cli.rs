@@ -72,13 +72,13 @@ fn each_invalid_parameter_gets_its_own_error() {
         ),
         (
             "[joint]\nmin_angle = 1.0\nmax_angle = 0.5\n",
-            &["joint.max_angle", "must be > min_angle"],
+            &["joint.elbow.max_angle", "must be > min_angle"],
         ),
         (
             "[[muscle]]\nname = \"flexor\"\nfmax = 10.0\n[[muscle]]\nname = \"extensor\"\n",
             &["fmax"],
         ),
-        ("[[muscle]]\nname = \"flexor\"\n", &["exactly two muscles"]),
+        ("[[muscle]]\nname = \"flexor\"\n", &["antagonistic pair", "exactly two"]),
         (
             "[[muscle]]\nname = \"a\"\n[[muscle]]\nname = \"a\"\n",
             &["must be unique"],
@@ -188,12 +188,13 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
         header,
         "time,name,excitation,activation,force,ce_force,pe_force,fiber_length,fiber_velocity,\
          tendon_length,stiffness,mtu_stiffness,q0,q1,q2,tendon_energy,fiber_energy,\
-         crossbridge_energy,joint_position,joint_velocity,joint_stiffness"
+         crossbridge_energy,elbow.position,elbow.velocity,elbow.torque,elbow.external_torque,\
+         elbow.stiffness"
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     // 1.5 s at 1 kHz: the initial state and 1500 ticks, two muscles each.
     assert_eq!(rows.len(), 2 * 1501);
-    assert!(rows.iter().all(|r| r.len() == 21));
+    assert!(rows.iter().all(|r| r.len() == 23));
     assert_eq!(rows[0][1], "flexor");
     assert_eq!(rows[1][1], "extensor");
     // The flexor pulse flexes the joint: positive angle at 0.5 s.

@@ -18,7 +18,7 @@ const RATE: f64 = 20_000.0;
 #[test]
 fn force_driven_passive_muscle_balances_energy() {
     for name in ["energy-10hz", "energy-100hz"] {
-        for model in [ModelKind::Hill, ModelKind::Huxley] {
+        for model in [ModelKind::HILL, ModelKind::HUXLEY] {
             let params = MuscleParams::default();
             let sc = Scenario::built_in(name, &params).unwrap();
             let mut runner = sc
@@ -34,7 +34,7 @@ fn force_driven_passive_muscle_balances_energy() {
             let mut prev = start.muscles[0];
             let ticks = (sc.duration * RATE) as usize;
             for k in 0..ticks {
-                let load = runner.inputs_at(k as f64 / RATE).tendon_force;
+                let load = runner.inputs_at(k as f64 / RATE).tendon_force[0];
                 runner.step().unwrap();
                 let now = runner.record().muscles[0];
                 work += load * (now.fiber_length - prev.fiber_length);
@@ -61,11 +61,11 @@ fn force_driven_passive_muscle_balances_energy() {
 /// joint damping and the fibre dampers dissipate.
 #[test]
 fn passive_joint_balances_energy() {
-    for model in [ModelKind::Hill, ModelKind::Huxley] {
+    for model in [ModelKind::HILL, ModelKind::HUXLEY] {
         let cfg = ActuatorConfig::default();
         let mut act = Actuator::new(&cfg, model, RATE).unwrap();
         let p = &cfg.muscles[0].params;
-        let c = cfg.joint.damping;
+        let c = cfg.joints[0].damping;
         let energy = |a: &Actuator| -> f64 {
             a.muscles()
                 .iter()

@@ -29,7 +29,7 @@ fn stepping(model: ModelKind) -> Stepping {
 }
 
 fn check(sc: &Scenario, model: ModelKind) {
-    let (df, dl) = common::worst_deviation_from_reference(sc, model, 1000.0, stepping(model));
+    let (df, dl) = common::worst_deviation_from_reference(sc, &ActuatorConfig::default(), model, 1000.0, stepping(model));
     println!(
         "{} {model}: worst |dF| = {df:.3e} N, worst |dl_m| = {dl:.3e} m",
         sc.name
@@ -57,35 +57,35 @@ fn joint_scenario() -> Scenario {
 
 #[test]
 fn pulse_hill_matches_reference() {
-    check(&built_in("pulse"), ModelKind::Hill);
+    check(&built_in("pulse"), ModelKind::HILL);
 }
 #[test]
 fn pulse_huxley_matches_reference() {
-    check(&built_in("pulse"), ModelKind::Huxley);
+    check(&built_in("pulse"), ModelKind::HUXLEY);
 }
 #[test]
 fn energy_10hz_hill_matches_reference() {
-    check(&built_in("energy-10hz"), ModelKind::Hill);
+    check(&built_in("energy-10hz"), ModelKind::HILL);
 }
 #[test]
 fn energy_100hz_hill_matches_reference() {
-    check(&built_in("energy-100hz"), ModelKind::Hill);
+    check(&built_in("energy-100hz"), ModelKind::HILL);
 }
 #[test]
 fn energy_10hz_huxley_matches_reference() {
-    check(&built_in("energy-10hz"), ModelKind::Huxley);
+    check(&built_in("energy-10hz"), ModelKind::HUXLEY);
 }
 #[test]
 fn energy_100hz_huxley_matches_reference() {
-    check(&built_in("energy-100hz"), ModelKind::Huxley);
+    check(&built_in("energy-100hz"), ModelKind::HUXLEY);
 }
 #[test]
 fn joint_scenario_hill_matches_reference() {
-    check(&joint_scenario(), ModelKind::Hill);
+    check(&joint_scenario(), ModelKind::HILL);
 }
 #[test]
 fn joint_scenario_huxley_matches_reference() {
-    check(&joint_scenario(), ModelKind::Huxley);
+    check(&joint_scenario(), ModelKind::HUXLEY);
 }
 
 /// Fixed sub-steps: halving the step divides the error by about four (second order), which
@@ -94,9 +94,9 @@ fn joint_scenario_huxley_matches_reference() {
 fn fixed_stepping_converges_at_second_order() {
     let sc = built_in("pulse");
     let (_, e8) =
-        common::worst_deviation_from_reference(&sc, ModelKind::Hill, 1000.0, Stepping::Fixed(8));
+        common::worst_deviation_from_reference(&sc, &ActuatorConfig::default(), ModelKind::HILL, 1000.0, Stepping::Fixed(8));
     let (_, e16) =
-        common::worst_deviation_from_reference(&sc, ModelKind::Hill, 1000.0, Stepping::Fixed(16));
+        common::worst_deviation_from_reference(&sc, &ActuatorConfig::default(), ModelKind::HILL, 1000.0, Stepping::Fixed(16));
     let order = (e8 / e16).log2();
     println!("fixed 8 vs 16 sub-steps: {e8:.3e} / {e16:.3e} m, observed order {order:.2}");
     assert!((1.7..2.5).contains(&order), "observed order {order}");
@@ -107,10 +107,10 @@ fn fixed_stepping_converges_at_second_order() {
 fn runs_are_bit_identical() {
     let cfg = ActuatorConfig::default();
     for (sc, model) in [
-        (built_in("pulse"), ModelKind::Hill),
-        (built_in("pulse"), ModelKind::Huxley),
-        (built_in("energy-100hz"), ModelKind::HuxleyPde),
-        (joint_scenario(), ModelKind::Huxley),
+        (built_in("pulse"), ModelKind::HILL),
+        (built_in("pulse"), ModelKind::HUXLEY),
+        (built_in("energy-100hz"), ModelKind::HUXLEY_PDE),
+        (joint_scenario(), ModelKind::HUXLEY),
     ] {
         let a = sc
             .run(&cfg, model, 1000.0, default_stepping(model))
@@ -143,14 +143,14 @@ fn full_model_ticks_match_a_ten_times_finer_run() {
     let cfg = ActuatorConfig::default();
     for name in ["pulse", "energy-100hz"] {
         let sc = built_in(name);
-        let Stepping::Fixed(n) = default_stepping(ModelKind::HuxleyPde) else {
+        let Stepping::Fixed(n) = default_stepping(ModelKind::HUXLEY_PDE) else {
             panic!()
         };
         let a = sc
-            .run(&cfg, ModelKind::HuxleyPde, 1000.0, Stepping::Fixed(n))
+            .run(&cfg, ModelKind::HUXLEY_PDE, 1000.0, Stepping::Fixed(n))
             .unwrap();
         let b = sc
-            .run(&cfg, ModelKind::HuxleyPde, 1000.0, Stepping::Fixed(10 * n))
+            .run(&cfg, ModelKind::HUXLEY_PDE, 1000.0, Stepping::Fixed(10 * n))
             .unwrap();
         let (mut df, mut dl) = (0.0f64, 0.0f64);
         for (ra, rb) in a.records.iter().zip(&b.records) {

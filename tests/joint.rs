@@ -14,7 +14,7 @@ fn settle(act: &mut Actuator, seconds: f64) {
 
 #[test]
 fn rest_is_an_equilibrium() {
-    for model in ModelKind::ALL {
+    for model in ModelKind::all() {
         let mut act = Actuator::new(&ActuatorConfig::default(), model, 1000.0).unwrap();
         settle(&mut act, 0.2);
         let j = act.joints()[0];
@@ -30,7 +30,7 @@ fn rest_is_an_equilibrium() {
 
 #[test]
 fn flexor_alone_flexes_and_extensor_alone_extends() {
-    for model in ModelKind::ALL {
+    for model in ModelKind::all() {
         for (muscle, sign) in [(0usize, 1.0), (1, -1.0)] {
             let mut act = Actuator::new(&ActuatorConfig::default(), model, 1000.0).unwrap();
             act.set_excitation(muscle, 0.2);
@@ -55,7 +55,7 @@ fn flexor_alone_flexes_and_extensor_alone_extends() {
 #[test]
 fn external_torque_moves_the_joint_its_way() {
     for tau in [2.0, -2.0] {
-        let mut act = Actuator::new(&ActuatorConfig::default(), ModelKind::Huxley, 1000.0).unwrap();
+        let mut act = Actuator::new(&ActuatorConfig::default(), ModelKind::HUXLEY, 1000.0).unwrap();
         act.set_external_torque(0, tau);
         settle(&mut act, 0.5);
         let th = act.joints()[0].position;
@@ -65,7 +65,7 @@ fn external_torque_moves_the_joint_its_way() {
 
 #[test]
 fn co_contraction_raises_joint_stiffness_monotonically() {
-    for model in ModelKind::ALL {
+    for model in ModelKind::all() {
         let mut previous = 0.0;
         for step in 0..=5 {
             let u = 0.2 * step as f64;
@@ -93,12 +93,12 @@ fn co_contraction_raises_joint_stiffness_monotonically() {
 #[test]
 fn joint_stiffness_is_the_series_and_parallel_composition() {
     let cfg = ActuatorConfig::default();
-    let mut act = Actuator::new(&cfg, ModelKind::Huxley, 1000.0).unwrap();
+    let mut act = Actuator::new(&cfg, ModelKind::HUXLEY, 1000.0).unwrap();
     act.set_excitation(0, 0.5);
     act.set_excitation(1, 0.3);
     settle(&mut act, 0.3);
     let sim = act.simulation();
-    let r = cfg.joint.radius;
+    let r = muscle_actuator::config::DEFAULT_RADIUS;
     let mut k_total = 0.0;
     for (i, m) in act.muscles().iter().enumerate() {
         let mtu = &sim.plant().mtus[i];
@@ -120,7 +120,7 @@ fn joint_stiffness_is_the_series_and_parallel_composition() {
 /// panic or a NaN; after a reset the actuator works again.
 #[test]
 fn extreme_inputs_fail_cleanly_and_reset_recovers() {
-    for model in ModelKind::ALL {
+    for model in ModelKind::all() {
         for tau in [1e308, -1e12, 1e6] {
             let mut act = Actuator::new(&ActuatorConfig::default(), model, 1000.0).unwrap();
             act.set_excitation(0, 1.0);

@@ -10,6 +10,7 @@ use muscle_actuator::ros::msgs::{
     DiagnosticArray, DiagnosticStatus, Header, JointState, KeyValue, TriggerRequest,
     TriggerResponse,
 };
+use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot, MUSCLE_FIELD_COUNT};
 use ros2_client::builtin_interfaces::Time;
 use serde::ser::{self, Serialize};
 use std::collections::BTreeMap;
@@ -397,22 +398,7 @@ fn header() -> Header {
 fn muscle() -> MuscleState {
     MuscleState {
         name: "flexor".into(),
-        excitation: 0.0,
-        activation: 0.0,
-        force: 0.0,
-        ce_force: 0.0,
-        pe_force: 0.0,
-        fiber_length: 0.0,
-        fiber_velocity: 0.0,
-        tendon_length: 0.0,
-        stiffness: 0.0,
-        mtu_stiffness: 0.0,
-        q0: 0.0,
-        q1: 0.0,
-        q2: 0.0,
-        tendon_energy: 0.0,
-        fiber_energy: 0.0,
-        crossbridge_energy: 0.0,
+        state: MuscleSnapshot::default(),
     }
 }
 
@@ -485,14 +471,45 @@ fn actuator_state_matches() {
             model: "huxley".into(),
             tick: 1,
             joint: vec!["elbow".into()],
-            position: vec![0.0],
-            velocity: vec![0.0],
-            torque: vec![0.0],
-            external_torque: vec![0.0],
-            stiffness: vec![0.0],
+            joints: vec![JointSnapshot::default()],
+            stiffness_matrix: vec![0.0],
             muscles: vec![muscle()],
         },
     );
+}
+
+/// The messages built from the one field list survive CDR both ways, field for field, and a
+/// message whose per-joint arrays disagree with its joints is refused.
+#[test]
+fn actuator_state_round_trips_through_cdr() {
+    let joint = |k: f64| JointSnapshot::from_values([1.0 + k, 2.0 + k, 3.0 + k, 4.0 + k, 5.0 + k]);
+    let mut values = [0.0; MUSCLE_FIELD_COUNT];
+    for (k, v) in values.iter_mut().enumerate() {
+        *v = k as f64 + 0.25;
+    }
+    let msg = ActuatorState {
+        header: header(),
+        model: "hill".into(),
+        tick: 7,
+        joint: vec!["shoulder".into(), "elbow".into()],
+        joints: vec![joint(0.0), joint(10.0)],
+        stiffness_matrix: vec![1.0, 0.5, 0.5, 2.0],
+        muscles: vec![MuscleState {
+            name: "BIClong".into(),
+            state: MuscleSnapshot::from_values(values),
+        }],
+    };
+    let bytes = muscle_actuator::recording::encode_cdr(&msg).unwrap();
+    let back: ActuatorState = muscle_actuator::recording::decode_cdr(&bytes).unwrap();
+    assert_eq!(back, msg);
+    assert_eq!(back.column(1), vec![2.0, 12.0]);
+    assert_eq!(back.muscles[0].state.get("crossbridge_energy"), Some(15.25));
+
+    let mut bad = msg.clone();
+    bad.stiffness_matrix.pop();
+    let bytes = muscle_actuator::recording::encode_cdr(&bad).unwrap();
+    let e = muscle_actuator::recording::decode_cdr::<ActuatorState>(&bytes).unwrap_err();
+    assert!(e.contains("stiffness_matrix"), "{e}");
 }
 
 #[test]

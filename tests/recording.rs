@@ -207,6 +207,7 @@ fn compare_hill_and_huxley_pulse() {
             .find(|s| s.tick == 1900)
             .unwrap()
             .muscles[0]
+            .state
             .force
     };
     let (fa, fb) = (at(&hill), at(&hux));

@@ -48,13 +48,13 @@ fn random_valid_configurations_never_panic() {
             p.fl_width *= 0.5 + rng.next();
             p.crossbridge.pde_cells = 50;
         }
-        cfg.joint.inertia *= rng.factor();
-        cfg.joint.damping *= rng.factor();
+        cfg.joints[0].inertia *= rng.factor();
+        cfg.joints[0].damping *= rng.factor();
         if cfg.validate().is_err() {
             refused += 1;
             continue;
         }
-        for model in ModelKind::ALL {
+        for model in ModelKind::all() {
             let Ok(mut act) = Actuator::new(&cfg, model, 1000.0) else {
                 refused += 1;
                 continue;

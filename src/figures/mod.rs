@@ -21,20 +21,23 @@ const HILL_COLOR: RGBColor = RGBColor(0xd6, 0x27, 0x28);
 const DM_COLOR: RGBColor = RGBColor(0x1f, 0x77, 0xb4);
 const PDE_COLOR: RGBColor = RGBColor(0x2c, 0xa0, 0x2c);
 
+/// A colour per model, in the order of the model list.
+const PALETTE: [RGBColor; 6] = [
+    HILL_COLOR,
+    DM_COLOR,
+    PDE_COLOR,
+    RGBColor(0x94, 0x67, 0xbd),
+    RGBColor(0xff, 0x7f, 0x0e),
+    RGBColor(0x8c, 0x56, 0x4b),
+];
+
 fn color(model: ModelKind) -> RGBColor {
-    match model {
-        ModelKind::Hill => HILL_COLOR,
-        ModelKind::Huxley => DM_COLOR,
-        ModelKind::HuxleyPde => PDE_COLOR,
-    }
+    let i = ModelKind::all().position(|m| m == model).unwrap_or(0);
+    PALETTE[i % PALETTE.len()]
 }
 
 fn label(model: ModelKind) -> &'static str {
-    match model {
-        ModelKind::Hill => "Hill",
-        ModelKind::Huxley => "Huxley (DM)",
-        ModelKind::HuxleyPde => "Huxley (full)",
-    }
+    model.label()
 }
 
 fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String> {
@@ -93,8 +96,7 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     let mut summary = String::from("# Figures: the numbers they show\n\n");
 
     // Figs. 4 and 5: the pulse, three models.
-    let pulse: Vec<(ModelKind, Run)> = ModelKind::ALL
-        .into_iter()
+    let pulse: Vec<(ModelKind, Run)> = ModelKind::all()
         .map(|m| run("pulse", m, &cfg).map(|r| (m, r)))
         .collect::<Result<_, _>>()?;
     let chart = |title, y_label, f: &dyn Fn(&crate::sim::MuscleSnapshot) -> f64| Chart {
@@ -163,14 +165,14 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
             .expect("all models run")
             .1
     };
-    let (rms, max) = rms_and_max(by(ModelKind::Huxley), by(ModelKind::HuxleyPde), |s| {
+    let (rms, max) = rms_and_max(by(ModelKind::HUXLEY), by(ModelKind::HUXLEY_PDE), |s| {
         s.ce_force
     });
-    let (rms_l, max_l) = rms_and_max(by(ModelKind::Huxley), by(ModelKind::HuxleyPde), |s| {
+    let (rms_l, max_l) = rms_and_max(by(ModelKind::HUXLEY), by(ModelKind::HUXLEY_PDE), |s| {
         s.fiber_length
     });
     let _ = writeln!(summary, "\nDM vs full Huxley over the pulse: F_CE RMS {rms:.1} N, max {max:.1} N; l_m RMS {:.3} mm, max {:.3} mm.", rms_l * 1e3, max_l * 1e3);
-    let (rms, max) = rms_and_max(by(ModelKind::Hill), by(ModelKind::Huxley), |s| s.ce_force);
+    let (rms, max) = rms_and_max(by(ModelKind::HILL), by(ModelKind::HUXLEY), |s| s.ce_force);
     let _ = writeln!(
         summary,
         "Hill vs DM over the pulse: F_CE RMS {rms:.1} N, max {max:.1} N.\n"
@@ -185,7 +187,7 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     let _ = writeln!(summary, "| f | tendon swing (J) | parallel element swing (J) | total (tendon + PE) swing (J) | tendon share |");
     let _ = writeln!(summary, "|---|---|---|---|---|");
     for (name, f) in [("energy-10hz", 10.0), ("energy-100hz", 100.0)] {
-        let r = run(name, ModelKind::Hill, &cfg)?;
+        let r = run(name, ModelKind::HILL, &cfg)?;
         write_chart(
             dir,
             &format!("fig6_{}", name.replace('-', "_")),

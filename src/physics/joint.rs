@@ -1,16 +1,7 @@
-//! The revolute joint of the antagonistic actuator (MODEL.md §8).
+//! A revolute joint (docs/model.md §8, §8b): an independent rotational inertia with viscous
+//! damping and stiff, damped end stops, driven by the muscles that span it.
 
 use crate::physics::params::JointParams;
-
-/// Path length of the agonist, `L0 - r θ`, m (flexion shortens it).
-pub fn agonist_path(l0: f64, radius: f64, theta: f64) -> f64 {
-    l0 - radius * theta
-}
-
-/// Path length of the antagonist, `L0 + r θ`, m.
-pub fn antagonist_path(l0: f64, radius: f64, theta: f64) -> f64 {
-    l0 + radius * theta
-}
 
 /// End-stop torque: a stiff, damped spring beyond the range limits that only ever pushes back
 /// into the range, N m.
@@ -24,17 +15,34 @@ pub fn limit_torque(p: &JointParams, theta: f64, omega: f64) -> f64 {
     }
 }
 
-/// Angular acceleration `dω/dt = (r (F_ago - F_ant) - c ω + τ_ext + τ_limit) / I`, rad/s².
+/// The end-stop torque's slopes `(∂τ_limit/∂θ, ∂τ_limit/∂ω)` (N m/rad, N m s/rad): the spring and
+/// damper while they push back, zero inside the range or while the stop lets go.
+pub fn limit_torque_slopes(p: &JointParams, theta: f64, omega: f64) -> (f64, f64) {
+    let engaged = if theta > p.max_angle {
+        -p.limit_stiffness * (theta - p.max_angle) - p.limit_damping * omega < 0.0
+    } else if theta < p.min_angle {
+        -p.limit_stiffness * (theta - p.min_angle) - p.limit_damping * omega > 0.0
+    } else {
+        false
+    };
+    if engaged {
+        (-p.limit_stiffness, -p.limit_damping)
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+/// Angular acceleration `dω/dt = (τ_muscles - c ω + τ_ext + τ_limit) / I`, rad/s², where
+/// `τ_muscles = Σ_i r_i(θ) F_SE,i` is the muscles' net torque, N m.
 pub fn angular_acceleration(
     p: &JointParams,
     theta: f64,
     omega: f64,
-    f_agonist: f64,
-    f_antagonist: f64,
+    muscle_torque: f64,
     external_torque: f64,
 ) -> f64 {
-    let muscle = p.radius * (f_agonist - f_antagonist);
-    (muscle - p.damping * omega + external_torque + limit_torque(p, theta, omega)) / p.inertia
+    (muscle_torque - p.damping * omega + external_torque + limit_torque(p, theta, omega))
+        / p.inertia
 }
 
 /// Rotational kinetic energy `½ I ω²`, J.

@@ -1,10 +1,10 @@
-//! Model parameters (MODEL.md §1, §6, §8), their embedded defaults and their validation.
+//! Model parameters (docs/model.md §1, §6, §8), their embedded defaults and their validation.
 //!
 //! Everything is SI: m, s, N, kg. The defaults are the paper's Appendix A, Table 1.
 
 use serde::{Deserialize, Serialize};
 
-/// Shape of the force–length curve f(l_m) (MODEL.md §3).
+/// Shape of the force–length curve f(l_m) (docs/model.md §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum ForceLengthShape {
@@ -35,7 +35,7 @@ pub struct MuscleParams {
     pub fl_width: f64,
     /// Shape of the force–length curve.
     pub fl_shape: ForceLengthShape,
-    /// Eccentric force asymptote N of the Hill force–velocity curve (our choice, MODEL.md §3).
+    /// Eccentric force asymptote N of the Hill force–velocity curve (our choice, docs/model.md §3).
     pub eccentric_asymptote: f64,
     /// Tendon exponential shape k_te, 1/m.
     pub k_te: f64,
@@ -45,7 +45,7 @@ pub struct MuscleParams {
     pub k_t: f64,
     /// Tendon slack length l_ts, m.
     pub l_ts: f64,
-    /// Tendon length where it turns linear, m. `None` derives it by force continuity (MODEL.md §4).
+    /// Tendon length where it turns linear, m. `None` derives it by force continuity (docs/model.md §4).
     pub l_tc: Option<f64>,
     /// Tendon force where it turns linear, N.
     pub f_tc: f64,
@@ -97,7 +97,7 @@ impl Default for MuscleParams {
     }
 }
 
-/// Cross-bridge (Huxley 1957) parameters, MODEL.md §6–7. Rates are Huxley's ratios; one common
+/// Cross-bridge (Huxley 1957) parameters, docs/model.md §6–7. Rates are Huxley's ratios; one common
 /// factor is chosen at start-up so that the model's unloaded shortening velocity equals vmax.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -132,14 +132,13 @@ impl Default for CrossBridgeParams {
     }
 }
 
-/// Geometry and mechanics of the antagonistic joint (MODEL.md §8).
+/// A revolute joint (docs/model.md §8, §8b): an independent rotational inertia with damping and
+/// end stops.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct JointParams {
     /// Joint name as published on `joint_states`.
     pub name: String,
-    /// Pulley radius r, m.
-    pub radius: f64,
     /// Moment of inertia I, kg m².
     pub inertia: f64,
     /// Viscous damping c, N m s/rad.
@@ -152,9 +151,6 @@ pub struct JointParams {
     pub limit_stiffness: f64,
     /// Damping of the end stops, N m s/rad.
     pub limit_damping: f64,
-    /// Path length of both muscle–tendon units at θ = 0, m. `None`: lopt + l_ts + 0.002 m of the
-    /// agonist (MODEL.md §8).
-    pub path_length: Option<f64>,
     /// Initial joint angle, rad.
     pub initial_angle: f64,
 }
@@ -163,14 +159,12 @@ impl Default for JointParams {
     fn default() -> Self {
         Self {
             name: "elbow".into(),
-            radius: 0.03,
             inertia: 0.06,
             damping: 0.05,
             min_angle: -std::f64::consts::FRAC_PI_2,
             max_angle: std::f64::consts::FRAC_PI_2,
             limit_stiffness: 500.0,
             limit_damping: 5.0,
-            path_length: None,
             initial_angle: 0.0,
         }
     }
@@ -235,7 +229,7 @@ impl Checker<'_> {
 pub const TENDON_CONTINUITY_TOLERANCE: f64 = 1e-3;
 
 impl MuscleParams {
-    /// Tendon length where the tendon turns linear, by force continuity (MODEL.md §4):
+    /// Tendon length where the tendon turns linear, by force continuity (docs/model.md §4):
     /// `l_tc = l_ts + ln(1 + F_tc k_te / k_tl) / k_te`.
     pub fn derived_l_tc(&self) -> f64 {
         self.l_ts + (1.0 + self.f_tc * self.k_te / self.k_tl).ln() / self.k_te
@@ -301,7 +295,7 @@ impl MuscleParams {
         }
     }
 
-    /// A warning when a configured l_tc breaks force continuity of the tendon (MODEL.md §4).
+    /// A warning when a configured l_tc breaks force continuity of the tendon (docs/model.md §4).
     pub fn continuity_warning(&self, prefix: &str) -> Option<String> {
         let l_tc = self.l_tc?;
         let exp_force = self.k_tl / self.k_te * ((self.k_te * (l_tc - self.l_ts)).exp() - 1.0);
@@ -319,15 +313,8 @@ impl MuscleParams {
 
 impl JointParams {
     /// Appends one error per broken rule.
-    pub fn validate(&self, errors: &mut Vec<ParamError>) {
-        let mut c = Checker {
-            prefix: "joint.",
-            errors,
-        };
-        if self.name.trim().is_empty() {
-            c.fail("name", "\"\"", "must not be empty");
-        }
-        c.positive("radius", self.radius);
+    pub fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
+        let mut c = Checker { prefix, errors };
         c.positive("inertia", self.inertia);
         c.non_negative("damping", self.damping);
         c.finite("min_angle", self.min_angle);
@@ -340,9 +327,6 @@ impl JointParams {
         }
         c.non_negative("limit_stiffness", self.limit_stiffness);
         c.non_negative("limit_damping", self.limit_damping);
-        if let Some(l0) = self.path_length {
-            c.positive("path_length", l0);
-        }
         c.finite("initial_angle", self.initial_angle);
         if self.initial_angle.is_finite()
             && (self.initial_angle < self.min_angle || self.initial_angle > self.max_angle)

@@ -1,116 +1,102 @@
-//! The mechanical plant: one or two muscle–tendon units with their attachment (MODEL.md §5, §8),
-//! as a first-order system over a flat state vector.
+//! The mechanical plant: a topology of joints and muscle–tendon units (docs/model.md §5, §8b) as
+//! a first-order system over a flat state vector, for any contractile model.
 //!
-//! State layout: `[θ, ω]` when there is a joint, then for each muscle `[l_m, v]` followed by
-//! `[Q0, Q1, Q2]` for the Huxley models. Activations are not part of the state: within a tick
-//! they are known in closed form (physics::activation), and the caller passes them in.
+//! State layout: `[θ_j, ω_j]` for each joint j, then for each muscle i `[l_m, v]` followed by its
+//! contractile model's own state (none for Hill, Q0..Q2 for the Huxley models). Activations are
+//! not part of the state: within a tick they are known in closed form (physics::activation), and
+//! the caller passes them in.
+//!
+//! Coupling: muscle i's equations involve only its own state and the angles of the joints it
+//! spans; joint j's acceleration involves the tendon forces of the muscles that span it. The
+//! Jacobian is therefore block-arrowhead (a block per muscle, a joint block), which
+//! [`crate::integrator::arrowhead`] exploits.
 
 use crate::physics::joint;
 use crate::physics::model::ModelKind;
 use crate::physics::mtu::{Mtu, MtuOutputs};
-use crate::physics::params::{JointParams, MuscleParams};
-
-/// What the tendon's far end is attached to.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Attachment {
-    /// The MTU is held at a fixed total length, m.
-    Clamped {
-        /// Total MTU length L, m.
-        length: f64,
-    },
-    /// An external pull F(t) >= 0 acts on a massless tendon (a push is not transmitted).
-    ForceDriven,
-    /// Agonist and antagonist on a revolute joint.
-    Joint {
-        /// The joint parameters.
-        params: JointParams,
-        /// Path length of both MTUs at θ = 0, m.
-        path_length: f64,
-    },
-}
+use crate::physics::params::JointParams;
+use crate::physics::stiffness::add_muscle_joint_stiffness;
+use crate::physics::topology::{Anchor, Span, Topology};
 
 /// Inputs held over a tick.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Inputs {
     /// Neural excitation per muscle, [0, 1].
-    pub excitation: [f64; 2],
-    /// External pull on a force-driven tendon, N.
-    pub tendon_force: f64,
-    /// External torque on the joint, N m.
-    pub external_torque: f64,
+    pub excitation: Vec<f64>,
+    /// External torque per joint, N m.
+    pub external_torque: Vec<f64>,
+    /// External pull per muscle on a force-driven tendon, N (ignored for other anchors).
+    pub tendon_force: Vec<f64>,
 }
 
-/// The full model's closure over a sub-step: φ taken from the grid at the sub-step's start t0,
-/// extrapolated linearly with the slope of the previous sub-step (second order, and no extra
-/// pass over the grid): `φ(t) = φ0 + slope (t - t0)`.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct HeldClosure {
-    /// φ_k at t0, 1/s.
-    pub phi: [f64; 3],
-    /// dφ_k/dt, 1/s².
-    pub slope: [f64; 3],
-    /// Start of the sub-step, s (time within the tick).
-    pub t0: f64,
-}
+impl Inputs {
+    /// All zero, for `muscles` muscles and `joints` joints.
+    pub fn zeros(muscles: usize, joints: usize) -> Self {
+        Self {
+            excitation: vec![0.0; muscles],
+            external_torque: vec![0.0; joints],
+            tendon_force: vec![0.0; muscles],
+        }
+    }
 
-impl HeldClosure {
-    /// φ at time t.
-    pub fn at(&self, t: f64) -> [f64; 3] {
-        let dt = t - self.t0;
-        [
-            self.phi[0] + self.slope[0] * dt,
-            self.phi[1] + self.slope[1] * dt,
-            self.phi[2] + self.slope[2] * dt,
-        ]
+    /// Sets every value to 0 (keeps the sizes).
+    pub fn clear(&mut self) {
+        self.excitation.fill(0.0);
+        self.external_torque.fill(0.0);
+        self.tendon_force.fill(0.0);
     }
 }
 
-/// One or two MTUs and their attachment.
+/// The muscles, their anchors and the joints they drive.
 #[derive(Debug, Clone)]
 pub struct Plant {
-    /// The muscle–tendon units (agonist first).
+    /// The joints.
+    pub joints: Vec<JointParams>,
+    /// The muscle–tendon units, in topology order.
     pub mtus: Vec<Mtu>,
-    /// Their attachment.
-    pub attachment: Attachment,
+    /// Where each muscle's tendon is attached.
+    pub anchors: Vec<Anchor>,
     /// The model of the contractile elements.
     pub model: ModelKind,
-    /// The full model's closure φ per muscle over a sub-step (unused by the other models).
-    pub held_closure: [HeldClosure; 2],
-    offsets: [usize; 2],
+    offsets: Vec<usize>,
     dim: usize,
 }
 
 impl Plant {
-    /// Builds the plant; a joint needs exactly two muscles, the other attachments one.
-    pub fn new(
-        muscles: &[MuscleParams],
-        model: ModelKind,
-        attachment: Attachment,
-    ) -> Result<Self, String> {
-        let want = if matches!(attachment, Attachment::Joint { .. }) {
-            2
-        } else {
-            1
-        };
-        if muscles.len() != want {
-            return Err(format!(
-                "this attachment needs {want} muscle(s), got {}",
-                muscles.len()
-            ));
+    /// Builds the plant of a topology (checked: spans name existing joints).
+    pub fn new(topology: &Topology, model: ModelKind) -> Result<Self, String> {
+        if topology.muscles.is_empty() {
+            return Err("the plant needs at least one muscle".into());
         }
-        let mtus = muscles
+        let n_joints = topology.joints.len();
+        for m in &topology.muscles {
+            if let Anchor::Path { spans, .. } = &m.anchor {
+                if let Some(s) = spans.iter().find(|s| s.joint >= n_joints) {
+                    return Err(format!(
+                        "muscle {:?} spans joint index {} of {n_joints}",
+                        m.name, s.joint
+                    ));
+                }
+            }
+        }
+        let mtus = topology
+            .muscles
             .iter()
-            .map(|p| Mtu::new(p, model))
+            .map(|m| Mtu::new(&m.params, model))
             .collect::<Result<Vec<_>, _>>()?;
-        let per_muscle = 2 + mtus[0].contractile_dim();
-        let base = if want == 2 { 2 } else { 0 };
+        let mut offsets = Vec::with_capacity(mtus.len());
+        let mut dim = 2 * n_joints;
+        for m in &mtus {
+            offsets.push(dim);
+            dim += m.state_dim();
+        }
         Ok(Self {
+            joints: topology.joints.clone(),
             mtus,
-            attachment,
+            anchors: topology.muscles.iter().map(|m| m.anchor.clone()).collect(),
             model,
-            held_closure: [HeldClosure::default(); 2],
-            offsets: [base, base + per_muscle],
-            dim: base + want * per_muscle,
+            offsets,
+            dim,
         })
     }
 
@@ -119,136 +105,177 @@ impl Plant {
         self.dim
     }
 
+    /// Number of muscles.
+    pub fn muscle_count(&self) -> usize {
+        self.mtus.len()
+    }
+
+    /// Number of joints.
+    pub fn joint_count(&self) -> usize {
+        self.joints.len()
+    }
+
     /// Index of muscle i's first state variable (l_m).
     pub fn offset(&self, i: usize) -> usize {
         self.offsets[i]
     }
 
-    /// Muscle i's cross-bridge moments (zeros for Hill).
-    pub fn moments(&self, y: &[f64], i: usize) -> [f64; 3] {
+    /// Muscle i's state `[l_m, v, x...]`.
+    pub fn muscle_state<'a>(&self, y: &'a [f64], i: usize) -> &'a [f64] {
         let o = self.offsets[i];
-        if self.mtus[i].contractile_dim() == 3 {
-            [y[o + 2], y[o + 3], y[o + 4]]
-        } else {
-            [0.0; 3]
+        &y[o..o + self.mtus[i].state_dim()]
+    }
+
+    /// The joints muscle i spans.
+    pub fn spans(&self, i: usize) -> &[Span] {
+        match &self.anchors[i] {
+            Anchor::Path { spans, .. } => spans,
+            Anchor::ForceDriven => &[],
+        }
+    }
+
+    /// Muscle i's cross-bridge moments (zeros for models without bonds).
+    pub fn moments(&self, y: &[f64], i: usize) -> [f64; 3] {
+        self.mtus[i].ce.moments(&self.muscle_state(y, i)[2..])
+    }
+
+    /// Muscle i's path length `L_i(θ)`, m (None for a force-driven tendon).
+    pub fn path_length(&self, y: &[f64], i: usize) -> Option<f64> {
+        match &self.anchors[i] {
+            Anchor::Path { path_length, spans } => Some(
+                spans
+                    .iter()
+                    .fold(*path_length, |l, s| l - s.moment_arm.excursion(y[2 * s.joint])),
+            ),
+            Anchor::ForceDriven => None,
         }
     }
 
     /// Muscle i's tendon length, m.
     pub fn tendon_length(&self, y: &[f64], i: usize, inputs: &Inputs) -> f64 {
         let l_m = y[self.offsets[i]];
-        match &self.attachment {
-            Attachment::Clamped { length } => length - l_m,
-            Attachment::ForceDriven => self.mtus[i].tendon.length_at_force(inputs.tendon_force),
-            Attachment::Joint {
-                params,
-                path_length,
-            } => {
-                let path = if i == 0 {
-                    joint::agonist_path(*path_length, params.radius, y[0])
-                } else {
-                    joint::antagonist_path(*path_length, params.radius, y[0])
-                };
-                path - l_m
-            }
+        match self.path_length(y, i) {
+            Some(path) => path - l_m,
+            None => self.mtus[i].tendon.length_at_force(inputs.tendon_force[i]),
         }
     }
 
     /// Muscle i's tendon force, N.
     pub fn tendon_force(&self, y: &[f64], i: usize, inputs: &Inputs) -> f64 {
-        match self.attachment {
-            Attachment::ForceDriven => inputs.tendon_force.max(0.0),
-            _ => self.mtus[i].tendon.force(self.tendon_length(y, i, inputs)),
+        match self.anchors[i] {
+            Anchor::ForceDriven => inputs.tendon_force[i].max(0.0),
+            Anchor::Path { .. } => self.mtus[i].tendon.force(self.tendon_length(y, i, inputs)),
         }
     }
 
-    /// `dy/dt` at state y with activations `act`; `t` (time within the tick, s) only matters to
-    /// the full model's held closure.
+    /// `dy/dt` at state y with activations `act`; `t` is the time within the tick (it only
+    /// matters to models with state outside the ODE).
     pub fn derivatives(&self, t: f64, y: &[f64], act: &[f64], inputs: &Inputs, dy: &mut [f64]) {
-        let mut tendon_forces = [0.0; 2];
+        // Joint rows first collect the muscles' torques Σ_i r_ij F_SE,i.
+        for j in 0..self.joints.len() {
+            dy[2 * j] = y[2 * j + 1];
+            dy[2 * j + 1] = 0.0;
+        }
         for (i, mtu) in self.mtus.iter().enumerate() {
             let o = self.offsets[i];
-            let (l_m, v) = (y[o], y[o + 1]);
-            let q = self.moments(y, i);
+            let n = mtu.state_dim();
             let f_se = self.tendon_force(y, i, inputs);
-            tendon_forces[i] = f_se;
-            let f_ce = mtu.ce_force(act[i], l_m, v, &q);
-            dy[o] = v;
-            dy[o + 1] = mtu.fibre_acceleration(f_se, f_ce, l_m, v);
-            if mtu.contractile_dim() == 3 {
-                let held = (self.model == ModelKind::HuxleyPde).then(|| self.held_closure[i].at(t));
-                let dq = mtu.moment_rates(act[i], l_m, v, &q, held.as_ref());
-                dy[o + 2..o + 5].copy_from_slice(&dq);
+            mtu.derivatives(t, act[i], &y[o..o + n], f_se, &mut dy[o..o + n]);
+            for s in self.spans(i) {
+                dy[2 * s.joint + 1] += s.moment_arm.at(y[2 * s.joint]) * f_se;
             }
         }
-        if let Attachment::Joint { params, .. } = &self.attachment {
-            dy[0] = y[1];
-            dy[1] = joint::angular_acceleration(
-                params,
-                y[0],
-                y[1],
-                tendon_forces[0],
-                tendon_forces[1],
-                inputs.external_torque,
+        for (j, p) in self.joints.iter().enumerate() {
+            let torque = dy[2 * j + 1];
+            dy[2 * j + 1] = joint::angular_acceleration(
+                p,
+                y[2 * j],
+                y[2 * j + 1],
+                torque,
+                inputs.external_torque[j],
             );
         }
     }
 
     /// Typical magnitudes of the state components (tolerance units).
     pub fn scales(&self, out: &mut [f64]) {
-        if matches!(self.attachment, Attachment::Joint { .. }) {
-            out[0] = 1e-1;
-            out[1] = 1.0;
+        for j in 0..self.joints.len() {
+            out[2 * j] = 1e-1;
+            out[2 * j + 1] = 1.0;
         }
         for (i, mtu) in self.mtus.iter().enumerate() {
             let o = self.offsets[i];
-            out[o] = mtu.params.l_opt;
-            out[o + 1] = mtu.params.v_max;
-            if mtu.contractile_dim() == 3 {
-                out[o + 2..o + 5].fill(mtu.crossbridge.q_iso[0]);
-            }
+            mtu.scales(&mut out[o..o + mtu.state_dim()]);
         }
     }
 
-    /// The resting state: joint at its initial angle and at rest, each fibre where tendon and
-    /// parallel element balance, no bonds.
+    /// The resting state: joints at their initial angles and at rest, each fibre where tendon
+    /// and parallel element balance, no bonds.
     pub fn resting_state(&self, inputs: &Inputs, y: &mut [f64]) {
         y.fill(0.0);
-        let theta = match &self.attachment {
-            Attachment::Joint { params, .. } => params.initial_angle,
-            _ => 0.0,
-        };
-        if matches!(self.attachment, Attachment::Joint { .. }) {
-            y[0] = theta;
+        for (j, p) in self.joints.iter().enumerate() {
+            y[2 * j] = p.initial_angle;
         }
         for (i, mtu) in self.mtus.iter().enumerate() {
             let o = self.offsets[i];
-            y[o] = match &self.attachment {
-                Attachment::Clamped { length } => mtu.resting_fibre_length(*length),
-                Attachment::ForceDriven => mtu.parallel.length_at_force(inputs.tendon_force),
-                Attachment::Joint {
-                    params,
-                    path_length,
-                } => {
-                    let path = if i == 0 {
-                        joint::agonist_path(*path_length, params.radius, theta)
-                    } else {
-                        joint::antagonist_path(*path_length, params.radius, theta)
-                    };
-                    mtu.resting_fibre_length(path)
-                }
+            y[o] = match self.path_length(y, i) {
+                Some(path) => mtu.resting_fibre_length(path),
+                None => mtu.parallel.length_at_force(inputs.tendon_force[i]),
             };
         }
     }
 
     /// Muscle i's observable outputs.
     pub fn outputs(&self, y: &[f64], act: &[f64], inputs: &Inputs, i: usize) -> MtuOutputs {
-        let o = self.offsets[i];
         let l_t = self.tendon_length(y, i, inputs);
-        let mut out = self.mtus[i].outputs(act[i], y[o], y[o + 1], &self.moments(y, i), l_t);
-        if matches!(self.attachment, Attachment::ForceDriven) {
-            out.tendon_force = inputs.tendon_force.max(0.0);
+        let mut out = self.mtus[i].outputs(act[i], self.muscle_state(y, i), l_t);
+        if matches!(self.anchors[i], Anchor::ForceDriven) {
+            out.tendon_force = inputs.tendon_force[i].max(0.0);
         }
         out
+    }
+
+    /// Joint j's net muscle torque `Σ_i r_ij(θ_j) F_SE,i` from the muscles' tendon forces, N m.
+    pub fn muscle_torque(&self, y: &[f64], j: usize, tendon_forces: impl Fn(usize) -> f64) -> f64 {
+        let mut torque = 0.0;
+        for i in 0..self.mtus.len() {
+            for s in self.spans(i).iter().filter(|s| s.joint == j) {
+                torque += s.moment_arm.at(y[2 * j]) * tendon_forces(i);
+            }
+        }
+        torque
+    }
+
+    /// The joint stiffness matrix K (row-major `n × n`, N m/rad, docs/model.md §8b) from each
+    /// muscle's (MTU stiffness, tendon force), written to `k`.
+    pub fn stiffness_matrix(
+        &self,
+        y: &[f64],
+        muscle: impl Fn(usize) -> (f64, f64),
+        k: &mut [f64],
+    ) {
+        let n = self.joints.len();
+        k[..n * n].fill(0.0);
+        for i in 0..self.mtus.len() {
+            let (k_mtu, f_se) = muscle(i);
+            let arms = self.spans(i).iter().map(|s| {
+                let theta = y[2 * s.joint];
+                (s.joint, s.moment_arm.at(theta), s.moment_arm.slope(theta))
+            });
+            add_muscle_joint_stiffness(k, n, k_mtu, f_se, arms);
+        }
+    }
+
+    /// Kinetic energy of the fibre masses and the joints, J.
+    pub fn kinetic_energy(&self, y: &[f64]) -> f64 {
+        let mut e = 0.0;
+        for (i, mtu) in self.mtus.iter().enumerate() {
+            let v = y[self.offsets[i] + 1];
+            e += 0.5 * mtu.params.mass * v * v;
+        }
+        for (j, p) in self.joints.iter().enumerate() {
+            e += joint::kinetic_energy(p, y[2 * j + 1]);
+        }
+        e
     }
 }

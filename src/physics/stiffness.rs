@@ -15,7 +15,17 @@ pub fn series_stiffness(k_m: f64, k_se: f64) -> f64 {
     }
 }
 
-/// Joint stiffness `K = r² (k_mtu,ago + k_mtu,ant)`, N m/rad.
-pub fn joint_stiffness(radius: f64, k_mtu_agonist: f64, k_mtu_antagonist: f64) -> f64 {
-    radius * radius * (k_mtu_agonist + k_mtu_antagonist)
+/// Adds one muscle's share of the joint stiffness matrix (docs/model.md §8b, fibres quasi-static)
+/// to `k` (row-major, `n × n`, N m/rad): `K_jk += k_mtu r_j r_k` over the joints it spans and
+/// `K_jj -= F_SE dr_j/dθ_j`. `arms` yields (joint, r_j (m), dr_j/dθ_j (m/rad)) per spanned joint.
+pub fn add_muscle_joint_stiffness<I>(k: &mut [f64], n: usize, k_mtu: f64, tendon_force: f64, arms: I)
+where
+    I: Iterator<Item = (usize, f64, f64)> + Clone,
+{
+    for (j, r_j, dr_j) in arms.clone() {
+        for (l, r_l, _) in arms.clone() {
+            k[j * n + l] += k_mtu * r_j * r_l;
+        }
+        k[j * n + j] -= tendon_force * dr_j;
+    }
 }

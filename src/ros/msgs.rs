@@ -1,11 +1,18 @@
-//! The ROS 2 message types the node uses, as serde structs in wire (field) order.
+//! The ROS 2 message types the node uses, as serde structs in wire (field) order, and the
+//! conversion of a tick's state into the published messages (a leaf module: the node and the
+//! offline runs both use it).
 //!
 //! `muscle_actuator_msgs` mirrors `msg/*.msg` field for field (`tests/msg_definitions.rs` checks
 //! it); the standard types mirror their kilted definitions.
 
+use crate::sim::snapshot::{
+    JointSnapshot, MuscleSnapshot, StateSnapshot, JOINT_FIELD_COUNT, MUSCLE_FIELD_COUNT,
+};
 use ros2_client::builtin_interfaces::Time;
 use ros2_client::Message;
-use serde::{Deserialize, Serialize};
+use serde::de::{self, SeqAccess, Visitor};
+use serde::ser::SerializeStruct;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// `std_msgs/msg/Header`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -46,44 +53,235 @@ pub mod muscle_actuator_msgs {
     }
     impl Message for ExternalLoad {}
 
-    /// `muscle_actuator_msgs/msg/MuscleState`.
-    #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+    /// `muscle_actuator_msgs/msg/MuscleState`: the muscle's name, then the fields of
+    /// [`MuscleSnapshot`] in their order (the one field list; the serde impls iterate it).
+    #[derive(Debug, Clone, PartialEq, Default)]
     pub struct MuscleState {
         pub name: String,
-        pub excitation: f64,
-        pub activation: f64,
-        pub force: f64,
-        pub ce_force: f64,
-        pub pe_force: f64,
-        pub fiber_length: f64,
-        pub fiber_velocity: f64,
-        pub tendon_length: f64,
-        pub stiffness: f64,
-        pub mtu_stiffness: f64,
-        pub q0: f64,
-        pub q1: f64,
-        pub q2: f64,
-        pub tendon_energy: f64,
-        pub fiber_energy: f64,
-        pub crossbridge_energy: f64,
+        pub state: MuscleSnapshot,
     }
     impl Message for MuscleState {}
 
-    /// `muscle_actuator_msgs/msg/ActuatorState`.
-    #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+    impl Serialize for MuscleState {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            let mut st = s.serialize_struct("MuscleState", 1 + MUSCLE_FIELD_COUNT)?;
+            st.serialize_field("name", &self.name)?;
+            for (field, value) in MuscleSnapshot::FIELDS.iter().zip(self.state.values()) {
+                st.serialize_field(field, &value)?;
+            }
+            st.end()
+        }
+    }
+
+    impl<'de> Deserialize<'de> for MuscleState {
+        fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            struct V;
+            impl<'de> Visitor<'de> for V {
+                type Value = MuscleState;
+                fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                    f.write_str("a MuscleState")
+                }
+                fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<MuscleState, A::Error> {
+                    let name: String = next(&mut seq, 0)?;
+                    let mut values = [0.0; MUSCLE_FIELD_COUNT];
+                    for (k, v) in values.iter_mut().enumerate() {
+                        *v = next(&mut seq, k + 1)?;
+                    }
+                    Ok(MuscleState {
+                        name,
+                        state: MuscleSnapshot::from_values(values),
+                    })
+                }
+            }
+            d.deserialize_struct("MuscleState", &MUSCLE_STATE_FIELDS, V)
+        }
+    }
+
+    /// `muscle_actuator_msgs/msg/ActuatorState`. On the wire the joints are the per-joint arrays
+    /// of `ActuatorState.msg` (one per [`JointSnapshot`] field, in order), followed by the
+    /// row-major joint stiffness matrix.
+    #[derive(Debug, Clone, PartialEq, Default)]
     pub struct ActuatorState {
         pub header: Header,
         pub model: String,
         pub tick: u64,
         pub joint: Vec<String>,
-        pub position: Vec<f64>,
-        pub velocity: Vec<f64>,
-        pub torque: Vec<f64>,
-        pub external_torque: Vec<f64>,
-        pub stiffness: Vec<f64>,
+        /// One per joint name.
+        pub joints: Vec<JointSnapshot>,
+        /// Row-major n × n, n = the number of joints, N m/rad.
+        pub stiffness_matrix: Vec<f64>,
         pub muscles: Vec<MuscleState>,
     }
     impl Message for ActuatorState {}
+
+    impl ActuatorState {
+        /// Field `k` of every joint (the k-th per-joint array).
+        pub fn column(&self, k: usize) -> Vec<f64> {
+            self.joints.iter().map(|j| j.values()[k]).collect()
+        }
+    }
+
+    /// Field `k` of every joint, serialized as a sequence.
+    struct Column<'a>(&'a [JointSnapshot], usize);
+    impl Serialize for Column<'_> {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            s.collect_seq(self.0.iter().map(|j| j.values()[self.1]))
+        }
+    }
+
+    /// Names of the wire fields of `MuscleState`, in order: `name`, then the field list.
+    pub const MUSCLE_STATE_FIELDS: [&str; 1 + MUSCLE_FIELD_COUNT] = {
+        let mut out = [""; 1 + MUSCLE_FIELD_COUNT];
+        out[0] = "name";
+        let mut k = 0;
+        while k < MUSCLE_FIELD_COUNT {
+            out[k + 1] = MuscleSnapshot::FIELDS[k];
+            k += 1;
+        }
+        out
+    };
+
+    /// Names of the wire fields of `ActuatorState`, in order: the per-joint arrays are the
+    /// joint field list.
+    pub const ACTUATOR_STATE_FIELDS: [&str; 6 + JOINT_FIELD_COUNT] = {
+        let mut out = [""; 6 + JOINT_FIELD_COUNT];
+        out[0] = "header";
+        out[1] = "model";
+        out[2] = "tick";
+        out[3] = "joint";
+        let mut k = 0;
+        while k < JOINT_FIELD_COUNT {
+            out[4 + k] = JointSnapshot::FIELDS[k];
+            k += 1;
+        }
+        out[4 + JOINT_FIELD_COUNT] = "stiffness_matrix";
+        out[5 + JOINT_FIELD_COUNT] = "muscles";
+        out
+    };
+
+    impl Serialize for ActuatorState {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            let mut st = s.serialize_struct("ActuatorState", ACTUATOR_STATE_FIELDS.len())?;
+            st.serialize_field("header", &self.header)?;
+            st.serialize_field("model", &self.model)?;
+            st.serialize_field("tick", &self.tick)?;
+            st.serialize_field("joint", &self.joint)?;
+            for (k, field) in JointSnapshot::FIELDS.iter().enumerate() {
+                st.serialize_field(field, &Column(&self.joints, k))?;
+            }
+            st.serialize_field("stiffness_matrix", &self.stiffness_matrix)?;
+            st.serialize_field("muscles", &self.muscles)?;
+            st.end()
+        }
+    }
+
+    impl<'de> Deserialize<'de> for ActuatorState {
+        fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            struct V;
+            impl<'de> Visitor<'de> for V {
+                type Value = ActuatorState;
+                fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                    f.write_str("an ActuatorState")
+                }
+                fn visit_seq<A: SeqAccess<'de>>(
+                    self,
+                    mut seq: A,
+                ) -> Result<ActuatorState, A::Error> {
+                    let header: Header = next(&mut seq, 0)?;
+                    let model: String = next(&mut seq, 1)?;
+                    let tick: u64 = next(&mut seq, 2)?;
+                    let joint: Vec<String> = next(&mut seq, 3)?;
+                    let mut joints = vec![JointSnapshot::default(); joint.len()];
+                    for k in 0..JOINT_FIELD_COUNT {
+                        let column: Vec<f64> = next(&mut seq, 4 + k)?;
+                        if column.len() != joint.len() {
+                            return Err(de::Error::custom(format!(
+                                "ActuatorState.{} has {} values for {} joints",
+                                JointSnapshot::FIELDS[k],
+                                column.len(),
+                                joint.len()
+                            )));
+                        }
+                        for (j, v) in joints.iter_mut().zip(column) {
+                            let mut values = j.values();
+                            values[k] = v;
+                            *j = JointSnapshot::from_values(values);
+                        }
+                    }
+                    let stiffness_matrix: Vec<f64> = next(&mut seq, 4 + JOINT_FIELD_COUNT)?;
+                    if stiffness_matrix.len() != joint.len() * joint.len() {
+                        return Err(de::Error::custom(format!(
+                            "ActuatorState.stiffness_matrix has {} values for {} joints",
+                            stiffness_matrix.len(),
+                            joint.len()
+                        )));
+                    }
+                    let muscles: Vec<MuscleState> = next(&mut seq, 5 + JOINT_FIELD_COUNT)?;
+                    Ok(ActuatorState {
+                        header,
+                        model,
+                        tick,
+                        joint,
+                        joints,
+                        stiffness_matrix,
+                        muscles,
+                    })
+                }
+            }
+            d.deserialize_struct("ActuatorState", &ACTUATOR_STATE_FIELDS, V)
+        }
+    }
+
+    /// The next element of a struct read as a sequence, or an error naming its position.
+    fn next<'de, T: Deserialize<'de>, A: SeqAccess<'de>>(
+        seq: &mut A,
+        index: usize,
+    ) -> Result<T, A::Error> {
+        seq.next_element()?
+            .ok_or_else(|| de::Error::invalid_length(index, &"all fields of the message"))
+    }
+}
+
+/// The two messages published after a tick: `ActuatorState` and `sensor_msgs/JointState`
+/// (effort = the net muscle torque), stamped `stamp_ns`.
+pub fn state_messages(
+    stamp_ns: i64,
+    model: &str,
+    tick: u64,
+    muscle_names: &[String],
+    joint_names: &[String],
+    state: &StateSnapshot,
+) -> (muscle_actuator_msgs::ActuatorState, JointState) {
+    let header = Header {
+        stamp: Time::from_nanos(stamp_ns),
+        frame_id: String::new(),
+    };
+    let muscles = state
+        .muscles
+        .iter()
+        .zip(muscle_names)
+        .map(|(m, name)| muscle_actuator_msgs::MuscleState {
+            name: name.clone(),
+            state: *m,
+        })
+        .collect();
+    let js = JointState {
+        header: header.clone(),
+        name: joint_names.to_vec(),
+        position: state.joints.iter().map(|j| j.position).collect(),
+        velocity: state.joints.iter().map(|j| j.velocity).collect(),
+        effort: state.joints.iter().map(|j| j.torque).collect(),
+    };
+    let msg = muscle_actuator_msgs::ActuatorState {
+        header,
+        model: model.into(),
+        tick,
+        joint: joint_names.to_vec(),
+        joints: state.joints.clone(),
+        stiffness_matrix: state.stiffness_matrix.clone(),
+        muscles,
+    };
+    (msg, js)
 }
 
 /// `sensor_msgs/msg/JointState`.
@@ -204,7 +402,7 @@ pub const TYPE_HASHES: &[(&str, &str)] = &[
     ),
     (
         "muscle_actuator_msgs/msg/ActuatorState",
-        "RIHS01_01dfcdb343cd8f8b5ad7a5c078b71e04d48d874374ef737c5d730dae05b1a202",
+        "RIHS01_cc98e166df36e153a97b7b0724f2f7253e3ec4182662c9b4fd309ab254ab79eb",
     ),
     (
         "sensor_msgs/msg/JointState",

@@ -4,12 +4,10 @@
 
 use super::args::{self, RosArgs, Severity};
 use super::input::{self, Rejection};
-use super::msgs::muscle_actuator_msgs::{
-    ActivationCommand, ActuatorState, ExternalLoad, MuscleState,
-};
+use super::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use super::msgs::{
-    DiagnosticArray, DiagnosticStatus, Header, JointState, KeyValue, TriggerRequest,
-    TriggerResponse,
+    state_messages, DiagnosticArray, DiagnosticStatus, Header, JointState, KeyValue,
+    TriggerRequest, TriggerResponse,
 };
 use super::params::{self, NodeParams};
 use super::record;
@@ -269,64 +267,16 @@ fn dds_name(resolved: &str) -> Result<Name, String> {
     Name::parse(resolved).map_err(|e| format!("invalid name {resolved:?}: {e:?}"))
 }
 
-fn time(ns: i64) -> Time {
-    Time::from_nanos(ns)
-}
-
 /// Converts a sample into the two published messages.
 pub fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {
-    let header = Header {
-        stamp: time(s.stamp_ns),
-        frame_id: String::new(),
-    };
-    let muscles = s
-        .muscles
-        .iter()
-        .zip(s.muscle_names.iter())
-        .map(|(m, name)| MuscleState {
-            name: name.clone(),
-            excitation: m.excitation,
-            activation: m.activation,
-            force: m.force,
-            ce_force: m.ce_force,
-            pe_force: m.pe_force,
-            fiber_length: m.fiber_length,
-            fiber_velocity: m.fiber_velocity,
-            tendon_length: m.tendon_length,
-            stiffness: m.stiffness,
-            mtu_stiffness: m.mtu_stiffness,
-            q0: m.q0,
-            q1: m.q1,
-            q2: m.q2,
-            tendon_energy: m.tendon_energy,
-            fiber_energy: m.fiber_energy,
-            crossbridge_energy: m.crossbridge_energy,
-        })
-        .collect();
-    let joint: Vec<String> = s.joint_names.to_vec();
-    let position: Vec<f64> = s.joints.iter().map(|j| j.position).collect();
-    let velocity: Vec<f64> = s.joints.iter().map(|j| j.velocity).collect();
-    let torque: Vec<f64> = s.joints.iter().map(|j| j.torque).collect();
-    let state = ActuatorState {
-        header: header.clone(),
-        model: s.model.name().into(),
-        tick: s.tick,
-        joint: joint.clone(),
-        position: position.clone(),
-        velocity: velocity.clone(),
-        torque: torque.clone(),
-        external_torque: s.joints.iter().map(|j| j.external_torque).collect(),
-        stiffness: s.joints.iter().map(|j| j.stiffness).collect(),
-        muscles,
-    };
-    let js = JointState {
-        header,
-        name: joint,
-        position,
-        velocity,
-        effort: torque,
-    };
-    (state, js)
+    state_messages(
+        s.stamp_ns,
+        s.model.name(),
+        s.tick,
+        &s.muscle_names,
+        &s.joint_names,
+        &s.state,
+    )
 }
 
 /// The publisher thread: takes samples from the tick thread and publishes them.

@@ -4,7 +4,7 @@ use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
 use crate::sim::Actuator;
 use ros2_client::ParameterValue;
-use std::path::Path;
+
 
 /// Parameter names.
 pub const MODEL: &str = "model";
@@ -39,7 +39,7 @@ pub struct NodeParams {
 impl Default for NodeParams {
     fn default() -> Self {
         Self {
-            model: ModelKind::Huxley,
+            model: ModelKind::HUXLEY,
             rate_hz: 1000.0,
             publish_rate_hz: 0.0,
             config: String::new(),
@@ -144,7 +144,7 @@ impl NodeParams {
         if self.config.is_empty() {
             Ok(ActuatorConfig::default())
         } else {
-            ActuatorConfig::from_file(Path::new(&self.config)).map_err(|e| e.to_string())
+            ActuatorConfig::resolve(&self.config).map_err(|e| e.to_string())
         }
     }
 
@@ -190,7 +190,7 @@ mod tests {
         assert!(p
             .set(MODEL, &ParameterValue::String("hill".into()), false)
             .is_ok());
-        assert_eq!(p.model, ModelKind::Hill);
+        assert_eq!(p.model, ModelKind::HILL);
         let e = p
             .set(MODEL, &ParameterValue::String("bogus".into()), false)
             .unwrap_err();

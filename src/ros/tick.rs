@@ -4,7 +4,7 @@
 //! the publisher falls behind), events for the log through another.
 
 use crate::physics::model::ModelKind;
-use crate::sim::{Actuator, JointSnapshot, MuscleSnapshot};
+use crate::sim::{Actuator, StateSnapshot};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError, TrySendError};
 use std::sync::Arc;
@@ -35,8 +35,8 @@ pub struct Sample {
     pub model: ModelKind,
     pub muscle_names: Arc<[String]>,
     pub joint_names: Arc<[String]>,
-    pub muscles: Vec<MuscleSnapshot>,
-    pub joints: Vec<JointSnapshot>,
+    /// Everything observable after the tick.
+    pub state: StateSnapshot,
 }
 
 /// Inputs as the tick loop applied them, for the recorder: they take effect for the step from
@@ -388,8 +388,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                 model: actuator.model(),
                 muscle_names: muscle_names.clone(),
                 joint_names: joint_names.clone(),
-                muscles: actuator.muscles().to_vec(),
-                joints: actuator.joints().to_vec(),
+                state: actuator.state().clone(),
             };
             match io.samples.try_send(sample) {
                 Ok(()) => {}

@@ -38,6 +38,12 @@ pub struct Comparison {
     pub signals: Vec<SignalDiff>,
 }
 
+/// The muscle fields compared, by their names in the one field list
+/// ([`crate::sim::snapshot::MuscleSnapshot::FIELDS`]).
+pub const MUSCLE_SIGNALS: [&str; 3] = ["force", "fiber_length", "stiffness"];
+/// The joint fields compared ([`crate::sim::snapshot::JointSnapshot::FIELDS`]).
+pub const JOINT_SIGNALS: [&str; 3] = ["position", "torque", "stiffness"];
+
 /// (time, value) series of every compared signal of a run.
 fn series(run: &LoadedRun) -> Vec<(String, Vec<(f64, f64)>)> {
     let rate = run.meta.rate_hz;
@@ -52,15 +58,15 @@ fn series(run: &LoadedRun) -> Vec<(String, Vec<(f64, f64)>)> {
     for s in &run.states {
         let t = s.tick as f64 / rate;
         for m in &s.muscles {
-            push(format!("{}.force", m.name), t, m.force);
-            push(format!("{}.fiber_length", m.name), t, m.fiber_length);
-            push(format!("{}.stiffness", m.name), t, m.stiffness);
+            for f in MUSCLE_SIGNALS {
+                let v = m.state.get(f).unwrap_or(f64::NAN);
+                push(format!("{}.{f}", m.name), t, v);
+            }
         }
-        for (i, j) in s.joint.iter().enumerate() {
-            let at = |v: &Vec<f64>| v.get(i).copied().unwrap_or(f64::NAN);
-            push(format!("{j}.position"), t, at(&s.position));
-            push(format!("{j}.torque"), t, at(&s.torque));
-            push(format!("{j}.stiffness"), t, at(&s.stiffness));
+        for (j, name) in s.joints.iter().zip(&s.joint) {
+            for f in JOINT_SIGNALS {
+                push(format!("{name}.{f}"), t, j.get(f).unwrap_or(f64::NAN));
+            }
         }
     }
     out

@@ -10,22 +10,20 @@ pub mod compare;
 
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
-use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::physics::plant::{Inputs, Plant};
+use crate::physics::topology::Topology;
 use crate::recording::{
     self, qos_yaml, read_recording, schema::ros2msg_schema, ChannelSpec, Recorder, RecorderOptions,
     RecorderState, Recording,
 };
 use crate::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
-use crate::ros::msgs::{definition, type_hash, Header, JointState};
-use crate::ros::node::sample_to_msgs;
-use crate::ros::tick::Sample;
+use crate::ros::msgs::{definition, state_messages, type_hash, Header};
 use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
 use crate::sim::simulation::{default_stepping, Simulation, Stepping};
-use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use crate::sim::snapshot::StateSnapshot;
 use ros2_client::builtin_interfaces::Time;
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::Arc;
 
 pub const STATE_TOPIC: &str = "/muscle_actuator/state";
 pub const JOINT_STATES_TOPIC: &str = "/joint_states";
@@ -227,31 +225,28 @@ impl RunMeta {
         })
     }
 
+    /// The topology of the run.
+    pub fn topology(&self) -> Topology {
+        let first = &self.config.muscles[0];
+        match &self.attachment {
+            AttachmentMeta::Joint => self.config.topology(),
+            AttachmentMeta::Clamped { length } => {
+                Topology::clamped(&first.name, first.params.clone(), *length)
+            }
+            AttachmentMeta::Force { .. } => {
+                Topology::force_driven(&first.name, first.params.clone())
+            }
+        }
+    }
+
     /// The simulation this run describes, in its initial state (with model `model`).
     pub fn build(&self, model: ModelKind, stepping: Stepping) -> Result<Simulation, String> {
         self.config.validate().map_err(|e| e.to_string())?;
-        let first = &self.config.muscles[0];
-        let (params, attachment, initial) = match &self.attachment {
-            AttachmentMeta::Joint => (
-                self.config.muscle_params(),
-                self.config.joint_attachment(),
-                Inputs::default(),
-            ),
-            AttachmentMeta::Clamped { length } => (
-                vec![first.params.clone()],
-                Attachment::Clamped { length: *length },
-                Inputs::default(),
-            ),
-            AttachmentMeta::Force { initial_force } => (
-                vec![first.params.clone()],
-                Attachment::ForceDriven,
-                Inputs {
-                    tendon_force: *initial_force,
-                    ..Inputs::default()
-                },
-            ),
-        };
-        let plant = Plant::new(&params, model, attachment)?;
+        let plant = Plant::new(&self.topology(), model)?;
+        let mut initial = Inputs::zeros(plant.muscle_count(), plant.joint_count());
+        if let AttachmentMeta::Force { initial_force } = self.attachment {
+            initial.tendon_force.fill(initial_force);
+        }
         Simulation::new(plant, self.rate_hz, stepping, initial)
     }
 }
@@ -277,28 +272,6 @@ fn header_ns(h: &Header) -> u64 {
     h.stamp.to_nanos().max(0) as u64
 }
 
-/// The state messages of a tick (as the node publishes them; `stamp_ns` in the headers).
-pub fn state_msgs(
-    tick: u64,
-    stamp_ns: i64,
-    model: ModelKind,
-    muscle_names: &[String],
-    joint_names: &[String],
-    muscles: &[MuscleSnapshot],
-    joints: &[JointSnapshot],
-) -> (ActuatorState, JointState) {
-    let sample = Sample {
-        tick,
-        stamp_ns,
-        model,
-        muscle_names: Arc::from(muscle_names),
-        joint_names: Arc::from(joint_names),
-        muscles: muscles.to_vec(),
-        joints: joints.to_vec(),
-    };
-    sample_to_msgs(&sample)
-}
-
 /// Writes a run to MCAP tick by tick: states, joint states (with a joint) and inputs (when they
 /// change), log time = simulated time.
 struct RunWriter {
@@ -318,7 +291,7 @@ const CH_LOAD: usize = 3;
 
 impl RunWriter {
     fn start(path: &Path, meta: &RunMeta) -> Result<Self, String> {
-        let has_joint = meta.attachment == AttachmentMeta::Joint;
+        let has_joint = !meta.joints.is_empty();
         let mut channels = vec![
             channel(STATE_TOPIC, STATE_TYPE)?,
             channel(ACTIVATION_TOPIC, ACTIVATION_TYPE)?,
@@ -363,22 +336,27 @@ impl RunWriter {
     /// Inputs that take effect at `tick` (written when they change).
     fn inputs(&mut self, tick: u64, inputs: &Inputs) -> Result<(), String> {
         let ns = tick_ns(tick, self.rate_hz);
-        let prev = self.last;
-        self.last = Some(*inputs);
-        let n = self.muscles.len();
-        if prev.map(|p| p.excitation) != Some(inputs.excitation) {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let prev = self.last.take();
+        let changed = |now: &[f64], before: Option<&Vec<f64>>| {
+            before.is_none_or(|b| bits(b) != bits(now))
+        };
+        if changed(&inputs.excitation, prev.as_ref().map(|p| &p.excitation)) {
             self.put(
                 CH_ACTIVATION,
                 ns,
                 &ActivationCommand {
                     header: stamp(ns),
                     muscle: self.muscles.clone(),
-                    excitation: inputs.excitation[..n].to_vec(),
+                    excitation: inputs.excitation.clone(),
                 },
             )?;
         }
         if self.has_joint
-            && prev.map(|p| p.external_torque.to_bits()) != Some(inputs.external_torque.to_bits())
+            && changed(
+                &inputs.external_torque,
+                prev.as_ref().map(|p| &p.external_torque),
+            )
         {
             self.put(
                 CH_LOAD,
@@ -386,31 +364,25 @@ impl RunWriter {
                 &ExternalLoad {
                     header: stamp(ns),
                     joint: self.joints.clone(),
-                    torque: vec![inputs.external_torque],
+                    torque: inputs.external_torque.clone(),
                 },
             )?;
         }
+        self.last = Some(inputs.clone());
         Ok(())
     }
 
-    fn state(
-        &self,
-        tick: u64,
-        muscles: &[MuscleSnapshot],
-        joint: Option<JointSnapshot>,
-    ) -> Result<(), String> {
+    fn state(&self, tick: u64, state: &StateSnapshot) -> Result<(), String> {
         let ns = tick_ns(tick, self.rate_hz);
-        let joints: Vec<JointSnapshot> = joint.into_iter().collect();
-        let (state, js) = state_msgs(
-            tick,
+        let (msg, js) = state_messages(
             ns as i64,
-            self.model,
+            self.model.name(),
+            tick,
             &self.muscles,
             &self.joints,
-            muscles,
-            &joints,
+            state,
         );
-        self.put(CH_STATE, ns, &state)?;
+        self.put(CH_STATE, ns, &msg)?;
         if self.has_joint {
             self.put(CH_JOINT, ns, &js)?;
         }
@@ -436,26 +408,14 @@ pub fn simulate_to_mcap(
 ) -> Result<Run, String> {
     let mut runner = sc.runner(cfg, model, rate_hz, stepping)?;
     let first = &cfg.muscles[0];
-    let (attachment, muscles, joints) = match sc.attachment {
-        SetupKind::Joint => (
-            AttachmentMeta::Joint,
-            cfg.muscles.iter().map(|m| m.name.clone()).collect(),
-            vec![cfg.joint.name.clone()],
-        ),
-        SetupKind::Clamped => (
-            AttachmentMeta::Clamped {
-                length: sc.length.unwrap_or(first.params.l_opt + first.params.l_ts),
-            },
-            vec![first.name.clone()],
-            vec![],
-        ),
-        SetupKind::Force => (
-            AttachmentMeta::Force {
-                initial_force: sc.initial_force,
-            },
-            vec![first.name.clone()],
-            vec![],
-        ),
+    let attachment = match sc.attachment {
+        SetupKind::Joint => AttachmentMeta::Joint,
+        SetupKind::Clamped => AttachmentMeta::Clamped {
+            length: sc.length.unwrap_or(first.params.l_opt + first.params.l_ts),
+        },
+        SetupKind::Force => AttachmentMeta::Force {
+            initial_force: sc.initial_force,
+        },
     };
     let meta = RunMeta {
         source: format!("simulate {}", sc.name),
@@ -466,14 +426,19 @@ pub fn simulate_to_mcap(
         config: cfg.clone(),
         parameters_json: None,
         start_time_ns: now_ns(),
-        muscles,
-        joints,
+        muscles: runner.muscle_names().to_vec(),
+        joints: runner.joint_names().to_vec(),
     };
     let mut w = RunWriter::start(out, &meta)?;
     let ticks = (sc.duration * rate_hz).round() as u64;
     let mut records: Vec<Record> = Vec::with_capacity(ticks as usize + 1);
+    let state = |r: &Record| StateSnapshot {
+        muscles: r.muscles.clone(),
+        joints: r.joints.clone(),
+        stiffness_matrix: r.stiffness_matrix.clone(),
+    };
     let r0 = runner.record();
-    w.state(0, &r0.muscles, r0.joint)?;
+    w.state(0, &state(&r0))?;
     records.push(r0);
     for k in 0..ticks {
         // The inputs `step` applies: the schedules at the tick's start.
@@ -481,7 +446,7 @@ pub fn simulate_to_mcap(
         w.inputs(k, &inputs)?;
         runner.step()?;
         let r = runner.record();
-        w.state(k + 1, &r.muscles, r.joint)?;
+        w.state(k + 1, &state(&r))?;
         records.push(r);
     }
     w.finish()?;
@@ -490,6 +455,8 @@ pub fn simulate_to_mcap(
         model,
         rate_hz,
         muscle_names: meta.muscles.clone(),
+        joint_names: meta.joints.clone(),
+        muscle_joints: runner.muscle_joints(),
         records,
     })
 }
@@ -571,41 +538,16 @@ pub struct ReplaySummary {
     pub first_difference: Option<u64>,
 }
 
-/// The bits of a state's simulated fields (everything but the header).
+/// The bits of a state's simulated fields (everything but the header), iterating the field
+/// lists.
 fn state_bits(s: &ActuatorState) -> Vec<u64> {
     let mut v = vec![s.tick];
-    for a in [
-        &s.position,
-        &s.velocity,
-        &s.torque,
-        &s.external_torque,
-        &s.stiffness,
-    ] {
-        v.extend(a.iter().map(|x| x.to_bits()));
+    for j in &s.joints {
+        v.extend(j.values().iter().map(|x| x.to_bits()));
     }
+    v.extend(s.stiffness_matrix.iter().map(|x| x.to_bits()));
     for m in &s.muscles {
-        v.extend(
-            [
-                m.excitation,
-                m.activation,
-                m.force,
-                m.ce_force,
-                m.pe_force,
-                m.fiber_length,
-                m.fiber_velocity,
-                m.tendon_length,
-                m.stiffness,
-                m.mtu_stiffness,
-                m.q0,
-                m.q1,
-                m.q2,
-                m.tendon_energy,
-                m.fiber_energy,
-                m.crossbridge_energy,
-            ]
-            .iter()
-            .map(|x| x.to_bits()),
-        );
+        v.extend(m.state.values().iter().map(|x| x.to_bits()));
     }
     v
 }
@@ -656,13 +598,6 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
     for s in &run.states {
         by_tick.insert(s.tick, s);
     }
-    let n_muscles = meta.muscles.len();
-    let snapshot = |sim: &Simulation| -> (Vec<MuscleSnapshot>, Option<JointSnapshot>) {
-        (
-            (0..n_muscles).map(|i| sim.muscle_snapshot(i)).collect(),
-            sim.joint_snapshot(),
-        )
-    };
     let mut summary = ReplaySummary {
         model,
         ticks: last_tick,
@@ -670,13 +605,13 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
         identical: 0,
         first_difference: None,
     };
-    let mut check = |tick: u64, muscles: &[MuscleSnapshot], joint: Option<JointSnapshot>| {
+    let mut check = |tick: u64, state: &StateSnapshot| {
         if model != meta.model {
             return;
         }
         if let Some(rec) = by_tick.get(&tick) {
-            let joints: Vec<JointSnapshot> = joint.into_iter().collect();
-            let (mine, _) = state_msgs(tick, 0, model, &meta.muscles, &rec.joint, muscles, &joints);
+            let (mine, _) =
+                state_messages(0, model.name(), tick, &meta.muscles, &rec.joint, state);
             summary.compared += 1;
             if state_bits(&mine) == state_bits(rec) {
                 summary.identical += 1;
@@ -685,19 +620,20 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
             }
         }
     };
-    let (m0, j0) = snapshot(&sim);
+    let mut state = StateSnapshot::default();
+    sim.fill_snapshot(&mut state);
     if by_tick.contains_key(&0) {
-        w.state(0, &m0, j0)?;
-        check(0, &m0, j0);
+        w.state(0, &state)?;
+        check(0, &state);
     }
     let mut acts = run.activations.iter().peekable();
     let mut loads = run.loads.iter().peekable();
-    let mut inputs = *sim.inputs();
+    let mut inputs = sim.inputs().clone();
     for k in 0..last_tick {
         while let Some((_, names, values)) = acts.next_if(|a| a.0 <= k) {
             for (n, u) in names.iter().zip(values) {
                 if let Some(i) = meta.muscles.iter().position(|m| m == n) {
-                    if u.is_finite() && i < 2 {
+                    if u.is_finite() && i < inputs.excitation.len() {
                         inputs.excitation[i] = u.clamp(0.0, 1.0);
                     }
                 }
@@ -705,18 +641,20 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
         }
         while let Some((_, names, values)) = loads.next_if(|l| l.0 <= k) {
             for (n, t) in names.iter().zip(values) {
-                if meta.joints.first() == Some(n) && t.is_finite() {
-                    inputs.external_torque = *t;
+                if let Some(j) = meta.joints.iter().position(|m| m == n) {
+                    if t.is_finite() && j < inputs.external_torque.len() {
+                        inputs.external_torque[j] = *t;
+                    }
                 }
             }
         }
-        sim.set_inputs(inputs);
+        sim.inputs_mut().clone_from(&inputs);
         w.inputs(k, &inputs)?;
         sim.step()
             .map_err(|e| format!("replay with {model} failed at tick {k}: {e}"))?;
-        let (m, j) = snapshot(&sim);
-        w.state(k + 1, &m, j)?;
-        check(k + 1, &m, j);
+        sim.fill_snapshot(&mut state);
+        w.state(k + 1, &state)?;
+        check(k + 1, &state);
     }
     w.finish()?;
     Ok(summary)

@@ -1,6 +1,6 @@
-//! `Actuator`: the antagonistic joint of the configuration, stepped at a fixed tick.
+//! `Actuator`: the limb of the configuration (any joints and muscles), stepped at a fixed tick.
 //!
-//! Inputs (excitations, external torque) set between ticks take effect at the next tick and are
+//! Inputs (excitations, external torques) set between ticks take effect at the next tick and are
 //! held constant over it (zero-order hold), so a run is reproducible from its inputs and their
 //! ticks. `step` does not allocate.
 
@@ -8,21 +8,20 @@ use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::simulation::{default_stepping, Simulation, StepError, Stepping};
-use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 
-/// A simulated antagonistic actuator (one joint, two muscles).
+/// A simulated limb: the joints and muscles of a configuration.
 #[derive(Debug, Clone)]
 pub struct Actuator {
     config: ActuatorConfig,
     sim: Simulation,
     muscle_names: Vec<String>,
     joint_names: Vec<String>,
-    muscles: [MuscleSnapshot; 2],
-    joint: JointSnapshot,
+    state: StateSnapshot,
 }
 
 impl Actuator {
-    /// Builds the actuator in its initial state (joint at `initial_angle`, at rest, a = 0).
+    /// Builds the actuator in its initial state (joints at their initial angles, at rest, a = 0).
     /// `rate_hz` is the tick rate (> 0, finite).
     pub fn new(config: &ActuatorConfig, model: ModelKind, rate_hz: f64) -> Result<Self, String> {
         Self::with_stepping(config, model, rate_hz, default_stepping(model))
@@ -36,26 +35,18 @@ impl Actuator {
         stepping: Stepping,
     ) -> Result<Self, String> {
         config.validate().map_err(|e| e.to_string())?;
-        let plant = Plant::new(&config.muscle_params(), model, config.joint_attachment())?;
-        let sim = Simulation::new(plant, rate_hz, stepping, Inputs::default())?;
+        let plant = Plant::new(&config.topology(), model)?;
+        let inputs = Inputs::zeros(plant.muscle_count(), plant.joint_count());
+        let sim = Simulation::new(plant, rate_hz, stepping, inputs)?;
         let mut actuator = Self {
             config: config.clone(),
             sim,
-            muscle_names: config.muscles.iter().map(|m| m.name.clone()).collect(),
-            joint_names: vec![config.joint.name.clone()],
-            muscles: [MuscleSnapshot::default(); 2],
-            joint: JointSnapshot::default(),
+            muscle_names: config.muscle_names(),
+            joint_names: config.joint_names(),
+            state: StateSnapshot::default(),
         };
-        actuator.refresh();
+        actuator.sim.fill_snapshot(&mut actuator.state);
         Ok(actuator)
-    }
-
-    fn refresh(&mut self) {
-        self.muscles = [self.sim.muscle_snapshot(0), self.sim.muscle_snapshot(1)];
-        self.joint = self
-            .sim
-            .joint_snapshot_with(&self.muscles)
-            .unwrap_or_default();
     }
 
     /// The model that drives the muscles.
@@ -74,11 +65,11 @@ impl Actuator {
     pub fn simulation(&self) -> &Simulation {
         &self.sim
     }
-    /// Muscle names: agonist, antagonist.
+    /// Muscle names, in configuration order.
     pub fn muscle_names(&self) -> &[String] {
         &self.muscle_names
     }
-    /// Joint names (one joint).
+    /// Joint names, in configuration order.
     pub fn joint_names(&self) -> &[String] {
         &self.joint_names
     }
@@ -91,40 +82,46 @@ impl Actuator {
         self.sim.time()
     }
     /// Sets muscle `index`'s excitation for the following ticks. The caller validates: the value
-    /// is clamped to [0, 1] here, and a non-finite value is ignored.
+    /// is clamped to [0, 1] here, and a non-finite value or unknown index is ignored.
     pub fn set_excitation(&mut self, index: usize, excitation: f64) {
-        if excitation.is_finite() && index < 2 {
-            let mut inputs = *self.sim.inputs();
-            inputs.excitation[index] = excitation.clamp(0.0, 1.0);
-            self.sim.set_inputs(inputs);
+        if let Some(u) = self.sim.inputs_mut().excitation.get_mut(index) {
+            if excitation.is_finite() {
+                *u = excitation.clamp(0.0, 1.0);
+            }
         }
     }
-    /// Sets the external torque on joint `index`, N m (positive flexes); non-finite is ignored.
+    /// Sets the external torque on joint `index`, N m; non-finite or unknown is ignored.
     pub fn set_external_torque(&mut self, index: usize, torque: f64) {
-        if index == 0 && torque.is_finite() {
-            let mut inputs = *self.sim.inputs();
-            inputs.external_torque = torque;
-            self.sim.set_inputs(inputs);
+        if let Some(t) = self.sim.inputs_mut().external_torque.get_mut(index) {
+            if torque.is_finite() {
+                *t = torque;
+            }
         }
     }
-    /// Advances one tick. On a non-finite state it returns an error and leaves the state as it
-    /// was; call `reset`.
+    /// Advances one tick. On a failure it returns an error and leaves the state as it was; call
+    /// `reset`.
     pub fn step(&mut self) -> Result<(), StepError> {
         self.sim.step()?;
-        self.refresh();
+        self.sim.fill_snapshot(&mut self.state);
         Ok(())
     }
     /// Back to the initial state (inputs zeroed, tick 0).
     pub fn reset(&mut self) {
-        self.sim.reset(Inputs::default());
-        self.refresh();
+        let mut inputs = self.sim.inputs().clone();
+        inputs.clear();
+        self.sim.reset_with(&inputs);
+        self.sim.fill_snapshot(&mut self.state);
     }
-    /// Muscle states after the last tick: agonist, antagonist.
+    /// Everything observable after the last tick.
+    pub fn state(&self) -> &StateSnapshot {
+        &self.state
+    }
+    /// Muscle states after the last tick, in configuration order.
     pub fn muscles(&self) -> &[MuscleSnapshot] {
-        &self.muscles
+        &self.state.muscles
     }
-    /// Joint states after the last tick (one joint).
+    /// Joint states after the last tick, in configuration order.
     pub fn joints(&self) -> &[JointSnapshot] {
-        std::slice::from_ref(&self.joint)
+        &self.state.joints
     }
 }

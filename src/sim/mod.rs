@@ -2,6 +2,7 @@
 //! facade the node uses, and the offline scenarios. It knows nothing of ROS, files or threads.
 
 pub mod actuator;
+pub mod jacobian;
 pub mod scenario;
 pub mod schedule;
 pub mod simulation;
@@ -9,4 +10,4 @@ pub mod snapshot;
 
 pub use actuator::Actuator;
 pub use simulation::{Simulation, StepError};
-pub use snapshot::{JointSnapshot, MuscleSnapshot};
+pub use snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};

@@ -5,10 +5,11 @@
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
 use crate::physics::params::MuscleParams;
-use crate::physics::plant::{Attachment, Inputs, Plant};
+use crate::physics::plant::{Inputs, Plant};
+use crate::physics::topology::Topology;
 use crate::sim::schedule::Schedule;
 use crate::sim::simulation::{Simulation, Stepping};
-use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -19,7 +20,7 @@ pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SetupKind {
-    /// The antagonistic joint of the configuration (both muscles).
+    /// The limb of the configuration: all its joints and muscles.
     Joint,
     /// The first muscle, clamped at a total length.
     Clamped,
@@ -35,7 +36,7 @@ pub enum Signal {
     Excitation,
     /// The pull on a force-driven tendon, N.
     TendonForce,
-    /// The external torque on the joint, N m.
+    /// The external torque on a joint, N m.
     ExternalTorque,
 }
 
@@ -47,6 +48,9 @@ pub struct ScheduledInput {
     /// The muscle, for excitations (default: the first).
     #[serde(default)]
     pub muscle: Option<String>,
+    /// The joint, for external torques (default: the first).
+    #[serde(default)]
+    pub joint: Option<String>,
     /// The schedule.
     #[serde(flatten)]
     pub schedule: Schedule,
@@ -83,10 +87,24 @@ fn default_name() -> String {
 pub struct Record {
     /// Time at the end of the tick, s (0 for the initial state).
     pub time: f64,
-    /// The muscles' states (one or two).
+    /// The muscles' states.
     pub muscles: Vec<MuscleSnapshot>,
-    /// The joint's state, if there is a joint.
-    pub joint: Option<JointSnapshot>,
+    /// The joints' states (none for a clamped or force-driven muscle).
+    pub joints: Vec<JointSnapshot>,
+    /// The joint stiffness matrix, row-major, N m/rad.
+    pub stiffness_matrix: Vec<f64>,
+}
+
+impl Record {
+    /// A record of `state` at `time`.
+    pub fn new(time: f64, state: StateSnapshot) -> Self {
+        Self {
+            time,
+            muscles: state.muscles,
+            joints: state.joints,
+            stiffness_matrix: state.stiffness_matrix,
+        }
+    }
 }
 
 /// The result of running a scenario.
@@ -100,6 +118,10 @@ pub struct Run {
     pub rate_hz: f64,
     /// Muscle names.
     pub muscle_names: Vec<String>,
+    /// Joint names.
+    pub joint_names: Vec<String>,
+    /// Per muscle, the indices of the joints it spans.
+    pub muscle_joints: Vec<Vec<usize>>,
     /// Initial state, then one record per tick.
     pub records: Vec<Record>,
 }
@@ -110,6 +132,7 @@ impl Scenario {
         let excitation = |schedule| ScheduledInput {
             signal: Signal::Excitation,
             muscle: None,
+            joint: None,
             schedule,
         };
         let energy = |f: f64| Scenario {
@@ -121,6 +144,7 @@ impl Scenario {
             inputs: vec![ScheduledInput {
                 signal: Signal::TendonForce,
                 muscle: None,
+                joint: None,
                 schedule: Schedule::Sine {
                     offset: 150.0,
                     amplitude: 150.0,
@@ -239,6 +263,8 @@ impl Scenario {
             model,
             rate_hz,
             muscle_names: runner.names.clone(),
+            joint_names: runner.joint_names.clone(),
+            muscle_joints: runner.muscle_joints(),
             records,
         })
     }
@@ -252,55 +278,66 @@ impl Scenario {
         stepping: Stepping,
     ) -> Result<ScenarioRunner, String> {
         config.validate().map_err(|e| e.to_string())?;
-        let first = &config.muscles[0];
-        let (params, names, attachment) = match self.attachment {
-            SetupKind::Joint => (
-                config.muscle_params(),
-                config.muscles.iter().map(|m| m.name.clone()).collect(),
-                config.joint_attachment(),
-            ),
-            SetupKind::Clamped => (
-                vec![first.params.clone()],
-                vec![first.name.clone()],
-                Attachment::Clamped {
-                    length: self
-                        .length
-                        .unwrap_or(first.params.l_opt + first.params.l_ts),
-                },
-            ),
-            SetupKind::Force => (
-                vec![first.params.clone()],
-                vec![first.name.clone()],
-                Attachment::ForceDriven,
-            ),
-        };
+        let topology = self.topology(config);
+        let names = topology.muscle_names();
+        let joint_names = topology.joint_names();
         let mut muscle_index = Vec::with_capacity(self.inputs.len());
         for (i, input) in self.inputs.iter().enumerate() {
-            let idx = match &input.muscle {
-                None => 0,
+            let lookup = |want: &Option<String>, names: &[String], what: &str| match want {
+                None => Ok(0),
                 Some(m) => names.iter().position(|n| n == m).ok_or_else(|| {
                     format!(
-                        "input[{i}]: unknown muscle {m:?} (this scenario has {})",
-                        names.join(", ")
+                        "input[{i}]: unknown {what} {:?} (this scenario has {})",
+                        crate::config::excerpt(m),
+                        if names.is_empty() {
+                            "none".to_string()
+                        } else {
+                            names.join(", ")
+                        }
                     )
-                })?,
+                }),
+            };
+            let idx = match input.signal {
+                Signal::ExternalTorque => {
+                    if joint_names.is_empty() {
+                        return Err(format!("input[{i}]: this scenario has no joint"));
+                    }
+                    lookup(&input.joint, &joint_names, "joint")?
+                }
+                _ => lookup(&input.muscle, &names, "muscle")?,
             };
             muscle_index.push(idx);
         }
-        let plant = Plant::new(&params, model, attachment)?;
-        let initial = Inputs {
-            tendon_force: self.initial_force,
-            ..Inputs::default()
-        };
-        let sim = Simulation::new(plant, rate_hz, stepping, initial)?;
+        let plant = Plant::new(&topology, model)?;
+        let mut initial = Inputs::zeros(plant.muscle_count(), plant.joint_count());
+        initial.tendon_force.fill(self.initial_force);
+        let sim = Simulation::new(plant, rate_hz, stepping, initial.clone())?;
         let mut runner = ScenarioRunner {
             scenario: self.clone(),
             sim,
             names,
+            joint_names,
             muscle_index,
+            inputs: initial,
+            snapshot: StateSnapshot::default(),
         };
         runner.apply_inputs();
         Ok(runner)
+    }
+
+    /// The topology this scenario runs: the configuration's limb, or its first muscle alone.
+    pub fn topology(&self, config: &ActuatorConfig) -> Topology {
+        let first = &config.muscles[0];
+        match self.attachment {
+            SetupKind::Joint => config.topology(),
+            SetupKind::Clamped => Topology::clamped(
+                &first.name,
+                first.params.clone(),
+                self.length
+                    .unwrap_or(first.params.l_opt + first.params.l_ts),
+            ),
+            SetupKind::Force => Topology::force_driven(&first.name, first.params.clone()),
+        }
     }
 }
 
@@ -310,37 +347,49 @@ pub struct ScenarioRunner {
     scenario: Scenario,
     sim: Simulation,
     names: Vec<String>,
+    joint_names: Vec<String>,
+    /// Per input: the muscle (excitation, tendon force) or joint (torque) it drives.
     muscle_index: Vec<usize>,
+    inputs: Inputs,
+    snapshot: StateSnapshot,
 }
 
 impl ScenarioRunner {
-    /// The inputs the schedules give at time t.
-    pub fn inputs_at(&self, t: f64) -> Inputs {
-        let mut inputs = Inputs::default();
+    /// Writes the inputs the schedules give at time t into `inputs` (sized for the plant).
+    pub fn fill_inputs(&self, t: f64, inputs: &mut Inputs) {
+        inputs.clear();
         let mut tendon_force_scheduled = false;
-        for (input, &m) in self.scenario.inputs.iter().zip(&self.muscle_index) {
+        for (input, &k) in self.scenario.inputs.iter().zip(&self.muscle_index) {
             let v = input.schedule.value(t);
             match input.signal {
-                Signal::Excitation => inputs.excitation[m] += v,
+                Signal::Excitation => inputs.excitation[k] += v,
                 Signal::TendonForce => {
                     tendon_force_scheduled = true;
-                    inputs.tendon_force += v
+                    inputs.tendon_force[k] += v
                 }
-                Signal::ExternalTorque => inputs.external_torque += v,
+                Signal::ExternalTorque => inputs.external_torque[k] += v,
             }
         }
         if !tendon_force_scheduled {
-            inputs.tendon_force = self.scenario.initial_force;
+            inputs.tendon_force.fill(self.scenario.initial_force);
         }
         for u in &mut inputs.excitation {
             *u = u.clamp(0.0, 1.0);
         }
+    }
+
+    /// The inputs the schedules give at time t.
+    pub fn inputs_at(&self, t: f64) -> Inputs {
+        let mut inputs = self.sim.inputs().clone();
+        self.fill_inputs(t, &mut inputs);
         inputs
     }
 
     fn apply_inputs(&mut self) {
-        let inputs = self.inputs_at(self.sim.time());
-        self.sim.set_inputs(inputs);
+        let mut inputs = std::mem::take(&mut self.inputs);
+        self.fill_inputs(self.sim.time(), &mut inputs);
+        self.sim.inputs_mut().clone_from(&inputs);
+        self.inputs = inputs;
     }
 
     /// Advances one tick (inputs sampled at its start).
@@ -350,18 +399,31 @@ impl ScenarioRunner {
     }
 
     /// The current state as a record.
-    pub fn record(&self) -> Record {
-        Record {
-            time: self.sim.time(),
-            muscles: (0..self.names.len())
-                .map(|i| self.sim.muscle_snapshot(i))
-                .collect(),
-            joint: self.sim.joint_snapshot(),
-        }
+    pub fn record(&mut self) -> Record {
+        self.sim.fill_snapshot(&mut self.snapshot);
+        Record::new(self.sim.time(), self.snapshot.clone())
     }
 
     /// The simulation.
     pub fn simulation(&self) -> &Simulation {
         &self.sim
+    }
+
+    /// Muscle names, in order.
+    pub fn muscle_names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Joint names, in order.
+    pub fn joint_names(&self) -> &[String] {
+        &self.joint_names
+    }
+
+    /// Per muscle, the indices of the joints it spans.
+    pub fn muscle_joints(&self) -> Vec<Vec<usize>> {
+        let plant = self.sim.plant();
+        (0..plant.muscle_count())
+            .map(|i| plant.spans(i).iter().map(|s| s.joint).collect())
+            .collect()
     }
 }

@@ -1,53 +1,117 @@
-//! Plain data published after every tick: what the node, the recorder and the CSV writer read.
+//! What is observable after a tick, defined once: the fields of a muscle and of a joint, with
+//! their units, in the order of `MuscleState.msg` and of `ActuatorState.msg`'s per-joint arrays.
+//! The message conversion, the CSV, the recorder, `compare` and replay all iterate these lists
+//! (`tests/msg_definitions.rs` keeps them in step with the `.msg` files).
 
-/// State of one muscle–tendon unit after a tick (the fields of `MuscleState.msg`, SI units).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct MuscleSnapshot {
-    /// Neural excitation u in force during the tick, [0, 1].
-    pub excitation: f64,
-    /// Activation a.
-    pub activation: f64,
-    /// Tendon force F_SE, N.
-    pub force: f64,
-    /// Contractile-element force F_CE, N.
-    pub ce_force: f64,
-    /// Parallel-element force F_P (spring only), N.
-    pub pe_force: f64,
-    /// Fibre length l_m, m.
-    pub fiber_length: f64,
-    /// Fibre lengthening velocity dl_m/dt, m/s.
-    pub fiber_velocity: f64,
-    /// Tendon length l_t, m.
-    pub tendon_length: f64,
-    /// Contractile-element stiffness k_CE, N/m.
-    pub stiffness: f64,
-    /// Muscle–tendon-unit stiffness (fibre and tendon in series), N/m.
-    pub mtu_stiffness: f64,
-    /// Distribution-Moment state Q0 (0 for the Hill model).
-    pub q0: f64,
-    /// Distribution-Moment state Q1.
-    pub q1: f64,
-    /// Distribution-Moment state Q2.
-    pub q2: f64,
-    /// Tendon strain energy, J.
-    pub tendon_energy: f64,
-    /// Parallel-element strain energy, J.
-    pub fiber_energy: f64,
-    /// Cross-bridge elastic energy, J.
-    pub crossbridge_energy: f64,
+/// Defines a struct of named `f64` observables together with its field list.
+macro_rules! observables {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident [$count:ident] {
+            $( $(#[$fmeta:meta])* $field:ident : $unit:literal, )*
+        }
+    ) => {
+        /// Number of fields of the struct below.
+        pub const $count: usize = [$(stringify!($field)),*].len();
+
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, Default, PartialEq)]
+        pub struct $name {
+            $( $(#[$fmeta])* pub $field: f64, )*
+        }
+
+        impl $name {
+            /// The field names, in message order.
+            pub const FIELDS: [&'static str; $count] = [$(stringify!($field)),*];
+            /// Their units (SI), in the same order.
+            pub const UNITS: [&'static str; $count] = [$($unit),*];
+
+            /// The values, in field order.
+            pub fn values(&self) -> [f64; $count] {
+                [$(self.$field),*]
+            }
+
+            /// From values in field order.
+            pub fn from_values(v: [f64; $count]) -> Self {
+                let [$($field),*] = v;
+                Self { $($field),* }
+            }
+
+            /// The value of the field called `name`.
+            pub fn get(&self, name: &str) -> Option<f64> {
+                Self::index_of(name).map(|k| self.values()[k])
+            }
+
+            /// The position of the field called `name`.
+            pub fn index_of(name: &str) -> Option<usize> {
+                Self::FIELDS.iter().position(|f| *f == name)
+            }
+        }
+    };
 }
 
-/// State of the joint after a tick.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct JointSnapshot {
-    /// Angle θ, rad (positive: flexion, the agonist's direction).
-    pub position: f64,
-    /// Angular velocity ω, rad/s.
-    pub velocity: f64,
-    /// Net muscle torque r (F_ago - F_ant), N m.
-    pub torque: f64,
-    /// External load torque in force during the tick, N m.
-    pub external_torque: f64,
-    /// Joint stiffness K = r² (k_mtu,ago + k_mtu,ant), N m/rad.
-    pub stiffness: f64,
+observables! {
+    /// State of one muscle–tendon unit after a tick (the fields of `MuscleState.msg` after its
+    /// name, SI units).
+    pub struct MuscleSnapshot [MUSCLE_FIELD_COUNT] {
+        /// Neural excitation u in force during the tick, [0, 1].
+        excitation: "1",
+        /// Activation a, [0, 1].
+        activation: "1",
+        /// Tendon force F_SE, N.
+        force: "N",
+        /// Contractile-element force F_CE, N.
+        ce_force: "N",
+        /// Parallel-element force F_P (spring only), N.
+        pe_force: "N",
+        /// Fibre length l_m, m.
+        fiber_length: "m",
+        /// Fibre lengthening velocity dl_m/dt, m/s.
+        fiber_velocity: "m/s",
+        /// Tendon length l_t, m.
+        tendon_length: "m",
+        /// Contractile-element stiffness k_CE, N/m.
+        stiffness: "N/m",
+        /// Muscle–tendon-unit stiffness (fibre and tendon in series), N/m.
+        mtu_stiffness: "N/m",
+        /// Distribution-Moment state Q0 (0 for the Hill model).
+        q0: "1",
+        /// Distribution-Moment state Q1.
+        q1: "1",
+        /// Distribution-Moment state Q2.
+        q2: "1",
+        /// Tendon strain energy, J.
+        tendon_energy: "J",
+        /// Parallel-element strain energy, J.
+        fiber_energy: "J",
+        /// Cross-bridge elastic energy, J.
+        crossbridge_energy: "J",
+    }
+}
+
+observables! {
+    /// State of one joint after a tick (the per-joint arrays of `ActuatorState.msg`, in order).
+    pub struct JointSnapshot [JOINT_FIELD_COUNT] {
+        /// Angle θ, rad (positive: the direction of the muscles with positive moment arms).
+        position: "rad",
+        /// Angular velocity ω, rad/s.
+        velocity: "rad/s",
+        /// Net muscle torque Σ_i r_i F_SE,i, N m.
+        torque: "N m",
+        /// External load torque in force during the tick, N m.
+        external_torque: "N m",
+        /// Joint stiffness K_jj (the diagonal of the stiffness matrix), N m/rad.
+        stiffness: "N m/rad",
+    }
+}
+
+/// Everything observable after a tick: the muscles, the joints and the joint stiffness matrix.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StateSnapshot {
+    /// One per muscle, in configuration order.
+    pub muscles: Vec<MuscleSnapshot>,
+    /// One per joint, in configuration order.
+    pub joints: Vec<JointSnapshot>,
+    /// The joint stiffness matrix K, row-major n × n (n joints), N m/rad.
+    pub stiffness_matrix: Vec<f64>,
 }

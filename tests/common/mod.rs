@@ -13,19 +13,19 @@ use muscle_actuator::sim::simulation::Stepping;
 /// deviations over all ticks and muscles, N and m.
 pub fn worst_deviation_from_reference(
     scenario: &Scenario,
+    cfg: &ActuatorConfig,
     model: ModelKind,
     rate_hz: f64,
     stepping: Stepping,
 ) -> (f64, f64) {
     assert!(
-        model != ModelKind::HuxleyPde,
+        model != ModelKind::HUXLEY_PDE,
         "the full model has no ODE reference"
     );
-    let cfg = ActuatorConfig::default();
-    let mut runner = scenario.runner(&cfg, model, rate_hz, stepping).unwrap();
+    let mut runner = scenario.runner(cfg, model, rate_hz, stepping).unwrap();
     let plant = runner.simulation().plant().clone();
     let dim = plant.dim();
-    let n_mus = plant.mtus.len();
+    let n_mus = plant.muscle_count();
     let mut y: Vec<f64> = runner.simulation().state().to_vec();
     y.extend_from_slice(runner.simulation().activations());
     let mut scales = vec![0.0; dim];

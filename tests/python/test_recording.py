@@ -30,7 +30,7 @@ MUSCLE_FIELDS = [
     "fiber_velocity", "tendon_length", "stiffness", "mtu_stiffness", "q0", "q1", "q2",
     "tendon_energy", "fiber_energy", "crossbridge_energy",
 ]
-STATE_ARRAYS = ["position", "velocity", "torque", "external_torque", "stiffness"]
+STATE_ARRAYS = ["position", "velocity", "torque", "external_torque", "stiffness", "stiffness_matrix"]
 
 
 def decode_mcap(path):

@@ -1,0 +1,66 @@
+//! The Huxley-type contractile element reduced by Zahalak's Distribution-Moment approximation
+//! (docs/model.md §6, paper eqs. 9–12): state Q0, Q1, Q2, rates from eq. (12) with the Gaussian
+//! closure, calibrated from its own steady states.
+
+use crate::physics::contractile::calibration::{self, CrossBridgeScale};
+use crate::physics::contractile::distribution_moment::moment_rates;
+use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepPolicy};
+use crate::physics::params::MuscleParams;
+
+/// The model's entry in [`crate::physics::model::MODELS`].
+pub static SPEC: ModelSpec = ModelSpec {
+    name: "huxley",
+    label: "Huxley (DM)",
+    summary: "Huxley cross-bridges, Distribution-Moment approximation (Q0, Q1, Q2)",
+    // The stiff cross-bridge spring needs a tighter tolerance than Hill for the same margin.
+    substeps: SubstepPolicy::Adaptive { tolerance: 2e-6 },
+    build,
+};
+
+/// One muscle's DM element.
+#[derive(Debug, Clone)]
+pub struct DistributionMoment {
+    /// Its calibration.
+    pub scale: CrossBridgeScale,
+}
+
+fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
+    let scale = calibration::calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
+    Ok(Box::new(DistributionMoment { scale }))
+}
+
+fn q(x: &[f64]) -> [f64; 3] {
+    [x[0], x[1], x[2]]
+}
+
+impl ContractileModel for DistributionMoment {
+    fn spec(&self) -> &'static ModelSpec {
+        &SPEC
+    }
+    fn state_dim(&self) -> usize {
+        3
+    }
+    fn state_scales(&self, out: &mut [f64]) {
+        out[..3].fill(self.scale.q_iso[0]);
+    }
+    fn force(&self, _ce: &CeInputs, x: &[f64]) -> f64 {
+        self.scale.force(x[1])
+    }
+    fn rates(&self, _t: f64, ce: &CeInputs, x: &[f64], dx: &mut [f64]) {
+        let r = ce.activation * ce.overlap;
+        let u = self.scale.shortening_rate(ce.fibre_velocity);
+        dx[..3].copy_from_slice(&moment_rates(&self.scale.rates, &q(x), r, u));
+    }
+    fn stiffness(&self, _ce: &CeInputs, x: &[f64]) -> f64 {
+        self.scale.stiffness(x[0])
+    }
+    fn energy(&self, x: &[f64]) -> f64 {
+        self.scale.energy(x[2])
+    }
+    fn moments(&self, x: &[f64]) -> [f64; 3] {
+        q(x)
+    }
+    fn clone_box(&self) -> Box<dyn ContractileModel> {
+        Box::new(self.clone())
+    }
+}

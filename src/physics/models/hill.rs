@@ -1,0 +1,67 @@
+//! The Hill-type contractile element (docs/model.md §3, paper eqs. 1–3):
+//! `F_CE = Fmax a f(l_m) g(v_s)`, no state of its own. Its short-range stiffness is that of the
+//! attached bridges implied by the Distribution-Moment calibration, `k_CE = a f(l_m) k_iso`
+//! (§8).
+
+use crate::physics::contractile::calibration;
+use crate::physics::contractile::hill::{force_velocity, hill_force};
+use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepPolicy};
+use crate::physics::params::MuscleParams;
+
+/// The model's entry in [`crate::physics::model::MODELS`].
+pub static SPEC: ModelSpec = ModelSpec {
+    name: "hill",
+    label: "Hill",
+    summary: "Hill-type: Fmax · a · f(l) · g(v)",
+    // Chosen so that 1 kHz ticks meet the accuracy bounds against the reference solver with a
+    // margin of at least 2 on every scenario (tests/integrator_accuracy.rs prints them).
+    substeps: SubstepPolicy::Adaptive { tolerance: 1e-5 },
+    build,
+};
+
+/// One muscle's Hill element.
+#[derive(Debug, Clone)]
+pub struct Hill {
+    f_max: f64,
+    v_max: f64,
+    eccentric_asymptote: f64,
+    /// Short-range stiffness at full activation and optimal length, N/m.
+    k_iso: f64,
+}
+
+fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
+    let dm = calibration::calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
+    Ok(Box::new(Hill {
+        f_max: p.f_max,
+        v_max: p.v_max,
+        eccentric_asymptote: p.eccentric_asymptote,
+        k_iso: calibration::hill_isometric_stiffness(&dm),
+    }))
+}
+
+impl ContractileModel for Hill {
+    fn spec(&self) -> &'static ModelSpec {
+        &SPEC
+    }
+    fn state_dim(&self) -> usize {
+        0
+    }
+    fn state_scales(&self, _out: &mut [f64]) {}
+    fn force(&self, ce: &CeInputs, _x: &[f64]) -> f64 {
+        let g = force_velocity(-ce.fibre_velocity, self.v_max, self.eccentric_asymptote);
+        hill_force(self.f_max, ce.activation, ce.overlap, g)
+    }
+    fn rates(&self, _t: f64, _ce: &CeInputs, _x: &[f64], _dx: &mut [f64]) {}
+    fn stiffness(&self, ce: &CeInputs, _x: &[f64]) -> f64 {
+        ce.activation * ce.overlap * self.k_iso
+    }
+    fn energy(&self, _x: &[f64]) -> f64 {
+        0.0
+    }
+    fn moments(&self, _x: &[f64]) -> [f64; 3] {
+        [0.0; 3]
+    }
+    fn clone_box(&self) -> Box<dyn ContractileModel> {
+        Box::new(self.clone())
+    }
+}

@@ -1,0 +1,126 @@
+//! The full Huxley (1957) model (docs/model.md §7): eq. (9) itself, the bond distribution on a
+//! grid that rides with the actin, advanced exactly along the characteristics after each fixed
+//! sub-step. Its moments Q0, Q1, Q2 are the ODE state; within a sub-step their rates use the
+//! grid's closure φ taken at the sub-step's start and extrapolated linearly with the previous
+//! sub-step's slope (second order, no extra pass over the grid). Calibrated from its exact
+//! steady states.
+
+use crate::physics::contractile::calibration::{self, CrossBridgeScale};
+use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
+use crate::physics::muscle_model::{
+    CeInputs, ContractileModel, ModelSpec, SubstepMotion, SubstepPolicy,
+};
+use crate::physics::params::MuscleParams;
+
+/// The model's entry in [`crate::physics::model::MODELS`].
+pub static SPEC: ModelSpec = ModelSpec {
+    name: "huxley-pde",
+    label: "Huxley (full)",
+    summary: "the full Huxley model, solved by characteristics (the reference)",
+    substeps: SubstepPolicy::Fixed(20),
+    build,
+};
+
+/// Room of the grid, in units of ξ (long tails after fast lengthening).
+const GRID_EXTENT: f64 = 64.0;
+
+/// The closure over a sub-step: `φ(t) = φ0 + slope (t - t0)`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct HeldClosure {
+    /// φ_k at t0, 1/s.
+    pub phi: [f64; 3],
+    /// dφ_k/dt, 1/s².
+    pub slope: [f64; 3],
+    /// Start of the sub-step, s (time within the tick).
+    pub t0: f64,
+}
+
+impl HeldClosure {
+    /// φ at time t.
+    pub fn at(&self, t: f64) -> [f64; 3] {
+        let dt = t - self.t0;
+        [
+            self.phi[0] + self.slope[0] * dt,
+            self.phi[1] + self.slope[1] * dt,
+            self.phi[2] + self.slope[2] * dt,
+        ]
+    }
+}
+
+/// One muscle's full Huxley element: its calibration, its grid, the closure over the sub-step.
+#[derive(Debug, Clone)]
+pub struct HuxleyPde {
+    /// Its calibration (from the exact steady states).
+    pub scale: CrossBridgeScale,
+    /// The bond distribution.
+    pub grid: CrossBridgeGrid,
+    held: HeldClosure,
+    previous: Option<[f64; 3]>,
+}
+
+fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
+    Ok(Box::new(HuxleyPde {
+        scale: calibration::calibrate_exact(p),
+        grid: CrossBridgeGrid::new(p.crossbridge.pde_cells, GRID_EXTENT),
+        held: HeldClosure::default(),
+        previous: None,
+    }))
+}
+
+impl ContractileModel for HuxleyPde {
+    fn spec(&self) -> &'static ModelSpec {
+        &SPEC
+    }
+    fn state_dim(&self) -> usize {
+        3
+    }
+    fn state_scales(&self, out: &mut [f64]) {
+        out[..3].fill(self.scale.q_iso[0]);
+    }
+    fn force(&self, _ce: &CeInputs, x: &[f64]) -> f64 {
+        self.scale.force(x[1])
+    }
+    fn rates(&self, t: f64, ce: &CeInputs, x: &[f64], dx: &mut [f64]) {
+        let rates = &self.scale.rates;
+        let r = ce.activation * ce.overlap;
+        let u = self.scale.shortening_rate(ce.fibre_velocity);
+        let phi = self.held.at(t);
+        dx[0] = r * rates.beta(0) - phi[0];
+        dx[1] = r * rates.beta(1) - phi[1] - u * x[0];
+        dx[2] = r * rates.beta(2) - phi[2] - 2.0 * u * x[1];
+    }
+    fn stiffness(&self, _ce: &CeInputs, x: &[f64]) -> f64 {
+        self.scale.stiffness(x[0])
+    }
+    fn energy(&self, x: &[f64]) -> f64 {
+        self.scale.energy(x[2])
+    }
+    fn moments(&self, x: &[f64]) -> [f64; 3] {
+        [x[0], x[1], x[2]]
+    }
+    fn before_substep(&mut self, t0: f64, dt: f64) {
+        let phi = self.grid.closure(&self.scale.rates);
+        let slope = match self.previous {
+            Some(prev) => [0, 1, 2].map(|k| (phi[k] - prev[k]) / dt),
+            None => [0.0; 3],
+        };
+        self.held = HeldClosure { phi, slope, t0 };
+        self.previous = Some(phi);
+    }
+    fn after_substep(&mut self, m: &SubstepMotion, x: &mut [f64]) {
+        let shift = m.fibre_length_change / self.scale.l_h;
+        let r = m.activation_mid * m.overlap_mid;
+        self.grid.advance(&self.scale.rates, r, m.dt, shift);
+        x[..3].copy_from_slice(&self.grid.moments());
+    }
+    fn reset(&mut self) {
+        self.grid.reset();
+        self.previous = None;
+    }
+    fn forget_history(&mut self) {
+        self.previous = None;
+    }
+    fn clone_box(&self) -> Box<dyn ContractileModel> {
+        Box::new(self.clone())
+    }
+}
