@@ -1,6 +1,6 @@
 //! muscle_actuator: an antagonistic muscle actuator (Hill and Huxley models) for ROS 2.
 //!
-//! - [`physics`]: the mathematics of MODEL.md, no I/O.
+//! - [`physics`]: the mathematics of docs/model.md, no I/O.
 //! - [`integrator`]: the fixed-tick implicit stepper and the adaptive reference solver.
 //! - [`sim`]: the actuator stepped tick by tick (the facade the node and the CLI use).
 //! - [`config`]: the configuration file.

@@ -1,6 +1,6 @@
 //! Cross-bridge models: the full Huxley model (method of characteristics) against the closed-form
-//! oracle of MODEL.md §7, and the Distribution-Moment model's published steady state,
-//! homogeneity and calibration (MODEL.md §6).
+//! oracle of docs/model.md §7, and the Distribution-Moment model's published steady state,
+//! homogeneity and calibration (docs/model.md §6).
 
 use muscle_actuator::physics::contractile::calibration::{
     calibrate_distribution_moment, calibrate_exact,

@@ -1,4 +1,4 @@
-//! MODEL.md §10: at 1 kHz the tick results stay within 1e-3 Fmax (force) and 1e-6 m (length) of
+//! docs/model.md §10: at 1 kHz the tick results stay within 1e-3 Fmax (force) and 1e-6 m (length) of
 //! a tight-tolerance adaptive reference (Dop853 from `ode_solvers`, an explicit method sharing
 //! nothing with the implicit stepper) on every scenario, and runs are bit-identical.
 
@@ -137,7 +137,7 @@ fn runs_are_bit_identical() {
 
 /// The full model has no ODE form for an adaptive reference; its reference is itself with ten
 /// times the sub-steps (the grid advances exactly for each sub-step's motion, so what converges
-/// is the coupling of grid and mechanics). Same bounds as MODEL.md §10.
+/// is the coupling of grid and mechanics). Same bounds as docs/model.md §10.
 #[test]
 fn full_model_ticks_match_a_ten_times_finer_run() {
     let cfg = ActuatorConfig::default();

@@ -1,4 +1,4 @@
-//! The antagonistic joint (MODEL.md §8): directions, co-contraction stiffening, stiffness
+//! The antagonistic joint (docs/model.md §8): directions, co-contraction stiffening, stiffness
 //! composition.
 
 use muscle_actuator::config::ActuatorConfig;

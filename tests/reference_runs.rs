@@ -1,8 +1,11 @@
 //! The default `elbow` still gives the results of the two-muscle program it grew from: the CSVs
 //! in `tests/reference/` were written by that program (`simulate SCENARIO --model M --csv`) for
 //! the pulse, energy and joint scenarios and every model. Today's runs reproduce them within the
-//! accuracy bounds of docs/model.md §10 (force 1e-3 Fmax, length 1e-6 m) and, while the stepper
-//! is the same algorithm, far tighter (the figure printed per file).
+//! accuracy bounds of docs/model.md §10 (force 1e-3 Fmax, length 1e-6 m); the deviations are
+//! printed per file. (The commit that restructured the program into limbs kept the same stepper
+//! and checked them to rounding: bit for bit with one muscle, 1e-12 of each column's range for
+//! the lengths and angle of the joint scenario. The block-arrowhead stepper that followed solves
+//! the same equations with another Jacobian, so only the accuracy bounds remain.)
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
@@ -53,8 +56,6 @@ fn today_name(reference: &str) -> String {
 /// Largest deviation of a column, relative to the column's largest magnitude.
 struct Deviation {
     relative: f64,
-    /// Over the lengths and the joint angle only.
-    slow_relative: f64,
     force: f64,
     length: f64,
 }
@@ -71,7 +72,6 @@ fn compare(reference: &Path, model: ModelKind, scenario: &Scenario) -> Deviation
     assert_eq!(old["name"], now["name"], "{}: rows", reference.display());
     let mut d = Deviation {
         relative: 0.0,
-        slow_relative: 0.0,
         force: 0.0,
         length: 0.0,
     };
@@ -90,9 +90,6 @@ fn compare(reference: &Path, model: ModelKind, scenario: &Scenario) -> Deviation
                 println!("  {name}: {:.2e} of its largest magnitude {scale:.3e}", worst / scale);
             }
             d.relative = d.relative.max(worst / scale);
-            if name.ends_with("length") || name.ends_with("position") {
-                d.slow_relative = d.slow_relative.max(worst / scale);
-            }
         } else {
             assert_eq!(worst, 0.0, "{}: {name} was all zero", reference.display());
         }
@@ -126,16 +123,6 @@ fn the_elbow_reproduces_the_reference_runs() {
             );
             assert!(d.force <= FORCE_TOL, "{file} {model}: force {} N", d.force);
             assert!(d.length <= LENGTH_TOL, "{file} {model}: length {} m", d.length);
-            if file == "example" {
-                // Two muscles on a joint: the joint torque is now the sum Σ r_i F_i over the
-                // muscles instead of r (F_flexor - F_extensor), which rounds differently in the
-                // last bit; the stiff fibre velocity amplifies that to ~1e-11 of its range.
-                assert!(d.slow_relative <= 1e-12, "{file} {model}: {:e}", d.slow_relative);
-                assert!(d.relative <= 1e-9, "{file} {model}: {:e}", d.relative);
-            } else {
-                // One muscle: the same operations in the same order, bit for bit.
-                assert_eq!(d.relative, 0.0, "{file} {model}");
-            }
             checked += 1;
         }
     }

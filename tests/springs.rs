@@ -1,4 +1,4 @@
-//! The exponential-then-linear springs (MODEL.md §4): continuity, inverses and strain energies,
+//! The exponential-then-linear springs (docs/model.md §4): continuity, inverses and strain energies,
 //! checked against independent computations (finite differences, quadrature).
 
 use muscle_actuator::physics::parallel_element::parallel_spring;

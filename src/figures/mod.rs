@@ -1,4 +1,4 @@
-//! The paper's figures reproduced (Figs. 4–6 of Jovanović et al. 2015, MODEL.md §9), plus the
+//! The paper's figures reproduced (Figs. 4–6 of Jovanović et al. 2015, docs/model.md §9), plus the
 //! steady force–velocity curves of the three models, as PNG and SVG, and a summary of the
 //! numbers they show (`summary.md`).
 

@@ -50,8 +50,9 @@ struct Leaf {
     offset: usize,
     n: usize,
     lu: Lu,
-    /// The distinct leaf rows coupled to the core, each with `P⁻¹ e_row`.
-    columns: Vec<(usize, Vec<f64>)>,
+    /// `P⁻¹`, row-major n × n: the blocks are small (2 to 5), so a solve is one matrix–vector
+    /// product instead of two substitutions with pivoting.
+    inverse: Vec<f64>,
     w: Vec<f64>,
 }
 
@@ -78,7 +79,7 @@ impl ArrowheadMatrix {
                     offset,
                     n,
                     lu: Lu::new(n),
-                    columns: Vec::new(),
+                    inverse: vec![0.0; n * n],
                     w: vec![0.0; n],
                 };
                 offset += n;
@@ -117,6 +118,11 @@ impl ArrowheadMatrix {
     pub fn jacobian(&self) -> &ArrowheadJacobian {
         &self.jac
     }
+
+    /// The leaf lengths it was sized for.
+    pub fn leaf_dims(&self) -> &[usize] {
+        &self.dims
+    }
 }
 
 impl<S: ArrowheadSystem + ?Sized> IterationMatrix<S> for ArrowheadMatrix {
@@ -145,33 +151,19 @@ impl<S: ArrowheadSystem + ?Sized> IterationMatrix<S> for ArrowheadMatrix {
             if !leaf.lu.factorise() {
                 return false;
             }
-            // P⁻¹ e_r for each leaf row r that the core drives.
-            let mut used = 0;
-            for &(r, _, _) in &lj.from_core {
-                if leaf.columns[..used].iter().any(|(row, _)| *row == r) {
-                    continue;
+            // P⁻¹ column by column.
+            for c in 0..n {
+                leaf.w.fill(0.0);
+                leaf.w[c] = 1.0;
+                leaf.lu.solve(&mut leaf.w);
+                for r in 0..n {
+                    leaf.inverse[r * n + c] = leaf.w[r];
                 }
-                if used == leaf.columns.len() {
-                    leaf.columns.push((r, vec![0.0; n]));
-                }
-                let (row, col) = &mut leaf.columns[used];
-                *row = r;
-                col.fill(0.0);
-                col[r] = 1.0;
-                leaf.lu.solve(col);
-                used += 1;
             }
-            leaf.columns.truncate(used);
             // S -= d² B P⁻¹ C, entry by entry.
             for &(lr, cc, gamma) in &lj.from_core {
-                let col = &leaf
-                    .columns
-                    .iter()
-                    .find(|(row, _)| *row == lr)
-                    .expect("computed above")
-                    .1;
                 for &(cr, lc, beta) in &lj.to_core {
-                    s[cr * nc + cc] -= d * d * beta * col[lc] * gamma;
+                    s[cr * nc + cc] -= d * d * beta * leaf.inverse[lc * n + lr] * gamma;
                 }
             }
         }
@@ -183,37 +175,30 @@ impl<S: ArrowheadSystem + ?Sized> IterationMatrix<S> for ArrowheadMatrix {
         let d = self.d;
         self.x_core.copy_from_slice(&b[..nc]);
         for (leaf, lj) in self.leaves.iter_mut().zip(&self.jac.leaves) {
-            leaf.w.copy_from_slice(&b[leaf.offset..leaf.offset + leaf.n]);
-            leaf.lu.solve(&mut leaf.w);
+            let n = leaf.n;
+            let bl = &b[leaf.offset..leaf.offset + n];
+            for (r, w) in leaf.w.iter_mut().enumerate() {
+                let row = &leaf.inverse[r * n..r * n + n];
+                *w = row.iter().zip(bl).map(|(p, v)| p * v).sum();
+            }
             for &(cr, lc, beta) in &lj.to_core {
                 self.x_core[cr] += d * beta * leaf.w[lc];
             }
         }
-        self.schur.solve(&mut self.x_core);
+        if nc > 0 {
+            self.schur.solve(&mut self.x_core);
+        }
         b[..nc].copy_from_slice(&self.x_core);
         for (leaf, lj) in self.leaves.iter_mut().zip(&self.jac.leaves) {
-            let out = &mut b[leaf.offset..leaf.offset + leaf.n];
-            out.copy_from_slice(&leaf.w);
+            let n = leaf.n;
             for &(lr, cc, gamma) in &lj.from_core {
                 let g = d * gamma * self.x_core[cc];
-                let col = &leaf
-                    .columns
-                    .iter()
-                    .find(|(row, _)| *row == lr)
-                    .expect("factorised")
-                    .1;
-                for (o, c) in out.iter_mut().zip(col) {
-                    *o += g * c;
+                for (r, w) in leaf.w.iter_mut().enumerate() {
+                    *w += g * leaf.inverse[r * n + lr];
                 }
             }
+            b[leaf.offset..leaf.offset + n].copy_from_slice(&leaf.w);
         }
-    }
-}
-
-impl ArrowheadMatrix {
-    /// The leaf lengths it was sized for.
-    pub fn leaf_dims(&self) -> &[usize] {
-        &self.dims
     }
 }
 

@@ -1,4 +1,4 @@
-//! Activation dynamics (MODEL.md §2): excitation u drives activation a.
+//! Activation dynamics (docs/model.md §2): excitation u drives activation a.
 
 /// The time constant in force: `t_act` while activating (u > a), `t_deact` otherwise, s.
 pub fn time_constant(u: f64, a: f64, t_act: f64, t_deact: f64) -> f64 {
@@ -9,7 +9,7 @@ pub fn time_constant(u: f64, a: f64, t_act: f64, t_deact: f64) -> f64 {
     }
 }
 
-/// `da/dt = (u - a) / tau` (MODEL.md §2), 1/s.
+/// `da/dt = (u - a) / tau` (docs/model.md §2), 1/s.
 pub fn activation_rate(u: f64, a: f64, t_act: f64, t_deact: f64) -> f64 {
     (u - a) / time_constant(u, a, t_act, t_deact)
 }

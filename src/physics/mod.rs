@@ -1,4 +1,4 @@
-//! The muscle physics (MODEL.md): pure functions and plain state, no I/O.
+//! The muscle physics (docs/model.md): pure functions and plain state, no I/O.
 
 pub mod activation;
 pub mod contractile;

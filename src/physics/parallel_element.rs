@@ -1,4 +1,4 @@
-//! The parallel elastic element and its damper (MODEL.md §4, paper eqs. 6–7).
+//! The parallel elastic element and its damper (docs/model.md §4, paper eqs. 6–7).
 
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;

@@ -266,6 +266,86 @@ impl Plant {
         }
     }
 
+    /// The independent parts of the plant: each a set of joints connected through the muscles
+    /// that span them (a biarticular muscle joins its two joints), with those muscles; a muscle
+    /// that spans no joint is a part of its own. Returned as (joints, muscles), ascending.
+    pub fn components(&self) -> Vec<(Vec<usize>, Vec<usize>)> {
+        // Union–find over joints.
+        let n = self.joints.len();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn root(parent: &mut [usize], mut j: usize) -> usize {
+            while parent[j] != j {
+                parent[j] = parent[parent[j]];
+                j = parent[j];
+            }
+            j
+        }
+        for i in 0..self.mtus.len() {
+            let spans = self.spans(i);
+            for w in spans.windows(2) {
+                let (a, b) = (root(&mut parent, w[0].joint), root(&mut parent, w[1].joint));
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+        let mut parts: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
+        let mut part_of_root = vec![usize::MAX; n];
+        for j in 0..n {
+            let r = root(&mut parent, j);
+            if part_of_root[r] == usize::MAX {
+                part_of_root[r] = parts.len();
+                parts.push((Vec::new(), Vec::new()));
+            }
+            parts[part_of_root[r]].0.push(j);
+        }
+        for i in 0..self.mtus.len() {
+            match self.spans(i).first() {
+                Some(s) => {
+                    let r = root(&mut parent, s.joint);
+                    parts[part_of_root[r]].1.push(i);
+                }
+                None => parts.push((Vec::new(), vec![i])),
+            }
+        }
+        parts
+    }
+
+    /// The plant of some of the joints and muscles (a component: every joint a muscle spans is
+    /// among `joints`), joints renumbered in the given order.
+    pub fn subset(&self, joints: &[usize], muscles: &[usize]) -> Plant {
+        let renumber = |j: usize| joints.iter().position(|&k| k == j).expect("a component");
+        let anchors: Vec<Anchor> = muscles
+            .iter()
+            .map(|&i| match &self.anchors[i] {
+                Anchor::Path { path_length, spans } => Anchor::Path {
+                    path_length: *path_length,
+                    spans: spans
+                        .iter()
+                        .map(|s| Span {
+                            joint: renumber(s.joint),
+                            moment_arm: s.moment_arm.clone(),
+                        })
+                        .collect(),
+                },
+                Anchor::ForceDriven => Anchor::ForceDriven,
+            })
+            .collect();
+        let mtus: Vec<Mtu> = muscles.iter().map(|&i| self.mtus[i].clone()).collect();
+        let mut offsets = Vec::with_capacity(mtus.len());
+        let mut dim = 2 * joints.len();
+        for m in &mtus {
+            offsets.push(dim);
+            dim += m.state_dim();
+        }
+        Plant {
+            joints: joints.iter().map(|&j| self.joints[j].clone()).collect(),
+            mtus,
+            anchors,
+            model: self.model,
+            offsets,
+            dim,
+        }
+    }
+
     /// Kinetic energy of the fibre masses and the joints, J.
     pub fn kinetic_energy(&self, y: &[f64]) -> f64 {
         let mut e = 0.0;

@@ -1,4 +1,4 @@
-//! The "exponential, then linear" spring of Winters & Stark (MODEL.md §4), used by both the
+//! The "exponential, then linear" spring of Winters & Stark (docs/model.md §4), used by both the
 //! tendon (series element) and the parallel element. Pure closed forms: force, stiffness,
 //! inverse (length from force) and strain energy.
 
@@ -20,7 +20,7 @@ pub struct ExpLinearSpring {
 }
 
 impl ExpLinearSpring {
-    /// Tension, N (MODEL.md §4):
+    /// Tension, N (docs/model.md §4):
     /// 0 below slack; `(k_l/k_e)(exp(k_e (l - l_s)) - 1)` up to l_c; `F_c + k (l - l_c)` beyond.
     pub fn force(&self, l: f64) -> f64 {
         if l < self.l_s {

@@ -1,4 +1,4 @@
-//! Stiffness of the fibre, the muscle–tendon unit and the joint (MODEL.md §8).
+//! Stiffness of the fibre, the muscle–tendon unit and the joint (docs/model.md §8).
 
 /// Fibre stiffness `k_m = k_CE + dF_P/dl_m`, N/m.
 pub fn fibre_stiffness(k_ce: f64, k_pe: f64) -> f64 {
@@ -24,7 +24,7 @@ where
 {
     for (j, r_j, dr_j) in arms.clone() {
         for (l, r_l, _) in arms.clone() {
-            k[j * n + l] += k_mtu * r_j * r_l;
+            k[j * n + l] += k_mtu * (r_j * r_l);
         }
         k[j * n + j] -= tendon_force * dr_j;
     }

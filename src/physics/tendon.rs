@@ -1,4 +1,4 @@
-//! The series elastic element, the tendon (MODEL.md §4, paper eqs. 4–5).
+//! The series elastic element, the tendon (docs/model.md §4, paper eqs. 4–5).
 
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;

@@ -1,5 +1,5 @@
 //! Scenarios: an attachment, a duration and input schedules; the built-in ones reproduce the
-//! paper's experiments (MODEL.md §9), others come from scenario files (TOML, see
+//! paper's experiments (docs/model.md §9), others come from scenario files (TOML, see
 //! `scenarios/example.toml`).
 
 use crate::config::ActuatorConfig;
@@ -127,7 +127,7 @@ pub struct Run {
 }
 
 impl Scenario {
-    /// A built-in scenario by name (MODEL.md §9).
+    /// A built-in scenario by name (docs/model.md §9).
     pub fn built_in(name: &str, params: &MuscleParams) -> Result<Self, String> {
         let excitation = |schedule| ScheduledInput {
             signal: Signal::Excitation,

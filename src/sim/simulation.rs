@@ -3,8 +3,7 @@
 //! (the full Huxley grid) through their sub-step hooks. Deterministic and allocation-free per
 //! tick, for any topology and any contractile model.
 
-use crate::integrator::arrowhead::ArrowheadJacobian;
-use crate::integrator::dense::DenseMatrix;
+use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
 use crate::integrator::trbdf2::{Stats, TrBdf2};
 use crate::integrator::OdeSystem;
 use crate::physics::activation::activation_after;
@@ -63,7 +62,7 @@ struct ActivationMemo {
     scratch: JacobianScratch,
 }
 
-/// The plant's ODE over one tick, with activations in closed form from the tick's start.
+/// A plant's ODE over one tick, with activations in closed form from the tick's start.
 struct TickOde<'a> {
     plant: &'a Plant,
     inputs: &'a Inputs,
@@ -112,21 +111,185 @@ impl OdeSystem for TickOde<'_> {
     }
 }
 
+/// An independent part of the plant (joints connected by muscles, and those muscles), stepped
+/// with its own sub-steps: a busy joint does not make its quiet neighbours take small steps.
+#[derive(Debug, Clone)]
+struct Part {
+    plant: Plant,
+    /// Global index of each local muscle and joint, and of each local state variable.
+    muscles: Vec<usize>,
+    joints: Vec<usize>,
+    state_map: Vec<usize>,
+    y: Vec<f64>,
+    /// The adaptive stepping's carried sub-step size, s.
+    h: f64,
+    saved_h: f64,
+    inputs: Inputs,
+    a0: Vec<f64>,
+    lm_before: Vec<f64>,
+    memo: RefCell<ActivationMemo>,
+    stepper: TrBdf2<ArrowheadMatrix>,
+}
+
+impl Part {
+    fn new(whole: &Plant, joints: Vec<usize>, muscles: Vec<usize>) -> Self {
+        let plant = whole.subset(&joints, &muscles);
+        let mut state_map = Vec::with_capacity(plant.dim());
+        for &j in &joints {
+            state_map.extend([2 * j, 2 * j + 1]);
+        }
+        for &i in &muscles {
+            let o = whole.offset(i);
+            state_map.extend(o..o + whole.mtus[i].state_dim());
+        }
+        let (n, m) = (plant.dim(), plant.muscle_count());
+        let mut dims = Vec::new();
+        jacobian::leaf_dims(&plant, &mut dims);
+        Self {
+            memo: RefCell::new(ActivationMemo {
+                t: f64::NAN,
+                a: vec![0.0; m],
+                scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
+            }),
+            stepper: TrBdf2::new(n, ArrowheadMatrix::new(2 * plant.joint_count(), &dims)),
+            y: vec![0.0; n],
+            h: 0.0,
+            saved_h: 0.0,
+            inputs: Inputs::zeros(m, plant.joint_count()),
+            a0: vec![0.0; m],
+            lm_before: vec![0.0; m],
+            plant,
+            muscles,
+            joints,
+            state_map,
+        }
+    }
+
+    /// Takes this part's state, activations and inputs from the whole.
+    fn gather(&mut self, y: &[f64], activation: &[f64], inputs: &Inputs) {
+        for (local, &global) in self.y.iter_mut().zip(&self.state_map) {
+            *local = y[global];
+        }
+        for (k, &i) in self.muscles.iter().enumerate() {
+            self.a0[k] = activation[i];
+            self.inputs.excitation[k] = inputs.excitation[i];
+            self.inputs.tendon_force[k] = inputs.tendon_force[i];
+        }
+        for (k, &j) in self.joints.iter().enumerate() {
+            self.inputs.external_torque[k] = inputs.external_torque[j];
+        }
+    }
+
+    /// Gives this part's state and its activations at the tick's end back to the whole.
+    fn scatter(&self, y: &mut [f64], activation: &mut [f64]) {
+        for (local, &global) in self.y.iter().zip(&self.state_map) {
+            y[global] = *local;
+        }
+        let memo = self.memo.borrow();
+        for (k, &i) in self.muscles.iter().enumerate() {
+            activation[i] = memo.a[k];
+        }
+    }
+
+    fn ode(&self) -> TickOde<'_> {
+        TickOde {
+            plant: &self.plant,
+            inputs: &self.inputs,
+            a0: &self.a0,
+            memo: &self.memo,
+        }
+    }
+
+    /// One tick of length dt; false if the implicit solve failed. The activations at dt are in
+    /// the memo afterwards.
+    fn step(&mut self, dt: f64, stepping: Stepping) -> bool {
+        self.saved_h = self.h;
+        let mut ok = true;
+        let substeps = match stepping {
+            Stepping::Adaptive {
+                tolerance,
+                max_substeps,
+            } => {
+                let ode = TickOde {
+                    plant: &self.plant,
+                    inputs: &self.inputs,
+                    a0: &self.a0,
+                    memo: &self.memo,
+                };
+                ok = self
+                    .stepper
+                    .advance(&ode, 0.0, dt, &mut self.y, &mut self.h, tolerance, max_substeps)
+                    .is_ok();
+                0
+            }
+            Stepping::Fixed(n) => n,
+        };
+        let h = dt / substeps.max(1) as f64;
+        for k in 0..substeps {
+            let t = k as f64 * h;
+            for i in 0..self.plant.mtus.len() {
+                self.lm_before[i] = self.y[self.plant.offset(i)];
+                self.plant.mtus[i].ce.before_substep(t, h);
+            }
+            let ode = TickOde {
+                plant: &self.plant,
+                inputs: &self.inputs,
+                a0: &self.a0,
+                memo: &self.memo,
+            };
+            ok &= self.stepper.step(&ode, t, h, &mut self.y).is_ok();
+            ode.at(t + 0.5 * h);
+            let memo = self.memo.borrow();
+            for i in 0..self.plant.mtus.len() {
+                let o = self.plant.offset(i);
+                let n = self.plant.mtus[i].state_dim();
+                let l_m = self.y[o];
+                let mtu = &mut self.plant.mtus[i];
+                let motion = SubstepMotion {
+                    dt: h,
+                    activation_mid: memo.a[i],
+                    overlap_mid: mtu.overlap(0.5 * (l_m + self.lm_before[i])),
+                    fibre_length_change: l_m - self.lm_before[i],
+                };
+                mtu.ce.after_substep(&motion, &mut self.y[o + 2..o + n]);
+            }
+            drop(memo);
+            if !ok {
+                break;
+            }
+        }
+        self.ode().at(dt);
+        ok
+    }
+
+    /// After a failed tick: back to the carried step size, no Jacobian, no sub-step history.
+    fn abandon(&mut self) {
+        self.h = self.saved_h;
+        for m in &mut self.plant.mtus {
+            m.ce.forget_history();
+        }
+        self.stepper.invalidate();
+    }
+
+    fn reset(&mut self) {
+        for m in &mut self.plant.mtus {
+            m.ce.reset();
+        }
+        self.stepper.invalidate();
+        self.h = 0.0;
+    }
+}
+
 /// A plant with its state, stepped tick by tick.
 #[derive(Debug, Clone)]
 pub struct Simulation {
     plant: Plant,
+    parts: Vec<Part>,
     rate_hz: f64,
     stepping: Stepping,
-    /// The adaptive stepping's carried sub-step size, s.
-    h: f64,
     inputs: Inputs,
     activation: Vec<f64>,
     y: Vec<f64>,
-    saved_y: Vec<f64>,
-    lm_before: Vec<f64>,
-    memo: RefCell<ActivationMemo>,
-    stepper: TrBdf2<DenseMatrix>,
     tick: u64,
 }
 
@@ -184,24 +347,19 @@ impl Simulation {
                 inputs.external_torque.len()
             ));
         }
+        let parts = plant
+            .components()
+            .into_iter()
+            .map(|(joints, muscles)| Part::new(&plant, joints, muscles))
+            .collect();
         let mut sim = Self {
             rate_hz,
             stepping,
-            h: 0.0,
             inputs: inputs.clone(),
             activation: vec![0.0; m],
             y: vec![0.0; n],
-            saved_y: vec![0.0; n],
-            lm_before: vec![0.0; m],
-            memo: RefCell::new(ActivationMemo {
-                t: f64::NAN,
-                a: vec![0.0; m],
-                scratch: JacobianScratch::new(
-                    plant.mtus.iter().map(|m| m.state_dim()).max().unwrap_or(0),
-                ),
-            }),
-            stepper: TrBdf2::new(n, DenseMatrix::new(n)),
             tick: 0,
+            parts,
             plant,
         };
         sim.reset_with(&inputs);
@@ -213,11 +371,9 @@ impl Simulation {
         self.inputs.clone_from(inputs);
         self.activation.fill(0.0);
         self.plant.resting_state(&self.inputs, &mut self.y);
-        for m in &mut self.plant.mtus {
-            m.ce.reset();
+        for p in &mut self.parts {
+            p.reset();
         }
-        self.stepper.invalidate();
-        self.h = 0.0;
         self.tick = 0;
     }
 
@@ -257,100 +413,60 @@ impl Simulation {
     pub fn activations(&self) -> &[f64] {
         &self.activation
     }
-    /// Integrator work counters.
+    /// The number of independently stepped parts (joints connected by muscles).
+    pub fn part_count(&self) -> usize {
+        self.parts.len()
+    }
+    /// Integrator work counters, summed over the parts.
     pub fn stats(&self) -> Stats {
-        self.stepper.stats
+        self.parts.iter().fold(Stats::default(), |a, p| {
+            let s = p.stepper.stats;
+            Stats {
+                rhs_evals: a.rhs_evals + s.rhs_evals,
+                jacobians: a.jacobians + s.jacobians,
+                factorisations: a.factorisations + s.factorisations,
+                solves: a.solves + s.solves,
+                substeps: a.substeps + s.substeps,
+                rejected: a.rejected + s.rejected,
+            }
+        })
     }
 
-    /// Advances one tick. A failed or non-finite result restores the previous state and is
-    /// reported.
+    /// Advances one tick, each part with its own sub-steps. A failed or non-finite result
+    /// restores the previous state (of every part) and is reported.
     pub fn step(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
-        self.saved_y.copy_from_slice(&self.y);
-        let saved_h = self.h;
         let mut ok = true;
-        let substeps = match self.stepping {
-            Stepping::Adaptive {
-                tolerance,
-                max_substeps,
-            } => {
-                let ode = TickOde {
-                    plant: &self.plant,
-                    inputs: &self.inputs,
-                    a0: &self.activation,
-                    memo: &self.memo,
-                };
-                ok = self
-                    .stepper
-                    .advance(&ode, 0.0, dt, &mut self.y, &mut self.h, tolerance, max_substeps)
-                    .is_ok();
-                0
-            }
-            Stepping::Fixed(n) => n,
-        };
-        let h = dt / substeps.max(1) as f64;
-        for k in 0..substeps {
-            let t = k as f64 * h;
-            for i in 0..self.plant.mtus.len() {
-                self.lm_before[i] = self.y[self.plant.offset(i)];
-                self.plant.mtus[i].ce.before_substep(t, h);
-            }
-            let ode = TickOde {
-                plant: &self.plant,
-                inputs: &self.inputs,
-                a0: &self.activation,
-                memo: &self.memo,
-            };
-            ok &= self.stepper.step(&ode, t, h, &mut self.y).is_ok();
-            ode.at(t + 0.5 * h);
-            let memo = self.memo.borrow();
-            for i in 0..self.plant.mtus.len() {
-                let o = self.plant.offset(i);
-                let n = self.plant.mtus[i].state_dim();
-                let l_m = self.y[o];
-                let mtu = &mut self.plant.mtus[i];
-                let motion = SubstepMotion {
-                    dt: h,
-                    activation_mid: memo.a[i],
-                    overlap_mid: mtu.overlap(0.5 * (l_m + self.lm_before[i])),
-                    fibre_length_change: l_m - self.lm_before[i],
-                };
-                mtu.ce.after_substep(&motion, &mut self.y[o + 2..o + n]);
-            }
-            drop(memo);
+        let mut stepped = 0;
+        for p in &mut self.parts {
+            p.gather(&self.y, &self.activation, &self.inputs);
+            ok = p.step(dt, self.stepping);
+            stepped += 1;
             if !ok {
                 break;
             }
         }
-        let ode = TickOde {
-            plant: &self.plant,
-            inputs: &self.inputs,
-            a0: &self.activation,
-            memo: &self.memo,
-        };
-        ode.at(dt);
-        let memo = self.memo.borrow();
-        let finite = self.y.iter().all(|v| v.is_finite()) && memo.a.iter().all(|v| v.is_finite());
-        if !ok || !finite {
-            drop(memo);
+        let finite = ok
+            && self.parts.iter().all(|p| {
+                p.y.iter().all(|v| v.is_finite()) && p.memo.borrow().a.iter().all(|v| v.is_finite())
+            });
+        if !finite {
             let reason = if ok {
                 "the state became non-finite"
             } else {
                 "the implicit solver did not converge (a discontinuous spring or an extreme input?)"
             };
-            self.y.copy_from_slice(&self.saved_y);
-            self.h = saved_h;
-            for m in &mut self.plant.mtus {
-                m.ce.forget_history();
+            for p in &mut self.parts[..stepped] {
+                p.abandon();
             }
-            self.stepper.invalidate();
             return Err(StepError {
                 tick: self.tick,
                 reason,
             });
         }
-        self.activation.copy_from_slice(&memo.a);
-        drop(memo);
+        for p in &self.parts {
+            p.scatter(&mut self.y, &mut self.activation);
+        }
         self.tick += 1;
         Ok(())
     }

@@ -1,4 +1,4 @@
-//! Start-up calibration of the cross-bridge models to the muscle's Fmax and vmax (MODEL.md §6–7).
+//! Start-up calibration of the cross-bridge models to the muscle's Fmax and vmax (docs/model.md §6–7).
 
 use crate::physics::contractile::crossbridge::Rates;
 use crate::physics::contractile::distribution_moment::{self, SteadyStateError};
@@ -72,7 +72,7 @@ pub fn calibrate_distribution_moment(
     })
 }
 
-/// Calibrates the full Huxley model from its exact steady states (MODEL.md §7).
+/// Calibrates the full Huxley model from its exact steady states (docs/model.md §7).
 pub fn calibrate_exact(p: &MuscleParams) -> CrossBridgeScale {
     let unit = huxley_rates(p);
     let q_iso = huxley_exact::isometric_moments(&unit, 1.0);
@@ -89,7 +89,7 @@ pub fn calibrate_exact(p: &MuscleParams) -> CrossBridgeScale {
 }
 
 /// The Hill model's short-range stiffness at full activation and optimal length,
-/// `k_iso = (Fmax / Q1_iso) Q0_iso / L_h` with the DM calibration (MODEL.md §8), N/m.
+/// `k_iso = (Fmax / Q1_iso) Q0_iso / L_h` with the DM calibration (docs/model.md §8), N/m.
 pub fn hill_isometric_stiffness(dm: &CrossBridgeScale) -> f64 {
     dm.stiffness(dm.q_iso[0])
 }

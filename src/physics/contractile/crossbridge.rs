@@ -1,4 +1,4 @@
-//! Huxley's two-state cross-bridge rates (MODEL.md §6), bridge position ξ in units of h.
+//! Huxley's two-state cross-bridge rates (docs/model.md §6), bridge position ξ in units of h.
 
 /// Rate constants f1, g1, g2, g3 (1/s once scaled).
 #[derive(Debug, Clone, Copy, PartialEq)]

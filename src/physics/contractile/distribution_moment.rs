@@ -1,4 +1,4 @@
-//! Zahalak's Distribution-Moment (DM) approximation of the Huxley model (MODEL.md §6,
+//! Zahalak's Distribution-Moment (DM) approximation of the Huxley model (docs/model.md §6,
 //! paper eqs. 9–12): the bond distribution is taken Gaussian with the moments Q0, Q1, Q2.
 
 use crate::physics::contractile::crossbridge::Rates;
@@ -22,7 +22,7 @@ pub fn normal_pdf(x: f64) -> f64 {
     INV_SQRT_2PI * (-0.5 * x * x).exp()
 }
 
-/// Partial moments `J_k(τ) = ∫_{-∞}^{p+qτ} ξ^k N(ξ; p, q²) dξ`, k = 0..3 (MODEL.md §6).
+/// Partial moments `J_k(τ) = ∫_{-∞}^{p+qτ} ξ^k N(ξ; p, q²) dξ`, k = 0..3 (docs/model.md §6).
 pub fn partial_moments(p: f64, q: f64, tau: f64) -> [f64; 4] {
     let cdf = normal_cdf(tau);
     let pdf = normal_pdf(tau);
@@ -136,7 +136,7 @@ pub fn steady_state(
     Err(SteadyStateError("too many iterations"))
 }
 
-/// The isometric steady state at r = 1 (MODEL.md §6: (0.684179, 0.437663, 0.321696) with
+/// The isometric steady state at r = 1 (docs/model.md §6: (0.684179, 0.437663, 0.321696) with
 /// Huxley's rates).
 pub fn isometric_steady_state(rates: &Rates) -> Result<[f64; 3], SteadyStateError> {
     // The exact isometric distribution (f1/(f1+g1) on [0,1]) is a good start.

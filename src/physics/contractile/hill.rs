@@ -1,4 +1,4 @@
-//! Hill-type contractile element (paper eqs. 1–2, MODEL.md §3).
+//! Hill-type contractile element (paper eqs. 1–2, docs/model.md §3).
 
 /// Force–velocity factor g(v_s) with `v' = v_s / vmax` (v_s: shortening velocity):
 /// paper eq. (2) `(1 - v')/(1 + 4 v')` for 0 <= v' <= 1, 0 beyond vmax; for lengthening our C1

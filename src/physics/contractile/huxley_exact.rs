@@ -1,4 +1,4 @@
-//! Closed-form steady states of the full Huxley (1957) model (MODEL.md §7), with g3 = 0.
+//! Closed-form steady states of the full Huxley (1957) model (docs/model.md §7), with g3 = 0.
 //! They calibrate the full model and serve as the oracle the numerical solutions are tested on.
 
 use crate::physics::contractile::crossbridge::Rates;

@@ -1,4 +1,4 @@
-//! The full Huxley (1957) model, eq. (9), by the method of characteristics (MODEL.md §7).
+//! The full Huxley (1957) model, eq. (9), by the method of characteristics (docs/model.md §7).
 //!
 //! Cells of width Δξ ride with the actin: every cell moves by the same shift, so the grid is an
 //! offset plus a run of bond fractions. Over a step each cell's bond fraction is advanced
