@@ -2,7 +2,7 @@
 # Starts the node with a common configuration.
 #
 #   launch-scripts/run-node.sh [--ns /NS] [--name NAME] [--model hill|huxley|huxley-pde]
-#                              [--rate HZ] [--publish-rate HZ] [--config FILE.toml]
+#                              [--rate HZ] [--publish-rate HZ] [--config arm|FILE.toml]
 #                              [--domain ID] [--subnet] [-- more ROS arguments]
 #
 # Discovery stays on this host unless --subnet is given. The binary is $MUSCLE_ACTUATOR_BIN, or

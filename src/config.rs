@@ -104,7 +104,10 @@ impl PairJoint {
     fn from_table(mut t: toml::Table) -> Result<Self, String> {
         let mut number = |key: &str| -> Result<Option<f64>, String> {
             t.remove(key)
-                .map(|v| f64::deserialize(v).map_err(|e| format!("joint.{key}: {}", e.to_string().trim())))
+                .map(|v| {
+                    f64::deserialize(v)
+                        .map_err(|e| format!("joint.{key}: {}", e.to_string().trim()))
+                })
                 .transpose()
         };
         let radius = number("radius")?;
@@ -185,9 +188,8 @@ fn rule(parameter: String, value: impl ToString, rule: &'static str) -> ParamErr
 impl MuscleConfig {
     /// The path length in force: the configured one or l_opt + l_ts + 2 mm.
     pub fn path_length(&self) -> f64 {
-        self.path_length.unwrap_or_else(|| {
-            self.params.l_opt + self.params.l_ts + DEFAULT_PATH_PRESTRETCH
-        })
+        self.path_length
+            .unwrap_or(self.params.l_opt + self.params.l_ts + DEFAULT_PATH_PRESTRETCH)
     }
 }
 
@@ -208,22 +210,28 @@ impl ActuatorConfig {
 
     /// Names of the built-in configurations.
     pub fn built_in_names() -> String {
-        BUILT_IN.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+        BUILT_IN
+            .iter()
+            .map(|(n, _)| *n)
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// Reads and validates a TOML configuration file (a regular file of at most 1 MiB).
     pub fn from_file(path: &Path) -> Result<Self, ConfigError> {
-        let shown = path.display().to_string().chars().take(200).collect::<String>();
+        let shown = path
+            .display()
+            .to_string()
+            .chars()
+            .take(200)
+            .collect::<String>();
         let io = |reason: String| ConfigError::Io {
             path: shown.clone(),
             reason,
         };
         let meta = std::fs::metadata(path).map_err(|e| {
             io(if e.kind() == std::io::ErrorKind::NotFound {
-                format!(
-                    "{e} (built-in configurations: {})",
-                    Self::built_in_names()
-                )
+                format!("{e} (built-in configurations: {})", Self::built_in_names())
             } else {
                 e.to_string()
             })
@@ -253,8 +261,8 @@ impl ActuatorConfig {
             path: "<text>".into(),
             message,
         };
-        let mut raw: toml::Table = toml::from_str(text)
-            .map_err(|e| parse_err(e.to_string().trim().replace('\n', " ")))?;
+        let mut raw: toml::Table =
+            toml::from_str(text).map_err(|e| parse_err(e.to_string().trim().replace('\n', " ")))?;
         if let Some(k) = raw.keys().find(|k| *k != "joint" && *k != "muscle") {
             return Err(parse_err(format!(
                 "unknown key {:?}: expected `joint` and `muscle`",
@@ -300,8 +308,14 @@ impl ActuatorConfig {
                 // spans.
                 let pair = match pair {
                     None => None,
-                    Some(toml::Value::Table(t)) => Some(PairJoint::from_table(t).map_err(parse_err)?),
-                    Some(_) => return Err(parse_err("`joint` must be a table or an array of tables".into())),
+                    Some(toml::Value::Table(t)) => {
+                        Some(PairJoint::from_table(t).map_err(parse_err)?)
+                    }
+                    Some(_) => {
+                        return Err(parse_err(
+                            "`joint` must be a table or an array of tables".into(),
+                        ))
+                    }
                 };
                 let spanless = muscles.iter().all(|m| m.spans.is_empty());
                 if muscles.is_empty() || spanless {
@@ -366,7 +380,11 @@ impl ActuatorConfig {
             }];
             m.path_length = Some(l0);
         }
-        if path_length.is_none() && self.muscles.iter().all(|m| m.params == self.muscles[0].params)
+        if path_length.is_none()
+            && self
+                .muscles
+                .iter()
+                .all(|m| m.params == self.muscles[0].params)
         {
             // Equal muscles: each default path is the common one; keep it implicit.
             for m in &mut self.muscles {
@@ -422,12 +440,20 @@ impl ActuatorConfig {
             errors.push(rule("joint".into(), "none", "at least one joint is needed"));
         }
         if self.muscles.is_empty() {
-            errors.push(rule("muscle".into(), "none", "at least one muscle is needed"));
+            errors.push(rule(
+                "muscle".into(),
+                "none",
+                "at least one muscle is needed",
+            ));
         }
         for (k, j) in self.joints.iter().enumerate() {
             let prefix = format!("joint.{}.", excerpt(&j.name));
             if j.name.trim().is_empty() {
-                errors.push(rule(format!("joint[{k}].name"), "\"\"", "must not be empty"));
+                errors.push(rule(
+                    format!("joint[{k}].name"),
+                    "\"\"",
+                    "must not be empty",
+                ));
             } else if self.joints[..k].iter().any(|o| o.name == j.name) {
                 errors.push(rule(
                     format!("joint[{k}].name"),
@@ -452,7 +478,11 @@ impl ActuatorConfig {
         for (i, m) in self.muscles.iter().enumerate() {
             let name = excerpt(&m.name);
             if m.name.trim().is_empty() {
-                errors.push(rule(format!("muscle[{i}].name"), "\"\"", "must not be empty"));
+                errors.push(rule(
+                    format!("muscle[{i}].name"),
+                    "\"\"",
+                    "must not be empty",
+                ));
             } else if self.muscles[..i].iter().any(|o| o.name == m.name) {
                 errors.push(rule(
                     format!("muscle[{i}].name"),

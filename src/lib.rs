@@ -1,4 +1,4 @@
-//! muscle_actuator: an antagonistic muscle actuator (Hill and Huxley models) for ROS 2.
+//! muscle_actuator: muscle actuators (Hill and Huxley models) driving any limb, for ROS 2.
 //!
 //! - [`physics`]: the mathematics of docs/model.md, no I/O.
 //! - [`integrator`]: the fixed-tick implicit stepper and the adaptive reference solver.

@@ -78,7 +78,10 @@ fn each_invalid_parameter_gets_its_own_error() {
             "[[muscle]]\nname = \"flexor\"\nfmax = 10.0\n[[muscle]]\nname = \"extensor\"\n",
             &["fmax"],
         ),
-        ("[[muscle]]\nname = \"flexor\"\n", &["antagonistic pair", "exactly two"]),
+        (
+            "[[muscle]]\nname = \"flexor\"\n",
+            &["antagonistic pair", "exactly two"],
+        ),
         (
             "[[muscle]]\nname = \"a\"\n[[muscle]]\nname = \"a\"\n",
             &["must be unique"],

@@ -29,7 +29,13 @@ fn stepping(model: ModelKind) -> Stepping {
 }
 
 fn check(sc: &Scenario, model: ModelKind) {
-    let (df, dl) = common::worst_deviation_from_reference(sc, &ActuatorConfig::default(), model, 1000.0, stepping(model));
+    let (df, dl) = common::worst_deviation_from_reference(
+        sc,
+        &ActuatorConfig::default(),
+        model,
+        1000.0,
+        stepping(model),
+    );
     println!(
         "{} {model}: worst |dF| = {df:.3e} N, worst |dl_m| = {dl:.3e} m",
         sc.name
@@ -93,10 +99,20 @@ fn joint_scenario_huxley_matches_reference() {
 #[test]
 fn fixed_stepping_converges_at_second_order() {
     let sc = built_in("pulse");
-    let (_, e8) =
-        common::worst_deviation_from_reference(&sc, &ActuatorConfig::default(), ModelKind::HILL, 1000.0, Stepping::Fixed(8));
-    let (_, e16) =
-        common::worst_deviation_from_reference(&sc, &ActuatorConfig::default(), ModelKind::HILL, 1000.0, Stepping::Fixed(16));
+    let (_, e8) = common::worst_deviation_from_reference(
+        &sc,
+        &ActuatorConfig::default(),
+        ModelKind::HILL,
+        1000.0,
+        Stepping::Fixed(8),
+    );
+    let (_, e16) = common::worst_deviation_from_reference(
+        &sc,
+        &ActuatorConfig::default(),
+        ModelKind::HILL,
+        1000.0,
+        Stepping::Fixed(16),
+    );
     let order = (e8 / e16).log2();
     println!("fixed 8 vs 16 sub-steps: {e8:.3e} / {e16:.3e} m, observed order {order:.2}");
     assert!((1.7..2.5).contains(&order), "observed order {order}");

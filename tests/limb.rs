@@ -83,8 +83,8 @@ fn built_in_configurations_resolve_by_name() {
     // arm26's numbers (Holzbaur et al. 2005): Fmax, optimal fibre and tendon slack lengths.
     let bic = &arm.muscles[3].params;
     assert_eq!((bic.f_max, bic.l_opt, bic.l_ts), (624.3, 0.1157, 0.2723));
-    let four = ActuatorConfig::resolve(root().join("configs/four_joints.toml").to_str().unwrap())
-        .unwrap();
+    let four =
+        ActuatorConfig::resolve(root().join("configs/four_joints.toml").to_str().unwrap()).unwrap();
     assert_eq!(four.joints.len(), 4);
     assert_eq!(four.muscles.len(), 8);
     let e = ActuatorConfig::resolve("leg").unwrap_err().to_string();
@@ -104,7 +104,10 @@ fn a_biarticular_muscle_moves_both_joints_its_ways() {
         let (a1, b1) = (act.joints()[0].position, act.joints()[1].position);
         println!("{model}: a {a0:.4} -> {a1:.4}, b {b0:.4} -> {b1:.4}");
         assert!(a1 - a0 > 0.02, "{model}: joint a should flex: {a0} -> {a1}");
-        assert!(b1 - b0 < -0.02, "{model}: joint b should extend: {b0} -> {b1}");
+        assert!(
+            b1 - b0 < -0.02,
+            "{model}: joint b should extend: {b0} -> {b1}"
+        );
         // And the arm's long biceps: positive arms at shoulder and elbow.
         let arm = ActuatorConfig::resolve("arm").unwrap();
         let mut arm_act = Actuator::new(&arm, model, 1000.0).unwrap();
@@ -114,7 +117,10 @@ fn a_biarticular_muscle_moves_both_joints_its_ways() {
         arm_act.set_excitation(3, 0.5);
         settle(&mut arm_act, 0.15);
         let (s1, e1) = (arm_act.joints()[0].position, arm_act.joints()[1].position);
-        assert!(s1 > s0 + 1e-3 && e1 > e0 + 1e-3, "{model} BIClong: shoulder {s0}->{s1}, elbow {e0}->{e1}");
+        assert!(
+            s1 > s0 + 1e-3 && e1 > e0 + 1e-3,
+            "{model} BIClong: shoulder {s0}->{s1}, elbow {e0}->{e1}"
+        );
     }
 }
 
@@ -133,14 +139,23 @@ fn stiffness_matrix_is_the_derivative_of_the_joint_torques() {
         act.set_excitation(3, 0.3);
         settle(&mut act, 0.3);
         let k = act.state().stiffness_matrix.clone();
-        assert_eq!(k[1], 0.0, "{model}: inactive, slack biarticular muscle: {k:?}");
+        assert_eq!(
+            k[1], 0.0,
+            "{model}: inactive, slack biarticular muscle: {k:?}"
+        );
         assert_eq!(k[2], 0.0);
         act.set_excitation(4, 0.4);
         settle(&mut act, 0.3);
         let k = act.state().stiffness_matrix.clone();
-        assert!(k[1] != 0.0 && k[1] == k[2], "{model}: symmetric coupling: {k:?}");
+        assert!(
+            k[1] != 0.0 && k[1] == k[2],
+            "{model}: symmetric coupling: {k:?}"
+        );
         // Positive semi-definite (2 × 2: trace and determinant).
-        assert!(k[0] + k[3] > 0.0 && k[0] * k[3] - k[1] * k[2] >= 0.0, "{k:?}");
+        assert!(
+            k[0] + k[3] > 0.0 && k[0] * k[3] - k[1] * k[2] >= 0.0,
+            "{k:?}"
+        );
         for (j, joint) in act.joints().iter().enumerate() {
             assert_eq!(joint.stiffness, k[j * 2 + j]);
         }
@@ -169,9 +184,7 @@ fn finite_difference_stiffness(act: &Actuator) -> Vec<f64> {
                 let m = &muscles[i];
                 let path = plant.path_length(y, i).unwrap();
                 let fibre = |l: f64| {
-                    m.force
-                        + m.stiffness * (l - m.fiber_length)
-                        + mtu.parallel.force(l)
+                    m.force + m.stiffness * (l - m.fiber_length) + mtu.parallel.force(l)
                         - mtu.parallel.force(m.fiber_length)
                 };
                 // Bisection on the balance F_SE(path - l) = fibre(l) (monotone in l).
@@ -249,8 +262,12 @@ fn limb_runs_are_bit_identical() {
     let arm = ActuatorConfig::resolve("arm").unwrap();
     let sc = scenario("arm_cocontraction.toml");
     for model in ModelKind::all() {
-        let a = sc.run(&arm, model, 1000.0, default_stepping(model)).unwrap();
-        let b = sc.run(&arm, model, 1000.0, default_stepping(model)).unwrap();
+        let a = sc
+            .run(&arm, model, 1000.0, default_stepping(model))
+            .unwrap();
+        let b = sc
+            .run(&arm, model, 1000.0, default_stepping(model))
+            .unwrap();
         for (ra, rb) in a.records.iter().zip(&b.records) {
             let bits = |r: &muscle_actuator::sim::scenario::Record| -> Vec<u64> {
                 r.muscles
@@ -306,7 +323,7 @@ fn passive_limb_balances_energy() {
             let t = k as f64 / RATE;
             let tau = [
                 2.0 * (2.0 * std::f64::consts::PI * 3.0 * t).sin(),
-                -1.0 * (2.0 * std::f64::consts::PI * 5.0 * t).sin(),
+                -(2.0 * std::f64::consts::PI * 5.0 * t).sin(),
             ];
             act.set_external_torque(0, tau[0]);
             act.set_external_torque(1, tau[1]);
@@ -327,7 +344,10 @@ fn passive_limb_balances_energy() {
         let stored = energy(&act) - e0;
         let residual = work - stored - dissipated;
         println!("arm {model}: work {work:.6e} J = stored {stored:.6e} + dissipated {dissipated:.6e} (residual {residual:.2e})");
-        assert!(theta.iter().all(|t| t.abs() > 0.01), "the loads should move the joints");
+        assert!(
+            theta.iter().all(|t| t.abs() > 0.01),
+            "the loads should move the joints"
+        );
         assert!(
             residual.abs() <= 1e-3 * (work.abs() + dissipated),
             "{model}: residual {residual} J"
@@ -420,16 +440,44 @@ fn a_scenario_naming_an_unknown_muscle_or_joint_lists_the_valid_ones() {
     std::fs::write(&path, &text).unwrap();
     let sc = Scenario::from_file(&path).unwrap();
     let e = sc
-        .run(&arm, ModelKind::HILL, 1000.0, default_stepping(ModelKind::HILL))
+        .run(
+            &arm,
+            ModelKind::HILL,
+            1000.0,
+            default_stepping(ModelKind::HILL),
+        )
         .unwrap_err();
     assert!(e.contains("unknown muscle \"biceps\""), "{e}");
-    assert!(e.contains("TRIlong, TRIlat, TRImed, BIClong, BICshort, BRA"), "{e}");
-    std::fs::write(&path, text.replace("muscle = \"biceps\"", "joint = \"wrist\"").replace("\"excitation\"", "\"external_torque\"")).unwrap();
+    assert!(
+        e.contains("TRIlong, TRIlat, TRImed, BIClong, BICshort, BRA"),
+        "{e}"
+    );
+    std::fs::write(
+        &path,
+        text.replace("muscle = \"biceps\"", "joint = \"wrist\"")
+            .replace("\"excitation\"", "\"external_torque\""),
+    )
+    .unwrap();
     let sc = Scenario::from_file(&path).unwrap();
     let e = sc
-        .run(&arm, ModelKind::HILL, 1000.0, default_stepping(ModelKind::HILL))
+        .run(
+            &arm,
+            ModelKind::HILL,
+            1000.0,
+            default_stepping(ModelKind::HILL),
+        )
         .unwrap_err();
-    assert!(e.contains("unknown joint \"wrist\"") && e.contains("shoulder, elbow"), "{e}");
-    assert!(bad.run(&arm, ModelKind::HILL, 1000.0, default_stepping(ModelKind::HILL)).is_ok());
+    assert!(
+        e.contains("unknown joint \"wrist\"") && e.contains("shoulder, elbow"),
+        "{e}"
+    );
+    assert!(bad
+        .run(
+            &arm,
+            ModelKind::HILL,
+            1000.0,
+            default_stepping(ModelKind::HILL)
+        )
+        .is_ok());
     let _ = std::fs::remove_file(Path::new(&path));
 }

@@ -87,7 +87,10 @@ fn compare(reference: &Path, model: ModelKind, scenario: &Scenario) -> Deviation
             .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
         if scale > 0.0 {
             if worst / scale > 1e-13 {
-                println!("  {name}: {:.2e} of its largest magnitude {scale:.3e}", worst / scale);
+                println!(
+                    "  {name}: {:.2e} of its largest magnitude {scale:.3e}",
+                    worst / scale
+                );
             }
             d.relative = d.relative.max(worst / scale);
         } else {
@@ -111,8 +114,14 @@ fn the_elbow_reproduces_the_reference_runs() {
     for model in ModelKind::all() {
         for (file, scenario) in [
             ("pulse", Scenario::built_in("pulse", &params).unwrap()),
-            ("energy-10hz", Scenario::built_in("energy-10hz", &params).unwrap()),
-            ("energy-100hz", Scenario::built_in("energy-100hz", &params).unwrap()),
+            (
+                "energy-10hz",
+                Scenario::built_in("energy-10hz", &params).unwrap(),
+            ),
+            (
+                "energy-100hz",
+                Scenario::built_in("energy-100hz", &params).unwrap(),
+            ),
             ("example", joint.clone()),
         ] {
             let path = root().join(format!("tests/reference/{file}_{model}.csv"));
@@ -122,7 +131,11 @@ fn the_elbow_reproduces_the_reference_runs() {
                 d.force, d.length, d.relative
             );
             assert!(d.force <= FORCE_TOL, "{file} {model}: force {} N", d.force);
-            assert!(d.length <= LENGTH_TOL, "{file} {model}: length {} m", d.length);
+            assert!(
+                d.length <= LENGTH_TOL,
+                "{file} {model}: length {} m",
+                d.length
+            );
             checked += 1;
         }
     }

@@ -1,6 +1,9 @@
 //! The dense iteration matrix: the Jacobian by forward differences over every component, LU with
 //! partial pivoting. The general fallback (any system); the plant uses the block-arrowhead one.
 
+// Index loops over several parallel vectors read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
 use crate::integrator::{IterationMatrix, OdeSystem};
 
 /// Dense `I - d J`, row-major, with its LU.
@@ -152,9 +155,69 @@ impl Lu {
     }
 }
 
+/// Inverts the n × n row-major matrix `a` into `inv` by Gauss–Jordan elimination with partial
+/// pivoting (`a` is overwritten); false if it is singular. For the small blocks of the
+/// arrowhead matrix, where a solve by the explicit inverse is one matrix–vector product.
+pub fn invert(a: &mut [f64], inv: &mut [f64], n: usize) -> bool {
+    inv.fill(0.0);
+    for i in 0..n {
+        inv[i * n + i] = 1.0;
+    }
+    for k in 0..n {
+        let (mut piv, mut best) = (k, a[k * n + k].abs());
+        for i in k + 1..n {
+            if a[i * n + k].abs() > best {
+                piv = i;
+                best = a[i * n + k].abs();
+            }
+        }
+        if !(best > 0.0 && best.is_finite()) {
+            return false;
+        }
+        if piv != k {
+            for c in 0..n {
+                a.swap(piv * n + c, k * n + c);
+                inv.swap(piv * n + c, k * n + c);
+            }
+        }
+        let p = 1.0 / a[k * n + k];
+        for c in 0..n {
+            a[k * n + c] *= p;
+            inv[k * n + c] *= p;
+        }
+        for i in 0..n {
+            if i == k {
+                continue;
+            }
+            let f = a[i * n + k];
+            if f != 0.0 {
+                for c in 0..n {
+                    a[i * n + c] -= f * a[k * n + c];
+                    inv[i * n + c] -= f * inv[k * n + c];
+                }
+            }
+        }
+    }
+    true
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn gauss_jordan_inverts() {
+        let m = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let (mut a, mut inv) = (m, [0.0; 9]);
+        assert!(invert(&mut a, &mut inv, 3));
+        for i in 0..3 {
+            for j in 0..3 {
+                let p: f64 = (0..3).map(|k| m[i * 3 + k] * inv[k * 3 + j]).sum();
+                assert!((p - if i == j { 1.0 } else { 0.0 }).abs() < 1e-14);
+            }
+        }
+        assert!(!invert(&mut [1.0, 2.0, 2.0, 4.0], &mut [0.0; 4], 2));
+    }
 
     #[test]
     fn lu_solves_a_pivoting_system() {

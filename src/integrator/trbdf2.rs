@@ -10,6 +10,9 @@
 //! converges slowly, the step size changes, or it fails. `advance` chooses sub-steps by the
 //! embedded error estimate; `step` takes one fixed step.
 
+// Index loops over several parallel vectors read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
 use crate::integrator::{IterationMatrix, OdeSystem};
 
 const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
@@ -20,6 +23,8 @@ const NEWTON_TOL: f64 = 1e-6;
 const NEWTON_MAX_ITER: usize = 10;
 /// A contraction rate above this triggers a Jacobian refresh for the next step.
 const SLOW_CONTRACTION: f64 = 0.3;
+/// Relative change of the step size up to which the iteration matrix is kept.
+const REUSE: f64 = 0.2;
 /// Relative tolerance weight in the Newton norm.
 const NEWTON_RTOL: f64 = 1e-9;
 
@@ -363,8 +368,7 @@ impl<M> TrBdf2<M> {
         let d = 0.5 * GAMMA * h;
         {
             let wk = &mut self.work;
-            if wk.end_valid && (wk.end_t - t).abs() <= 1e-9 * h && wk.end_y == y && !force_refresh
-            {
+            if wk.end_valid && (wk.end_t - t).abs() <= 1e-9 * h && wk.end_y == y && !force_refresh {
                 wk.f0.copy_from_slice(&wk.end_f);
             } else {
                 sys.rhs(t, y, &mut wk.f0);
@@ -375,7 +379,10 @@ impl<M> TrBdf2<M> {
             self.jacobian(sys, t, y);
             self.refresh_next = false;
         }
-        if !self.lu_valid || self.lu_d != d {
+        // A factorisation is kept while the step size stays within REUSE of the one it was made
+        // for: simplified Newton converges with a nearby matrix, and a refresh is cheaper
+        // only when the step has really changed.
+        if !self.lu_valid || (self.lu_d - d).abs() > REUSE * d {
             self.lu_valid = self.matrix.factorise(d);
             self.lu_d = d;
             self.stats.factorisations += 1;

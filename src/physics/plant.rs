@@ -142,11 +142,9 @@ impl Plant {
     /// Muscle i's path length `L_i(θ)`, m (None for a force-driven tendon).
     pub fn path_length(&self, y: &[f64], i: usize) -> Option<f64> {
         match &self.anchors[i] {
-            Anchor::Path { path_length, spans } => Some(
-                spans
-                    .iter()
-                    .fold(*path_length, |l, s| l - s.moment_arm.excursion(y[2 * s.joint])),
-            ),
+            Anchor::Path { path_length, spans } => Some(spans.iter().fold(*path_length, |l, s| {
+                l - s.moment_arm.excursion(y[2 * s.joint])
+            })),
             Anchor::ForceDriven => None,
         }
     }
@@ -248,12 +246,7 @@ impl Plant {
 
     /// The joint stiffness matrix K (row-major `n × n`, N m/rad, docs/model.md §8b) from each
     /// muscle's (MTU stiffness, tendon force), written to `k`.
-    pub fn stiffness_matrix(
-        &self,
-        y: &[f64],
-        muscle: impl Fn(usize) -> (f64, f64),
-        k: &mut [f64],
-    ) {
+    pub fn stiffness_matrix(&self, y: &[f64], muscle: impl Fn(usize) -> (f64, f64), k: &mut [f64]) {
         let n = self.joints.len();
         k[..n * n].fill(0.0);
         for i in 0..self.mtus.len() {

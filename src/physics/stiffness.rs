@@ -18,8 +18,13 @@ pub fn series_stiffness(k_m: f64, k_se: f64) -> f64 {
 /// Adds one muscle's share of the joint stiffness matrix (docs/model.md §8b, fibres quasi-static)
 /// to `k` (row-major, `n × n`, N m/rad): `K_jk += k_mtu r_j r_k` over the joints it spans and
 /// `K_jj -= F_SE dr_j/dθ_j`. `arms` yields (joint, r_j (m), dr_j/dθ_j (m/rad)) per spanned joint.
-pub fn add_muscle_joint_stiffness<I>(k: &mut [f64], n: usize, k_mtu: f64, tendon_force: f64, arms: I)
-where
+pub fn add_muscle_joint_stiffness<I>(
+    k: &mut [f64],
+    n: usize,
+    k_mtu: f64,
+    tendon_force: f64,
+    arms: I,
+) where
     I: Iterator<Item = (usize, f64, f64)> + Clone,
 {
     for (j, r_j, dr_j) in arms.clone() {

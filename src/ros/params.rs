@@ -5,7 +5,6 @@ use crate::physics::model::ModelKind;
 use crate::sim::Actuator;
 use ros2_client::ParameterValue;
 
-
 /// Parameter names.
 pub const MODEL: &str = "model";
 pub const RATE_HZ: &str = "rate_hz";

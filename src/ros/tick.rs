@@ -381,7 +381,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         summary.ticks += 1;
 
         // 3. Hand the state over (never wait).
-        if actuator.tick() % publish_every == 0 || publish_every == 1 {
+        if actuator.tick().is_multiple_of(publish_every) || publish_every == 1 {
             let sample = Sample {
                 tick: actuator.tick(),
                 stamp_ns: origin_wall + (period.as_nanos() as i64) * n as i64,

@@ -338,9 +338,8 @@ impl RunWriter {
         let ns = tick_ns(tick, self.rate_hz);
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         let prev = self.last.take();
-        let changed = |now: &[f64], before: Option<&Vec<f64>>| {
-            before.is_none_or(|b| bits(b) != bits(now))
-        };
+        let changed =
+            |now: &[f64], before: Option<&Vec<f64>>| before.is_none_or(|b| bits(b) != bits(now));
         if changed(&inputs.excitation, prev.as_ref().map(|p| &p.excitation)) {
             self.put(
                 CH_ACTIVATION,
@@ -610,8 +609,7 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
             return;
         }
         if let Some(rec) = by_tick.get(&tick) {
-            let (mine, _) =
-                state_messages(0, model.name(), tick, &meta.muscles, &rec.joint, state);
+            let (mine, _) = state_messages(0, model.name(), tick, &meta.muscles, &rec.joint, state);
             summary.compared += 1;
             if state_bits(&mine) == state_bits(rec) {
                 summary.identical += 1;

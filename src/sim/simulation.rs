@@ -218,7 +218,15 @@ impl Part {
                 };
                 ok = self
                     .stepper
-                    .advance(&ode, 0.0, dt, &mut self.y, &mut self.h, tolerance, max_substeps)
+                    .advance(
+                        &ode,
+                        0.0,
+                        dt,
+                        &mut self.y,
+                        &mut self.h,
+                        tolerance,
+                        max_substeps,
+                    )
                     .is_ok();
                 0
             }
