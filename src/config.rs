@@ -1,5 +1,5 @@
 //! The actuator configuration (TOML): joints, and muscles that span them through moment arms
-//! (docs/configuration.md). Every parameter can be overridden; anything left out keeps its
+//! (README, "Configuration"). Every parameter can be overridden; anything left out keeps its
 //! embedded default (Table 1 of the paper for muscles, docs/model.md §1 and §8).
 //!
 //! ```toml

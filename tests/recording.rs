@@ -284,3 +284,65 @@ fn damaged_files_are_clean_errors() {
     assert!(!rec.messages.is_empty());
     assert!(read_recording(&truncated, false).is_err());
 }
+
+/// A whole limb records, replays bit for bit, replays with another model, and compares per
+/// muscle and per joint; its metadata carries the configuration (moment-arm polynomials
+/// included) that replay rebuilds it from.
+#[test]
+fn limb_runs_record_replay_and_compare() {
+    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/arm_biceps.toml");
+    let arm = dir().join("arm_hill.mcap");
+    run_ok(
+        bin()
+            .args([
+                "simulate", scenario, "--config", "arm", "--model", "hill", "--out",
+            ])
+            .arg(&arm),
+    );
+    let run = load_run(&arm).unwrap();
+    assert_eq!(run.meta.joints, ["shoulder", "elbow"]);
+    assert_eq!(run.meta.muscles.len(), 6);
+    assert_eq!(
+        run.meta.config,
+        muscle_actuator::config::ActuatorConfig::resolve("arm").unwrap()
+    );
+    let last = run.states.last().unwrap();
+    assert_eq!(last.joints.len(), 2);
+    assert_eq!(last.stiffness_matrix.len(), 4);
+    assert!(
+        last.joints[1].position > 0.01,
+        "the biceps flexes the elbow"
+    );
+
+    let again = dir().join("arm_again.mcap");
+    let s = runs::replay(&arm, None, &again).unwrap();
+    assert_eq!((s.compared, s.identical), (601, 601), "{s:?}");
+    let as_dm = dir().join("arm_as_huxley.mcap");
+    runs::replay(
+        &arm,
+        Some(muscle_actuator::physics::model::ModelKind::HUXLEY),
+        &as_dm,
+    )
+    .unwrap();
+    let c = compare::compare_files(&arm, &as_dm, None).unwrap();
+    for signal in [
+        "BIClong.force",
+        "TRIlong.fiber_length",
+        "shoulder.position",
+        "elbow.stiffness",
+    ] {
+        assert!(
+            c.signals.iter().any(|d| d.signal == signal),
+            "{signal} missing from the comparison"
+        );
+    }
+    let elbow = c
+        .signals
+        .iter()
+        .find(|d| d.signal == "elbow.position")
+        .unwrap();
+    assert!(
+        elbow.max_abs_diff > 0.0 && elbow.max_abs_diff < 0.2,
+        "{elbow:?}"
+    );
+}

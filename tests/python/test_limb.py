@@ -39,8 +39,8 @@ def fresh(peer, node, watch):
 
 
 def assert_symmetric(k):
-    """K_se == K_es exactly (docs/model.md §8b: K is symmetric). The node sums k_mtu r_j r_l
-    into both entries with the factors in a different order, so they can differ by rounding."""
+    """K_se == K_es exactly (docs/model.md §8b: K is symmetric; the node adds the same product
+    k_mtu (r_j r_l) to both entries)."""
     assert k[1] == k[2], f"stiffness matrix not symmetric: {k} ({k[1] - k[2]:+.3g})"
 
 
