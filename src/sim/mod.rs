@@ -3,6 +3,7 @@
 
 pub mod actuator;
 pub mod jacobian;
+pub mod part;
 pub mod scenario;
 pub mod schedule;
 pub mod simulation;

@@ -1,0 +1,260 @@
+//! One independent part of a limb (joints connected by muscles, and those muscles), stepped
+//! over a tick with its own sub-steps: a busy joint does not make its quiet neighbours take
+//! small steps. Its ODE is the plant's equations with the activations in closed form.
+
+use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
+use crate::integrator::trbdf2::{Stats, TrBdf2};
+use crate::integrator::OdeSystem;
+use crate::physics::activation::activation_after;
+use crate::physics::muscle_model::SubstepMotion;
+use crate::physics::plant::{Inputs, Plant};
+use crate::sim::jacobian::{self, JacobianScratch, PlantSystem};
+use crate::sim::simulation::Stepping;
+use std::cell::RefCell;
+
+/// The activations at one time within the tick (Newton iterates at one stage time many times),
+/// and the Jacobian's scratch space.
+#[derive(Debug, Clone)]
+struct ActivationMemo {
+    t: f64,
+    a: Vec<f64>,
+    scratch: JacobianScratch,
+}
+
+/// A plant's ODE over one tick, with activations in closed form from the tick's start.
+struct TickOde<'a> {
+    plant: &'a Plant,
+    inputs: &'a Inputs,
+    a0: &'a [f64],
+    memo: &'a RefCell<ActivationMemo>,
+}
+
+impl TickOde<'_> {
+    /// Makes sure the memo holds the activations at t.
+    fn at(&self, t: f64) {
+        let mut m = self.memo.borrow_mut();
+        if m.t == t {
+            return;
+        }
+        for (i, mtu) in self.plant.mtus.iter().enumerate() {
+            let p = &mtu.params;
+            m.a[i] = activation_after(self.a0[i], self.inputs.excitation[i], t, p.t_act, p.t_deact);
+        }
+        m.t = t;
+    }
+}
+
+impl PlantSystem for TickOde<'_> {
+    fn plant(&self) -> &Plant {
+        self.plant
+    }
+    fn jacobian(&self, t: f64, y: &[f64], f0: &[f64], jac: &mut ArrowheadJacobian) -> u64 {
+        self.at(t);
+        let mut m = self.memo.borrow_mut();
+        let m = &mut *m;
+        jacobian::eval_jacobian(self.plant, t, y, &m.a, self.inputs, f0, jac, &mut m.scratch)
+    }
+}
+
+impl OdeSystem for TickOde<'_> {
+    fn dim(&self) -> usize {
+        self.plant.dim()
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.at(t);
+        let m = self.memo.borrow();
+        self.plant.derivatives(t, y, &m.a, self.inputs, dy);
+    }
+    fn scales(&self, out: &mut [f64]) {
+        self.plant.scales(out);
+    }
+}
+
+/// An independent part of the plant (joints connected by muscles, and those muscles), stepped
+/// with its own sub-steps: a busy joint does not make its quiet neighbours take small steps.
+#[derive(Debug, Clone)]
+pub struct Part {
+    plant: Plant,
+    /// Global index of each local muscle and joint, and of each local state variable.
+    muscles: Vec<usize>,
+    joints: Vec<usize>,
+    state_map: Vec<usize>,
+    y: Vec<f64>,
+    /// The adaptive stepping's carried sub-step size, s.
+    h: f64,
+    saved_h: f64,
+    inputs: Inputs,
+    a0: Vec<f64>,
+    lm_before: Vec<f64>,
+    memo: RefCell<ActivationMemo>,
+    stepper: TrBdf2<ArrowheadMatrix>,
+}
+
+impl Part {
+    /// The part of `whole` made of these joints and muscles (a component of its topology).
+    pub fn new(whole: &Plant, joints: Vec<usize>, muscles: Vec<usize>) -> Self {
+        let plant = whole.subset(&joints, &muscles);
+        let mut state_map = Vec::with_capacity(plant.dim());
+        for &j in &joints {
+            state_map.extend([2 * j, 2 * j + 1]);
+        }
+        for &i in &muscles {
+            let o = whole.offset(i);
+            state_map.extend(o..o + whole.mtus[i].state_dim());
+        }
+        let (n, m) = (plant.dim(), plant.muscle_count());
+        let mut dims = Vec::new();
+        jacobian::leaf_dims(&plant, &mut dims);
+        Self {
+            memo: RefCell::new(ActivationMemo {
+                t: f64::NAN,
+                a: vec![0.0; m],
+                scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
+            }),
+            stepper: TrBdf2::new(n, ArrowheadMatrix::new(2 * plant.joint_count(), &dims)),
+            y: vec![0.0; n],
+            h: 0.0,
+            saved_h: 0.0,
+            inputs: Inputs::zeros(m, plant.joint_count()),
+            a0: vec![0.0; m],
+            lm_before: vec![0.0; m],
+            plant,
+            muscles,
+            joints,
+            state_map,
+        }
+    }
+
+    /// Takes this part's state, activations and inputs from the whole.
+    pub fn gather(&mut self, y: &[f64], activation: &[f64], inputs: &Inputs) {
+        for (local, &global) in self.y.iter_mut().zip(&self.state_map) {
+            *local = y[global];
+        }
+        for (k, &i) in self.muscles.iter().enumerate() {
+            self.a0[k] = activation[i];
+            self.inputs.excitation[k] = inputs.excitation[i];
+            self.inputs.tendon_force[k] = inputs.tendon_force[i];
+        }
+        for (k, &j) in self.joints.iter().enumerate() {
+            self.inputs.external_torque[k] = inputs.external_torque[j];
+        }
+    }
+
+    /// Gives this part's state and its activations at the tick's end back to the whole.
+    pub fn scatter(&self, y: &mut [f64], activation: &mut [f64]) {
+        for (local, &global) in self.y.iter().zip(&self.state_map) {
+            y[global] = *local;
+        }
+        let memo = self.memo.borrow();
+        for (k, &i) in self.muscles.iter().enumerate() {
+            activation[i] = memo.a[k];
+        }
+    }
+
+    /// Work counters of its stepper.
+    pub fn stats(&self) -> Stats {
+        self.stepper.stats
+    }
+
+    /// Whether its state and its activations at the tick's end are finite.
+    pub fn is_finite(&self) -> bool {
+        self.y.iter().all(|v| v.is_finite()) && self.memo.borrow().a.iter().all(|v| v.is_finite())
+    }
+
+    fn ode(&self) -> TickOde<'_> {
+        TickOde {
+            plant: &self.plant,
+            inputs: &self.inputs,
+            a0: &self.a0,
+            memo: &self.memo,
+        }
+    }
+
+    /// One tick of length dt; false if the implicit solve failed. The activations at dt are in
+    /// the memo afterwards.
+    pub fn step(&mut self, dt: f64, stepping: Stepping) -> bool {
+        self.saved_h = self.h;
+        let mut ok = true;
+        let substeps = match stepping {
+            Stepping::Adaptive {
+                tolerance,
+                max_substeps,
+            } => {
+                let ode = TickOde {
+                    plant: &self.plant,
+                    inputs: &self.inputs,
+                    a0: &self.a0,
+                    memo: &self.memo,
+                };
+                ok = self
+                    .stepper
+                    .advance(
+                        &ode,
+                        0.0,
+                        dt,
+                        &mut self.y,
+                        &mut self.h,
+                        tolerance,
+                        max_substeps,
+                    )
+                    .is_ok();
+                0
+            }
+            Stepping::Fixed(n) => n,
+        };
+        let h = dt / substeps.max(1) as f64;
+        for k in 0..substeps {
+            let t = k as f64 * h;
+            for i in 0..self.plant.mtus.len() {
+                self.lm_before[i] = self.y[self.plant.offset(i)];
+                self.plant.mtus[i].ce.before_substep(t, h);
+            }
+            let ode = TickOde {
+                plant: &self.plant,
+                inputs: &self.inputs,
+                a0: &self.a0,
+                memo: &self.memo,
+            };
+            ok &= self.stepper.step(&ode, t, h, &mut self.y).is_ok();
+            ode.at(t + 0.5 * h);
+            let memo = self.memo.borrow();
+            for i in 0..self.plant.mtus.len() {
+                let o = self.plant.offset(i);
+                let n = self.plant.mtus[i].state_dim();
+                let l_m = self.y[o];
+                let mtu = &mut self.plant.mtus[i];
+                let motion = SubstepMotion {
+                    dt: h,
+                    activation_mid: memo.a[i],
+                    overlap_mid: mtu.overlap(0.5 * (l_m + self.lm_before[i])),
+                    fibre_length_change: l_m - self.lm_before[i],
+                };
+                mtu.ce.after_substep(&motion, &mut self.y[o + 2..o + n]);
+            }
+            drop(memo);
+            if !ok {
+                break;
+            }
+        }
+        self.ode().at(dt);
+        ok
+    }
+
+    /// After a failed tick: back to the carried step size, no Jacobian, no sub-step history.
+    pub fn abandon(&mut self) {
+        self.h = self.saved_h;
+        for m in &mut self.plant.mtus {
+            m.ce.forget_history();
+        }
+        self.stepper.invalidate();
+    }
+
+    pub fn reset(&mut self) {
+        for m in &mut self.plant.mtus {
+            m.ce.reset();
+        }
+        self.stepper.invalidate();
+        self.h = 0.0;
+    }
+}
+
