@@ -4,6 +4,7 @@
 
 pub mod arrowhead;
 pub mod dense;
+pub mod esdirk;
 pub mod reference;
 pub mod trbdf2;
 

@@ -53,6 +53,20 @@ pub struct Stats {
     pub rejected: u64,
 }
 
+impl std::ops::Add for Stats {
+    type Output = Stats;
+    fn add(self, o: Stats) -> Stats {
+        Stats {
+            rhs_evals: self.rhs_evals + o.rhs_evals,
+            jacobians: self.jacobians + o.jacobians,
+            factorisations: self.factorisations + o.factorisations,
+            solves: self.solves + o.solves,
+            substeps: self.substeps + o.substeps,
+            rejected: self.rejected + o.rejected,
+        }
+    }
+}
+
 /// Working vectors, allocated once.
 #[derive(Debug, Clone)]
 struct Work {

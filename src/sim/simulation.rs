@@ -188,17 +188,9 @@ impl Simulation {
     }
     /// Integrator work counters, summed over the parts.
     pub fn stats(&self) -> Stats {
-        self.parts.iter().fold(Stats::default(), |a, p| {
-            let s = p.stats();
-            Stats {
-                rhs_evals: a.rhs_evals + s.rhs_evals,
-                jacobians: a.jacobians + s.jacobians,
-                factorisations: a.factorisations + s.factorisations,
-                solves: a.solves + s.solves,
-                substeps: a.substeps + s.substeps,
-                rejected: a.rejected + s.rejected,
-            }
-        })
+        self.parts
+            .iter()
+            .fold(Stats::default(), |a, p| a + p.stats())
     }
 
     /// Advances one tick, each part with its own sub-steps. A failed or non-finite result
@@ -215,10 +207,7 @@ impl Simulation {
                 break;
             }
         }
-        let finite = ok
-            && self.parts.iter().all(|p| {
-                p.is_finite()
-            });
+        let finite = ok && self.parts.iter().all(|p| p.is_finite());
         if !finite {
             let reason = if ok {
                 "the state became non-finite"

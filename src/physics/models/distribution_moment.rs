@@ -12,8 +12,9 @@ pub static SPEC: ModelSpec = ModelSpec {
     name: "huxley",
     label: "Huxley (DM)",
     summary: "Huxley cross-bridges, Distribution-Moment approximation (Q0, Q1, Q2)",
-    // The stiff cross-bridge spring needs a tighter tolerance than Hill for the same margin.
-    substeps: SubstepPolicy::Adaptive { tolerance: 2e-6 },
+    // The stiff cross-bridge spring needs a tighter tolerance than Hill for the same margin of at
+    // least 2 against the reference solver (tests/integrator_accuracy.rs, tests/limb.rs).
+    substeps: SubstepPolicy::Adaptive { tolerance: 2e-5 },
     build,
 };
 

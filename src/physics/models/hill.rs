@@ -13,9 +13,10 @@ pub static SPEC: ModelSpec = ModelSpec {
     name: "hill",
     label: "Hill",
     summary: "Hill-type: Fmax · a · f(l) · g(v)",
-    // Chosen so that 1 kHz ticks meet the accuracy bounds against the reference solver with a
-    // margin of at least 2 on every scenario (tests/integrator_accuracy.rs prints them).
-    substeps: SubstepPolicy::Adaptive { tolerance: 1e-5 },
+    // Chosen so that 1 kHz ticks (third-order ESDIRK sub-steps) meet the accuracy bounds against
+    // the reference solver with a margin of at least 2 on every scenario (tests/integrator_accuracy.rs
+    // and tests/limb.rs print them).
+    substeps: SubstepPolicy::Adaptive { tolerance: 5e-5 },
     build,
 };
 

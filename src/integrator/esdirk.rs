@@ -1,0 +1,469 @@
+//! Stiffly accurate ESDIRK methods with an embedded error estimate (Kennedy & Carpenter 2003):
+//! an explicit first stage, then implicit stages that share the iteration matrix `I - hγ J`;
+//! the last stage is the step's result and its derivative starts the next step.
+//!
+//! The default tableau is the implicit part of ARK3(2)4L[2]SA: third order, L-stable, three
+//! implicit stages, an embedded second-order solution for the error estimate (filtered through
+//! `(I - hγ J)⁻¹` for the stiff components, as for TR-BDF2). Written by hand for the reasons given
+//! in [`crate::integrator::trbdf2`]; the sub-step control is the same.
+
+// Index loops over several parallel vectors read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
+use crate::integrator::trbdf2::{ConvergenceError, Stats};
+use crate::integrator::{IterationMatrix, OdeSystem};
+
+/// Most stages of a tableau.
+const MAX_STAGES: usize = 6;
+const NEWTON_TOL: f64 = 1e-6;
+const NEWTON_MAX_ITER: usize = 10;
+const SLOW_CONTRACTION: f64 = 0.3;
+const NEWTON_RTOL: f64 = 1e-9;
+/// Relative change of `hγ` up to which the iteration matrix is kept.
+const REUSE: f64 = 0.2;
+
+/// A stiffly accurate ESDIRK tableau with an embedded method.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tableau {
+    /// Number of stages (the first explicit).
+    pub stages: usize,
+    /// The diagonal γ.
+    pub gamma: f64,
+    /// Stage times c_i.
+    pub c: [f64; MAX_STAGES],
+    /// Coefficients a_ij, row-major, `stages × stages` in a `MAX_STAGES²` array.
+    pub a: [[f64; MAX_STAGES]; MAX_STAGES],
+    /// `b - b̂`: the weights of the error estimate.
+    pub e: [f64; MAX_STAGES],
+    /// Order of the embedded method (the error estimate is O(h^(order + 1))).
+    pub embedded_order: u32,
+}
+
+impl Tableau {
+    /// ARK3(2)4L[2]SA, implicit part (Kennedy & Carpenter 2003).
+    pub fn ark324() -> Self {
+        let g = 1767732205903.0 / 4055673282236.0;
+        let mut a = [[0.0; MAX_STAGES]; MAX_STAGES];
+        a[1][0] = g;
+        a[1][1] = g;
+        a[2][0] = 2746238789719.0 / 10658868560708.0;
+        a[2][1] = -640167445237.0 / 6845629431997.0;
+        a[2][2] = g;
+        a[3][0] = 1471266399579.0 / 7840856788654.0;
+        a[3][1] = -4482444167858.0 / 7529755066697.0;
+        a[3][2] = 11266239266428.0 / 11593286722821.0;
+        a[3][3] = g;
+        let b_hat = [
+            2756255671327.0 / 12835298489170.0,
+            -10771552573575.0 / 22201958757719.0,
+            9247589265047.0 / 10645013368117.0,
+            2193209047091.0 / 5459859503100.0,
+        ];
+        let mut e = [0.0; MAX_STAGES];
+        for j in 0..4 {
+            e[j] = a[3][j] - b_hat[j];
+        }
+        let mut c = [0.0; MAX_STAGES];
+        c[1] = 1767732205903.0 / 2027836641118.0;
+        c[2] = 3.0 / 5.0;
+        c[3] = 1.0;
+        Self {
+            stages: 4,
+            gamma: g,
+            c,
+            a,
+            e,
+            embedded_order: 2,
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+struct Work {
+    /// Stage derivatives F_j.
+    f: Vec<Vec<f64>>,
+    rhs: Vec<f64>,
+    z: Vec<f64>,
+    fz: Vec<f64>,
+    delta: Vec<f64>,
+    est: Vec<f64>,
+    weights: Vec<f64>,
+    inv_w: Vec<f64>,
+    end_t: f64,
+    end_y: Vec<f64>,
+    end_f: Vec<f64>,
+    end_valid: bool,
+}
+
+/// An ESDIRK stepper with its iteration matrix kept across steps.
+#[derive(Debug, Clone)]
+pub struct Esdirk<M> {
+    n: usize,
+    tableau: Tableau,
+    matrix: M,
+    jac_valid: bool,
+    lu_valid: bool,
+    lu_d: f64,
+    refresh_next: bool,
+    work: Work,
+    /// Work counters.
+    pub stats: Stats,
+}
+
+impl<M> Esdirk<M> {
+    /// A stepper for an n-dimensional system.
+    pub fn new(n: usize, matrix: M, tableau: Tableau) -> Self {
+        let v = || vec![0.0; n];
+        Self {
+            n,
+            matrix,
+            jac_valid: false,
+            lu_valid: false,
+            lu_d: 0.0,
+            refresh_next: true,
+            work: Work {
+                f: (0..tableau.stages).map(|_| v()).collect(),
+                rhs: v(),
+                z: v(),
+                fz: v(),
+                delta: v(),
+                est: v(),
+                weights: v(),
+                inv_w: v(),
+                end_t: f64::NAN,
+                end_y: v(),
+                end_f: v(),
+                end_valid: false,
+            },
+            tableau,
+            stats: Stats::default(),
+        }
+    }
+
+    /// Forgets the Jacobian (after a discontinuous change of the system).
+    pub fn invalidate(&mut self) {
+        self.jac_valid = false;
+        self.lu_valid = false;
+        self.refresh_next = true;
+        self.work.end_valid = false;
+    }
+
+    fn newton<S: OdeSystem + ?Sized>(&mut self, sys: &S, t: f64, d: f64) -> Option<bool>
+    where
+        M: IterationMatrix<S>,
+    {
+        if !self.lu_valid {
+            return None;
+        }
+        let wk = &mut self.work;
+        let mut prev_norm = f64::INFINITY;
+        let mut slow = false;
+        for iter in 0..NEWTON_MAX_ITER {
+            sys.rhs(t, &wk.z, &mut wk.fz);
+            self.stats.rhs_evals += 1;
+            for i in 0..self.n {
+                wk.delta[i] = wk.rhs[i] - wk.z[i] + wk.fz[i] * d;
+            }
+            self.matrix.solve(&mut wk.delta);
+            self.stats.solves += 1;
+            let mut norm = 0.0f64;
+            for i in 0..self.n {
+                wk.z[i] += wk.delta[i];
+                norm = norm.max(wk.delta[i].abs() / (wk.weights[i] + NEWTON_RTOL * wk.z[i].abs()));
+            }
+            if !norm.is_finite() {
+                return None;
+            }
+            if iter > 0 {
+                let rate = norm / prev_norm;
+                if rate > 1.0 {
+                    return None;
+                }
+                slow |= rate > SLOW_CONTRACTION;
+            }
+            if norm < NEWTON_TOL {
+                return Some(slow || iter >= 4);
+            }
+            prev_norm = norm;
+        }
+        None
+    }
+
+    /// One attempt from (t, y) with step h: on success the result is in `work.z` and the error
+    /// estimate in `work.est`.
+    fn try_step<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        y: &[f64],
+        force_refresh: bool,
+    ) -> bool
+    where
+        M: IterationMatrix<S>,
+    {
+        let n = self.n;
+        let tb = self.tableau.clone();
+        let d = tb.gamma * h;
+        {
+            let wk = &mut self.work;
+            if wk.end_valid && (wk.end_t - t).abs() <= 1e-9 * h && wk.end_y == y && !force_refresh {
+                wk.f[0].copy_from_slice(&wk.end_f);
+            } else {
+                sys.rhs(t, y, &mut wk.f[0]);
+                self.stats.rhs_evals += 1;
+            }
+        }
+        if force_refresh || self.refresh_next || !self.jac_valid {
+            self.stats.rhs_evals += self.matrix.update_jacobian(sys, t, y, &self.work.f[0]);
+            self.stats.jacobians += 1;
+            self.jac_valid = true;
+            self.lu_valid = false;
+            self.refresh_next = false;
+        }
+        if !self.lu_valid || (self.lu_d - d).abs() > REUSE * d {
+            self.lu_valid = self.matrix.factorise(d);
+            self.lu_d = d;
+            self.stats.factorisations += 1;
+        }
+        sys.scales(&mut self.work.weights);
+        let mut slow = false;
+        for s in 1..tb.stages {
+            {
+                let wk = &mut self.work;
+                for i in 0..n {
+                    let mut acc = 0.0;
+                    for j in 0..s {
+                        acc += tb.a[s][j] * wk.f[j][i];
+                    }
+                    wk.rhs[i] = y[i] + h * acc;
+                    // Predictor: the last stage's slope carried over the diagonal part.
+                    wk.z[i] = wk.rhs[i] + d * wk.f[s - 1][i];
+                }
+            }
+            let Some(sl) = self.newton(sys, t + tb.c[s] * h, d) else {
+                return false;
+            };
+            slow |= sl;
+            let wk = &mut self.work;
+            for i in 0..n {
+                wk.f[s][i] = (wk.z[i] - wk.rhs[i]) / d;
+            }
+        }
+        self.refresh_next = slow;
+        let wk = &mut self.work;
+        for i in 0..n {
+            let mut acc = 0.0;
+            for j in 0..tb.stages {
+                acc += tb.e[j] * wk.f[j][i];
+            }
+            wk.est[i] = h * acc;
+        }
+        wk.end_t = t + h;
+        wk.end_y.copy_from_slice(&wk.z);
+        wk.end_f.copy_from_slice(&wk.f[tb.stages - 1]);
+        wk.end_valid = true;
+        self.matrix.solve(&mut wk.est);
+        self.stats.solves += 1;
+        true
+    }
+
+    fn end_is_finite(&self) -> bool {
+        self.work.z.iter().all(|v| v.is_finite())
+    }
+
+    fn step_split<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        y: &mut [f64],
+        depth: u32,
+    ) -> Result<(), ConvergenceError>
+    where
+        M: IterationMatrix<S>,
+    {
+        for attempt in 0..2 {
+            if self.try_step(sys, t, h, y, attempt == 1) && self.end_is_finite() {
+                y.copy_from_slice(&self.work.z);
+                self.stats.substeps += 1;
+                return Ok(());
+            }
+        }
+        if depth >= 6 {
+            return Err(ConvergenceError { t });
+        }
+        self.stats.rejected += 1;
+        let half = 0.5 * h;
+        self.step_split(sys, t, half, y, depth + 1)?;
+        self.step_split(sys, t + half, half, y, depth + 1)
+    }
+
+    /// One step of size h from (t, y), split on failure (as TR-BDF2's `step`).
+    pub fn step<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        h: f64,
+        y: &mut [f64],
+    ) -> Result<(), ConvergenceError>
+    where
+        M: IterationMatrix<S>,
+    {
+        self.step_split(sys, t, h, y, 0)
+    }
+
+    /// From t0 to t1 with sub-steps chosen by the error estimate (as TR-BDF2's `advance`).
+    #[allow(clippy::too_many_arguments)]
+    pub fn advance<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h: &mut f64,
+        tol: f64,
+        max_substeps: usize,
+    ) -> Result<usize, ConvergenceError>
+    where
+        M: IterationMatrix<S>,
+    {
+        let span = t1 - t0;
+        let h_min = span / max_substeps as f64;
+        let exponent = -1.0 / (self.tableau.embedded_order as f64 + 1.0);
+        sys.scales(&mut self.work.inv_w);
+        for s in self.work.inv_w.iter_mut() {
+            *s = 1.0 / (tol * *s);
+        }
+        let mut t = t0;
+        let mut taken = 0;
+        if !(*h > 0.0 && h.is_finite()) {
+            *h = span;
+        }
+        if !(span > 0.0 && span.is_finite()) || y.iter().any(|v| !v.is_finite()) {
+            return Err(ConvergenceError { t: t0 });
+        }
+        while t1 - t > 1e-12 * span {
+            let remaining = t1 - t;
+            let mut step = h.clamp(h_min, span);
+            if remaining <= step {
+                step = remaining;
+            } else if remaining < 2.0 * step {
+                step = 0.5 * remaining;
+            }
+            let mut ok = self.try_step(sys, t, step, y, false) && self.end_is_finite();
+            if !ok {
+                self.stats.rejected += 1;
+                ok = self.try_step(sys, t, step, y, true) && self.end_is_finite();
+            }
+            if !ok {
+                if step > h_min * (1.0 + 1e-9) {
+                    *h = (0.25 * step).max(h_min);
+                    continue;
+                }
+                self.step_split(sys, t, step, y, 0)?;
+                t += step;
+                taken += 1;
+                continue;
+            }
+            let err = self
+                .work
+                .est
+                .iter()
+                .zip(&self.work.inv_w)
+                .map(|(x, w)| (x * w).abs())
+                .fold(0.0, f64::max);
+            let err = if err.is_finite() { err } else { f64::INFINITY };
+            let factor = if err > 0.0 {
+                (0.9 * err.powf(exponent)).clamp(0.2, 2.0)
+            } else {
+                2.0
+            };
+            if err <= 1.0 || step <= h_min * (1.0 + 1e-9) {
+                let clipped = step < *h;
+                y.copy_from_slice(&self.work.z);
+                t += step;
+                taken += 1;
+                self.stats.substeps += 1;
+                let proposed = if (1.0..=1.25).contains(&factor) {
+                    step
+                } else {
+                    step * factor
+                };
+                *h = if clipped && factor >= 1.0 {
+                    h.max(proposed)
+                } else {
+                    proposed
+                };
+            } else {
+                self.stats.rejected += 1;
+                self.work.end_valid = false;
+                *h = step * factor;
+            }
+        }
+        Ok(taken)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::dense::DenseMatrix;
+
+    /// The tableau's order conditions: third order for the method, second for the embedding.
+    #[test]
+    fn ark324_meets_its_order_conditions() {
+        let t = Tableau::ark324();
+        let s = t.stages;
+        let b: Vec<f64> = (0..s).map(|j| t.a[s - 1][j]).collect();
+        let bh: Vec<f64> = (0..s).map(|j| b[j] - t.e[j]).collect();
+        for i in 0..s {
+            let row: f64 = (0..s).map(|j| t.a[i][j]).sum();
+            assert!((row - t.c[i]).abs() < 1e-12, "row {i}");
+        }
+        let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
+        let c: Vec<f64> = t.c[..s].to_vec();
+        let c2: Vec<f64> = c.iter().map(|x| x * x).collect();
+        let ac: Vec<f64> = (0..s)
+            .map(|i| (0..s).map(|j| t.a[i][j] * c[j]).sum())
+            .collect();
+        assert!((b.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+        assert!((dot(&b, &c) - 0.5).abs() < 1e-12);
+        assert!((dot(&b, &c2) - 1.0 / 3.0).abs() < 1e-12);
+        assert!((dot(&b, &ac) - 1.0 / 6.0).abs() < 1e-12);
+        assert!((bh.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+        assert!((dot(&bh, &c) - 0.5).abs() < 1e-12);
+    }
+
+    struct Decay(f64);
+    impl OdeSystem for Decay {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = self.0 * y[0];
+        }
+        fn scales(&self, out: &mut [f64]) {
+            out[0] = 1.0;
+        }
+    }
+
+    #[test]
+    fn converges_at_third_order_and_damps_stiff_modes() {
+        let err = |n: usize| {
+            let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::ark324());
+            let mut y = [1.0];
+            let h = 1.0 / n as f64;
+            for k in 0..n {
+                st.step(&Decay(-2.0), k as f64 * h, h, &mut y).unwrap();
+            }
+            (y[0] - (-2.0f64).exp()).abs()
+        };
+        let order = (err(20) / err(40)).log2();
+        assert!((2.7..3.4).contains(&order), "observed order {order}");
+        let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::ark324());
+        let mut y = [1.0];
+        st.step(&Decay(-1e9), 0.0, 1.0, &mut y).unwrap();
+        assert!(y[0].abs() < 1e-6, "R(-1e9) = {}", y[0]);
+    }
+}
