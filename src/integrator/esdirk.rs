@@ -15,7 +15,10 @@ use crate::integrator::{IterationMatrix, OdeSystem};
 
 /// Most stages of a tableau.
 const MAX_STAGES: usize = 6;
-const NEWTON_TOL: f64 = 1e-6;
+/// Newton stops when the scaled correction is below this fraction of the step's tolerance
+/// (and never above `NEWTON_TOL_MAX`).
+const NEWTON_TOL_FRACTION: f64 = 0.1;
+const NEWTON_TOL_MAX: f64 = 1e-5;
 const NEWTON_MAX_ITER: usize = 10;
 const SLOW_CONTRACTION: f64 = 0.3;
 const NEWTON_RTOL: f64 = 1e-9;
@@ -105,6 +108,8 @@ pub struct Esdirk<M> {
     lu_valid: bool,
     lu_d: f64,
     refresh_next: bool,
+    /// Newton's stopping threshold on the scaled correction.
+    newton_tol: f64,
     work: Work,
     /// Work counters.
     pub stats: Stats,
@@ -121,6 +126,7 @@ impl<M> Esdirk<M> {
             lu_valid: false,
             lu_d: 0.0,
             refresh_next: true,
+            newton_tol: 1e-6,
             work: Work {
                 f: (0..tableau.stages).map(|_| v()).collect(),
                 rhs: v(),
@@ -181,7 +187,7 @@ impl<M> Esdirk<M> {
                 }
                 slow |= rate > SLOW_CONTRACTION;
             }
-            if norm < NEWTON_TOL {
+            if norm < self.newton_tol {
                 return Some(slow || iter >= 4);
             }
             prev_norm = norm;
@@ -331,6 +337,7 @@ impl<M> Esdirk<M> {
         let span = t1 - t0;
         let h_min = span / max_substeps as f64;
         let exponent = -1.0 / (self.tableau.embedded_order as f64 + 1.0);
+        self.newton_tol = (NEWTON_TOL_FRACTION * tol).min(NEWTON_TOL_MAX);
         sys.scales(&mut self.work.inv_w);
         for s in self.work.inv_w.iter_mut() {
             *s = 1.0 / (tol * *s);
