@@ -11,8 +11,8 @@
 //!   phases spread over the 100 ms.
 //!
 //! Printed per case: µs per tick, per actuator (two muscles) and per muscle, the median of
-//! several repetitions, with the right-hand-side evaluations, linear solves and factorisations
-//! per tick beside them.
+//! several repetitions, with the right-hand-side evaluations, linear solves, factorisations and
+//! sub-steps per tick beside them.
 
 use muscle_actuator::config::{ActuatorConfig, MuscleConfig, SpanConfig};
 use muscle_actuator::physics::model::ModelKind;
@@ -90,18 +90,17 @@ impl Plantset {
             Plantset::Separate(v) => v[0].muscles()[0].force,
         }
     }
-    /// (rhs evaluations, solves, factorisations) so far.
-    fn work(&self) -> (u64, u64, u64) {
+    /// (rhs evaluations, solves, factorisations, sub-steps) so far.
+    fn work(&self) -> (u64, u64, u64, u64) {
         let of = |a: &Actuator| {
             let s = a.simulation().stats();
-            (s.rhs_evals, s.solves, s.factorisations)
+            (s.rhs_evals, s.solves, s.factorisations, s.substeps)
         };
         match self {
             Plantset::Limb(a) => of(a),
-            Plantset::Separate(v) => v
-                .iter()
-                .map(of)
-                .fold((0, 0, 0), |x, y| (x.0 + y.0, x.1 + y.1, x.2 + y.2)),
+            Plantset::Separate(v) => v.iter().map(of).fold((0, 0, 0, 0), |x, y| {
+                (x.0 + y.0, x.1 + y.1, x.2 + y.2, x.3 + y.3)
+            }),
         }
     }
 }
@@ -129,7 +128,7 @@ impl Lcg {
 
 struct Measured {
     us_per_tick: f64,
-    work_per_tick: (f64, f64, f64),
+    work_per_tick: (f64, f64, f64, f64),
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -149,7 +148,7 @@ fn steady(p: &Plantset) -> Measured {
     }
     let ticks = 1000;
     let mut times = Vec::new();
-    let mut work = (0.0, 0.0, 0.0);
+    let mut work = (0.0, 0.0, 0.0, 0.0);
     for _ in 0..REPEATS {
         let mut a = base.clone();
         let w0 = a.work();
@@ -169,18 +168,21 @@ fn steady(p: &Plantset) -> Measured {
     }
 }
 
-fn per_tick(w0: (u64, u64, u64), w1: (u64, u64, u64), ticks: usize) -> (f64, f64, f64) {
+type Work = (u64, u64, u64, u64);
+
+fn per_tick(w0: Work, w1: Work, ticks: usize) -> (f64, f64, f64, f64) {
     let t = ticks as f64;
     (
         (w1.0 - w0.0) as f64 / t,
         (w1.1 - w0.1) as f64 / t,
         (w1.2 - w0.2) as f64 / t,
+        (w1.3 - w0.3) as f64 / t,
     )
 }
 
 fn step_response(p: &Plantset) -> Measured {
     let mut times = Vec::new();
-    let mut work = (0.0, 0.0, 0.0);
+    let mut work = (0.0, 0.0, 0.0, 0.0);
     for _ in 0..REPEATS * 4 {
         let mut a = p.clone();
         for m in (0..a.muscles()).step_by(2) {
@@ -205,7 +207,7 @@ fn realistic(p: &Plantset) -> Measured {
     let ticks = 2000;
     let joints = p.muscles() / 2;
     let mut times = Vec::new();
-    let mut work = (0.0, 0.0, 0.0);
+    let mut work = (0.0, 0.0, 0.0, 0.0);
     for r in 0..REPEATS {
         let mut a = p.clone();
         let mut rng = Lcg(17 + r as u64);
@@ -288,9 +290,9 @@ fn main() {
                 ("step", step_response(&p)),
                 ("realistic", realistic(&p)),
             ] {
-                let (rhs, solves, lu) = m.work_per_tick;
+                let (rhs, solves, lu, sub) = m.work_per_tick;
                 println!(
-                    "{:<10} {:<7} {:>4} {:<10} {:>10.2} {:>12.2} {:>11.3} {:>8.1} {:>8.1} {:>6.2}",
+                    "{:<10} {:<7} {:>4} {:<10} {:>10.2} {:>12.2} {:>11.3} {:>8.1} {:>8.1} {:>6.2} {:>6.2}",
                     name,
                     model.name(),
                     muscles,
@@ -300,7 +302,8 @@ fn main() {
                     m.us_per_tick / muscles as f64,
                     rhs,
                     solves,
-                    lu
+                    lu,
+                    sub
                 );
             }
         }

@@ -235,16 +235,27 @@ impl<M> Esdirk<M> {
         sys.scales(&mut self.work.weights);
         let mut slow = false;
         for s in 1..tb.stages {
+            // Predictor: the stage's slope F_s from the polynomial through the earlier stages'
+            // (c_j, F_j), so that Newton starts near the stage.
+            let mut weights = [0.0; MAX_STAGES];
+            for (j, w) in weights.iter_mut().enumerate().take(s) {
+                *w = 1.0;
+                for k in 0..s {
+                    if k != j {
+                        *w *= (tb.c[s] - tb.c[k]) / (tb.c[j] - tb.c[k]);
+                    }
+                }
+            }
             {
                 let wk = &mut self.work;
                 for i in 0..n {
-                    let mut acc = 0.0;
+                    let (mut acc, mut slope) = (0.0, 0.0);
                     for j in 0..s {
                         acc += tb.a[s][j] * wk.f[j][i];
+                        slope += weights[j] * wk.f[j][i];
                     }
                     wk.rhs[i] = y[i] + h * acc;
-                    // Predictor: the last stage's slope carried over the diagonal part.
-                    wk.z[i] = wk.rhs[i] + d * wk.f[s - 1][i];
+                    wk.z[i] = wk.rhs[i] + d * slope;
                 }
             }
             let Some(sl) = self.newton(sys, t + tb.c[s] * h, d) else {
