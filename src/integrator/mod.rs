@@ -1,6 +1,7 @@
-//! Time integration: the implicit stepper used on every tick (TR-BDF2 over an iteration matrix
-//! that may exploit the system's structure), and the adaptive explicit reference solver the
-//! tests and accuracy reports compare it with.
+//! Time integration: the implicit steppers used on every tick (a third-order ESDIRK for adaptive
+//! sub-steps, TR-BDF2 for fixed ones, both over an iteration matrix that may exploit the
+//! system's structure), and the adaptive explicit reference solver the tests and accuracy
+//! reports compare them with.
 
 pub mod arrowhead;
 pub mod dense;

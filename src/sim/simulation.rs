@@ -1,7 +1,8 @@
 //! A plant stepped at a fixed tick: inputs held over each tick, activation advanced exactly, the
-//! mechanics and the contractile states by TR-BDF2 sub-steps, models with state outside the ODE
-//! (the full Huxley grid) through their sub-step hooks. Deterministic and allocation-free per
-//! tick, for any topology and any contractile model.
+//! mechanics and the contractile states by implicit sub-steps, independent parts of the limb
+//! apart (sim::part), models with state outside the ODE (the full Huxley grid) through their
+//! sub-step hooks. Deterministic and allocation-free per tick, for any topology and any
+//! contractile model.
 
 use crate::integrator::trbdf2::Stats;
 use crate::physics::model::ModelKind;
