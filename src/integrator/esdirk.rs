@@ -40,6 +40,23 @@ pub struct Tableau {
     pub e: [f64; MAX_STAGES],
     /// Order of the embedded method (the error estimate is O(h^(order + 1))).
     pub embedded_order: u32,
+    /// Stage predictor weights: `F_s ≈ Σ_j p_sj F_j`, the polynomial through the earlier
+    /// stages' (c_j, F_j) evaluated at c_s.
+    pub predictor: [[f64; MAX_STAGES]; MAX_STAGES],
+}
+
+/// Lagrange weights at each stage time of the polynomial through the earlier stages.
+fn predictor_weights(c: &[f64; MAX_STAGES], stages: usize) -> [[f64; MAX_STAGES]; MAX_STAGES] {
+    let mut p = [[0.0; MAX_STAGES]; MAX_STAGES];
+    for s in 1..stages {
+        for j in 0..s {
+            p[s][j] = (0..s)
+                .filter(|&k| k != j)
+                .map(|k| (c[s] - c[k]) / (c[j] - c[k]))
+                .product();
+        }
+    }
+    p
 }
 
 impl Tableau {
@@ -73,6 +90,7 @@ impl Tableau {
         Self {
             stages: 4,
             gamma: g,
+            predictor: predictor_weights(&c, 4),
             c,
             a,
             e,
@@ -209,6 +227,7 @@ impl<M> Esdirk<M> {
         M: IterationMatrix<S>,
     {
         let n = self.n;
+        // A copy of the tableau (plain numbers on the stack) frees `self` for the stages.
         let tb = self.tableau.clone();
         let d = tb.gamma * h;
         {
@@ -235,27 +254,22 @@ impl<M> Esdirk<M> {
         sys.scales(&mut self.work.weights);
         let mut slow = false;
         for s in 1..tb.stages {
-            // Predictor: the stage's slope F_s from the polynomial through the earlier stages'
-            // (c_j, F_j), so that Newton starts near the stage.
-            let mut weights = [0.0; MAX_STAGES];
-            for (j, w) in weights.iter_mut().enumerate().take(s) {
-                *w = 1.0;
-                for k in 0..s {
-                    if k != j {
-                        *w *= (tb.c[s] - tb.c[k]) / (tb.c[j] - tb.c[k]);
-                    }
-                }
-            }
+            // rhs = y + h Σ_j a_sj F_j; Newton starts from rhs + d F̂_s, the stage's slope F̂_s
+            // predicted by the polynomial through the earlier stages.
             {
                 let wk = &mut self.work;
-                for i in 0..n {
-                    let (mut acc, mut slope) = (0.0, 0.0);
-                    for j in 0..s {
-                        acc += tb.a[s][j] * wk.f[j][i];
-                        slope += weights[j] * wk.f[j][i];
+                wk.rhs.copy_from_slice(y);
+                wk.delta.fill(0.0);
+                for j in 0..s {
+                    let (ha, dp) = (h * tb.a[s][j], d * tb.predictor[s][j]);
+                    let fj = &wk.f[j];
+                    for i in 0..n {
+                        wk.rhs[i] += ha * fj[i];
+                        wk.delta[i] += dp * fj[i];
                     }
-                    wk.rhs[i] = y[i] + h * acc;
-                    wk.z[i] = wk.rhs[i] + d * slope;
+                }
+                for i in 0..n {
+                    wk.z[i] = wk.rhs[i] + wk.delta[i];
                 }
             }
             let Some(sl) = self.newton(sys, t + tb.c[s] * h, d) else {
@@ -269,12 +283,12 @@ impl<M> Esdirk<M> {
         }
         self.refresh_next = slow;
         let wk = &mut self.work;
-        for i in 0..n {
-            let mut acc = 0.0;
-            for j in 0..tb.stages {
-                acc += tb.e[j] * wk.f[j][i];
+        wk.est.fill(0.0);
+        for j in 0..tb.stages {
+            let he = h * tb.e[j];
+            for (e, f) in wk.est.iter_mut().zip(&wk.f[j]) {
+                *e += he * f;
             }
-            wk.est[i] = h * acc;
         }
         wk.end_t = t + h;
         wk.end_y.copy_from_slice(&wk.z);
