@@ -94,8 +94,8 @@ fn joint_scenario_huxley_matches_reference() {
     check(&joint_scenario(), ModelKind::HUXLEY);
 }
 
-/// Fixed sub-steps: halving the step divides the error by about four (second order), which
-/// also shows the reference is far more accurate than the stepper.
+/// Fixed sub-steps (TR-BDF2): halving the step divides the error by about four (second order),
+/// which also shows the reference is far more accurate than the stepper.
 #[test]
 fn fixed_stepping_converges_at_second_order() {
     let sc = built_in("pulse");

@@ -1,13 +1,11 @@
-//! Time integration: the implicit steppers used on every tick (a third-order ESDIRK for adaptive
-//! sub-steps, TR-BDF2 for fixed ones, both over an iteration matrix that may exploit the
-//! system's structure), and the adaptive explicit reference solver the tests and accuracy
-//! reports compare them with.
+//! Time integration: the implicit stepper used on every tick (a third-order ESDIRK over an
+//! iteration matrix that may exploit the system's structure), and the adaptive explicit
+//! reference solver the tests and accuracy reports compare it with.
 
 pub mod arrowhead;
 pub mod dense;
 pub mod esdirk;
 pub mod reference;
-pub mod trbdf2;
 
 /// A first-order ODE system `dy/dt = f(t, y)`.
 pub trait OdeSystem {
@@ -30,4 +28,43 @@ pub trait IterationMatrix<S: OdeSystem + ?Sized> {
     fn factorise(&mut self, d: f64) -> bool;
     /// Solves `(I - d J) x = b` in place with the last factorisation.
     fn solve(&mut self, b: &mut [f64]);
+}
+
+/// The implicit stages did not converge even with a fresh Jacobian and halved steps.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("implicit step did not converge at t = {t}")]
+pub struct ConvergenceError {
+    /// Time at which the step started, s.
+    pub t: f64,
+}
+
+/// Work counters, for benchmarks and reports.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Right-hand-side evaluations (Jacobian evaluations included, in their equivalent).
+    pub rhs_evals: u64,
+    /// Jacobian evaluations.
+    pub jacobians: u64,
+    /// Factorisations of the iteration matrix.
+    pub factorisations: u64,
+    /// Linear solves with it.
+    pub solves: u64,
+    /// Sub-steps taken.
+    pub substeps: u64,
+    /// Steps rejected or split.
+    pub rejected: u64,
+}
+
+impl std::ops::Add for Stats {
+    type Output = Stats;
+    fn add(self, o: Stats) -> Stats {
+        Stats {
+            rhs_evals: self.rhs_evals + o.rhs_evals,
+            jacobians: self.jacobians + o.jacobians,
+            factorisations: self.factorisations + o.factorisations,
+            solves: self.solves + o.solves,
+            substeps: self.substeps + o.substeps,
+            rejected: self.rejected + o.rejected,
+        }
+    }
 }

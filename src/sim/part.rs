@@ -4,8 +4,7 @@
 
 use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
 use crate::integrator::esdirk::{Esdirk, Tableau};
-use crate::integrator::trbdf2::{Stats, TrBdf2};
-use crate::integrator::OdeSystem;
+use crate::integrator::{OdeSystem, Stats};
 use crate::physics::activation::activation_after;
 use crate::physics::muscle_model::SubstepMotion;
 use crate::physics::plant::{Inputs, Plant};
@@ -88,16 +87,14 @@ pub struct Part {
     a0: Vec<f64>,
     lm_before: Vec<f64>,
     memo: RefCell<ActivationMemo>,
-    /// Fixed sub-steps (models with sub-step hooks): TR-BDF2, second order.
-    stepper: TrBdf2<ArrowheadMatrix>,
-    /// Adaptive sub-steps: ESDIRK ARK3(2)4L[2]SA, third order: in the transients its sub-steps
-    /// are longer than TR-BDF2's for the same accuracy.
-    adaptive: Esdirk<ArrowheadMatrix>,
+    /// The ESDIRK stepper: ARK3(2)4L[2]SA (third order) for adaptive sub-steps, TR-BDF2 (second
+    /// order) for fixed ones.
+    stepper: Esdirk<ArrowheadMatrix>,
 }
 
 impl Part {
     /// The part of `whole` made of these joints and muscles (a component of its topology).
-    pub fn new(whole: &Plant, joints: Vec<usize>, muscles: Vec<usize>) -> Self {
+    pub fn new(whole: &Plant, joints: Vec<usize>, muscles: Vec<usize>, stepping: Stepping) -> Self {
         let plant = whole.subset(&joints, &muscles);
         let mut state_map = Vec::with_capacity(plant.dim());
         for &j in &joints {
@@ -116,11 +113,13 @@ impl Part {
                 a: vec![0.0; m],
                 scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
             }),
-            stepper: TrBdf2::new(n, ArrowheadMatrix::new(2 * plant.joint_count(), &dims)),
-            adaptive: Esdirk::new(
+            stepper: Esdirk::new(
                 n,
                 ArrowheadMatrix::new(2 * plant.joint_count(), &dims),
-                Tableau::ark324(),
+                match stepping {
+                    Stepping::Adaptive { .. } => Tableau::ark324(),
+                    Stepping::Fixed(_) => Tableau::trbdf2(),
+                },
             ),
             y: vec![0.0; n],
             h: 0.0,
@@ -163,7 +162,7 @@ impl Part {
 
     /// Work counters of its stepper.
     pub fn stats(&self) -> Stats {
-        self.stepper.stats + self.adaptive.stats
+        self.stepper.stats
     }
 
     /// Whether its state and its activations at the tick's end are finite.
@@ -197,7 +196,7 @@ impl Part {
                     memo: &self.memo,
                 };
                 ok = self
-                    .adaptive
+                    .stepper
                     .advance(
                         &ode,
                         0.0,
@@ -257,7 +256,6 @@ impl Part {
             m.ce.forget_history();
         }
         self.stepper.invalidate();
-        self.adaptive.invalidate();
     }
 
     pub fn reset(&mut self) {
@@ -265,7 +263,6 @@ impl Part {
             m.ce.reset();
         }
         self.stepper.invalidate();
-        self.adaptive.invalidate();
         self.h = 0.0;
     }
 }

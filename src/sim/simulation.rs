@@ -4,7 +4,7 @@
 //! sub-step hooks. Deterministic and allocation-free per tick, for any topology and any
 //! contractile model.
 
-use crate::integrator::trbdf2::Stats;
+use crate::integrator::Stats;
 use crate::physics::model::ModelKind;
 use crate::physics::muscle_model::SubstepPolicy;
 use crate::physics::plant::{Inputs, Plant};
@@ -120,7 +120,7 @@ impl Simulation {
         let parts = plant
             .components()
             .into_iter()
-            .map(|(joints, muscles)| Part::new(&plant, joints, muscles))
+            .map(|(joints, muscles)| Part::new(&plant, joints, muscles, stepping))
             .collect();
         let mut sim = Self {
             rate_hz,
