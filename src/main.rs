@@ -12,7 +12,7 @@ use std::process::ExitCode;
 #[command(
     name = "muscle_actuator",
     version,
-    about = "Antagonistic muscle actuator: Hill and Huxley (Distribution-Moment) models, as a ROS 2 node and offline"
+    about = "Muscle actuators driving any limb: Hill and Huxley (Distribution-Moment) models, as a ROS 2 node and offline"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -28,14 +28,14 @@ enum Command {
         /// Contractile model: hill, huxley or huxley-pde.
         #[arg(long, default_value = "huxley")]
         model: String,
-        /// Actuator configuration file (TOML); default: the embedded Table 1 parameters.
+        /// Limb configuration: a built-in name (elbow, arm) or a file (TOML); default: elbow.
         #[arg(long)]
         config: Option<PathBuf>,
         /// Tick rate, Hz.
         #[arg(long, default_value_t = 1000.0)]
         rate_hz: f64,
-        /// Fixed number of implicit sub-steps per tick (default: adaptive for hill and huxley,
-        /// 20 for huxley-pde).
+        /// Fixed number of implicit (TR-BDF2) sub-steps per tick (default: adaptive for hill and
+        /// huxley, 20 for huxley-pde).
         #[arg(long)]
         substeps: Option<usize>,
         /// CSV output file ('-' for standard output).
