@@ -233,15 +233,21 @@ impl Plant {
         out
     }
 
-    /// Joint j's net muscle torque `Σ_i r_ij(θ_j) F_SE,i` from the muscles' tendon forces, N m.
-    pub fn muscle_torque(&self, y: &[f64], j: usize, tendon_forces: impl Fn(usize) -> f64) -> f64 {
-        let mut torque = 0.0;
+    /// The joints' net muscle torques `τ_j = Σ_i r_ij(θ_j) F_SE,i` from the muscles' tendon
+    /// forces, in one pass over the muscles' spans: `add(j, r_ij F_SE,i)` for each span, in muscle
+    /// order (start each τ_j at 0), N m.
+    pub fn add_muscle_torques(
+        &self,
+        y: &[f64],
+        tendon_forces: impl Fn(usize) -> f64,
+        mut add: impl FnMut(usize, f64),
+    ) {
         for i in 0..self.mtus.len() {
-            for s in self.spans(i).iter().filter(|s| s.joint == j) {
-                torque += s.moment_arm.at(y[2 * j]) * tendon_forces(i);
+            let f = tendon_forces(i);
+            for s in self.spans(i) {
+                add(s.joint, s.moment_arm.at(y[2 * s.joint]) * f);
             }
         }
-        torque
     }
 
     /// The joint stiffness matrix K (row-major `n × n`, N m/rad, docs/model.md §8b) from each

@@ -275,11 +275,14 @@ impl Simulation {
             out.joints[j] = JointSnapshot {
                 position: self.y[2 * j],
                 velocity: self.y[2 * j + 1],
-                torque: self.plant.muscle_torque(&self.y, j, |i| muscles[i].force),
+                torque: 0.0,
                 external_torque: self.inputs.external_torque[j],
                 stiffness: out.stiffness_matrix[j * n + j],
             };
         }
+        let (muscles, joints) = (&out.muscles, &mut out.joints);
+        self.plant
+            .add_muscle_torques(&self.y, |i| muscles[i].force, |j, t| joints[j].torque += t);
     }
 
     /// The published state.
