@@ -341,8 +341,9 @@ fn limb_runs_record_replay_and_compare() {
         .iter()
         .find(|d| d.signal == "elbow.position")
         .unwrap();
+    // The models differ, but not by more than a fifth of the elbow's swing.
     assert!(
-        elbow.max_abs_diff > 0.0 && elbow.max_abs_diff < 0.2,
+        elbow.max_abs_diff > 0.0 && elbow.max_abs_diff < 0.2 * elbow.peak_a.abs(),
         "{elbow:?}"
     );
 }
