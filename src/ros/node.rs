@@ -314,7 +314,7 @@ fn kv(key: &str, value: impl ToString) -> KeyValue {
 struct DiagPrev {
     overruns: u64,
     rejected: u64,
-    nonfinite: u64,
+    step_failures: u64,
     ticks: u64,
 }
 
@@ -330,17 +330,17 @@ fn diagnostics(
     let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
     let (p50, p99, max) = stats.window();
     let overruns = ld(&stats.overruns);
-    let nonfinite = ld(&stats.nonfinite_resets);
+    let step_failures = ld(&stats.step_failures);
     let rejected = inputs.total_rejected();
     let new_overruns = overruns - prev.overruns.min(overruns);
     let new_rejected = rejected - prev.rejected.min(rejected);
-    let new_nonfinite = nonfinite - prev.nonfinite.min(nonfinite);
+    let new_failures = step_failures - prev.step_failures.min(step_failures);
     let ticks = ld(&stats.ticks);
     let stalled = ticks == prev.ticks;
     *prev = DiagPrev {
         overruns,
         rejected,
-        nonfinite,
+        step_failures,
         ticks,
     };
     let rate = stats.rate_hz();
@@ -352,10 +352,10 @@ fn diagnostics(
                 ld(&stats.current_tick)
             ),
         )
-    } else if new_nonfinite > 0 {
+    } else if new_failures > 0 {
         (
             DiagnosticStatus::ERROR,
-            format!("state became non-finite: joint reset ({new_nonfinite} in the last period)"),
+            format!("a step failed: actuator reset ({new_failures} in the last period)"),
         )
     } else if new_overruns > 0 {
         (
@@ -398,7 +398,7 @@ fn diagnostics(
             kv("states_dropped", ld(&stats.samples_dropped)),
             kv("applied_inputs_dropped", ld(&stats.applied_dropped)),
             kv("publish_errors", publish_errors),
-            kv("nonfinite_resets", nonfinite),
+            kv("step_failures", step_failures),
             kv("resets", ld(&stats.resets)),
         ],
     };
@@ -900,12 +900,12 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             smol::Timer::after(Duration::from_millis(50)).await;
             while let Ok(e) = event_rx.try_recv() {
                 match e {
-                    Event::NonFiniteReset { tick } => report(
-                        "nonfinite",
+                    Event::StepFailed { tick, reason } => report(
+                        "step_failed",
                         Severity::Error,
                         format!(
-                            "the simulation state became non-finite at tick {tick}: joint reset \
-                             to its initial state, inputs cleared until the next command"
+                            "tick {tick} failed ({reason}): actuator reset to its initial state, \
+                             inputs cleared until the next command"
                         ),
                     ),
                     Event::Overrun { tick, lateness_us } => report(

@@ -56,8 +56,9 @@ pub struct Applied {
 /// Something the log should say (the loop itself never logs).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
-    /// The state stopped being finite at `tick`: the joint was reset.
-    NonFiniteReset { tick: u64 },
+    /// The step of `tick` failed (`reason`: the solver or a non-finite state): the actuator was
+    /// reset to its initial state.
+    StepFailed { tick: u64, reason: &'static str },
     /// A tick started more than one period late.
     Overrun { tick: u64, lateness_us: f64 },
     /// The loop fell so far behind that it dropped the backlog and restarted its schedule.
@@ -85,8 +86,8 @@ pub struct TickStats {
     pub samples_dropped: AtomicU64,
     /// Applied inputs the recorder channel had no room for.
     pub applied_dropped: AtomicU64,
-    /// Resets after a non-finite state.
-    pub nonfinite_resets: AtomicU64,
+    /// Resets after a failed step.
+    pub step_failures: AtomicU64,
     /// Resets on request.
     pub resets: AtomicU64,
     /// Lateness over the last second, ns (p50, p99, max): f64 bits.
@@ -360,15 +361,18 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
 
         // 2. One step.
         let t0 = Instant::now();
-        if actuator.step().is_err() {
+        if let Err(e) = actuator.step() {
             // Back to the initial state with the inputs cleared (whatever drove the state out
             // of range is not applied again); the next valid command applies as usual.
-            let tick = actuator.tick();
+            let tick = e.tick;
             actuator.reset();
             excitation.iter_mut().for_each(|u| *u = 0.0);
             load.iter_mut().for_each(|t| *t = 0.0);
-            io.stats.nonfinite_resets.fetch_add(1, Ordering::Relaxed);
-            send_event(Event::NonFiniteReset { tick });
+            io.stats.step_failures.fetch_add(1, Ordering::Relaxed);
+            send_event(Event::StepFailed {
+                tick,
+                reason: e.reason,
+            });
         }
         let step_ns = t0.elapsed().as_nanos() as u64;
         window_step_ns += step_ns;

@@ -4,10 +4,13 @@
 use crate::physics::contractile::crossbridge::Rates;
 use nalgebra::{Matrix3, Vector3};
 
-/// Below this Q0 there are no bonds to speak of: the closure relaxes the moments linearly.
-pub const Q0_EPSILON: f64 = 1e-12;
 /// Smallest variance q² (in ξ² units) the closure accepts.
 pub const Q_VARIANCE_FLOOR: f64 = 1e-10;
+/// Largest |mean| of the bond distribution (in h) the closure takes as Gaussian: bonds form on
+/// [0, 1] and detach fast outside it, so a physical distribution stays well inside.
+pub const MEAN_BOUND: f64 = 10.0;
+/// Largest variance (in h²) the closure takes as Gaussian, for the same reason.
+pub const VARIANCE_BOUND: f64 = 100.0;
 
 const INV_SQRT_2: f64 = std::f64::consts::FRAC_1_SQRT_2;
 const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
@@ -43,15 +46,19 @@ pub fn full_moments(p: f64, q: f64) -> [f64; 4] {
 }
 
 /// The DM closure `φ_k = ∫ ξ^k (f + g) n dξ` for the Gaussian n with moments `q`, k = 0, 1, 2.
+///
+/// Moments no Gaussian has (Q0 ≤ 0, or a mean or variance outside the physical bounds: numerical
+/// noise once the bonds are nearly all gone) are split into the nearest Gaussian part and a
+/// remainder that relaxes linearly at the mean rate `(f1 + g1)/2` (docs/model.md §6). The split is
+/// continuous in `q`, so the implicit solver's Newton iteration sees no jump as Q0 crosses zero.
 pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+    let k = 0.5 * (rates.f1 + rates.g1);
     let q0 = q[0];
-    if q0 <= Q0_EPSILON {
-        // No bonds: linear relaxation at the [0,1] mean rate keeps the moments decaying smoothly.
-        let k = 0.5 * (rates.f1 + rates.g1);
+    if q0 <= 0.0 {
         return [k * q[0], k * q[1], k * q[2]];
     }
-    let p = q[1] / q0;
-    let var = (q[2] / q0 - p * p).max(Q_VARIANCE_FLOOR);
+    let p = (q[1] / q0).clamp(-MEAN_BOUND, MEAN_BOUND);
+    let var = (q[2] / q0 - p * p).clamp(Q_VARIANCE_FLOOR, VARIANCE_BOUND);
     let sd = var.sqrt();
     let tau0 = -p / sd;
     let tau1 = (1.0 - p) / sd;
@@ -66,6 +73,9 @@ pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
             + rates.g3 * (m[k + 1] - j1[k + 1] - m[k] + j1[k]);
         *out = q0 * body;
     }
+    // The part of Q1, Q2 the Gaussian (p, sd) does not carry: zero for physical moments.
+    phi[1] += k * (q[1] - q0 * m[1]);
+    phi[2] += k * (q[2] - q0 * m[2]);
     phi
 }
 
@@ -192,6 +202,55 @@ pub fn unloaded_shortening_rate(rates: &Rates) -> Result<f64, SteadyStateError> 
         u += du;
         if u > 1e3 * rates.f1 {
             return Err(SteadyStateError("no unloaded velocity found"));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn huxley_rates() -> Rates {
+        Rates {
+            f1: 43.3,
+            g1: 10.0,
+            g2: 209.0,
+            g3: 0.0,
+        }
+    }
+
+    /// The closure is continuous in the moments, also where they stop being a distribution's
+    /// (Q0 crossing zero with Q1, Q2 ≠ 0, as the integrator's noise leaves them in a relaxed
+    /// muscle): the implicit solver's Newton iteration must never meet a jump there.
+    #[test]
+    fn closure_is_continuous_where_bonds_vanish() {
+        let rates = huxley_rates();
+        for (q1, q2) in [(1e-7, 5e-7), (-1e-7, 5e-7), (1e-9, 1e-12), (0.0, 0.0)] {
+            for q0 in [0.0f64, 1e-12, 1e-11, 1e-10, 1e-9] {
+                let d = 1e-6 * q0.max(1e-15);
+                let lo = closure(&rates, &[q0 - d, q1, q2]);
+                let hi = closure(&rates, &[q0 + d, q1, q2]);
+                for k in 0..3 {
+                    let jump = (hi[k] - lo[k]).abs();
+                    // A Lipschitz bound: rates of at most a few times g2 per unit of moment.
+                    assert!(
+                        jump <= 1e4 * rates.g2 * 2.0 * d + 1e-300,
+                        "φ{k} jumps by {jump:e} at Q0 = {q0:e} (Q1 = {q1:e}, Q2 = {q2:e})"
+                    );
+                }
+            }
+        }
+    }
+
+    /// Physical moments never reach the guard: the isometric steady state's closure balances
+    /// attachment exactly (`φ = β` at r = 1), as the plain Gaussian closure does.
+    #[test]
+    fn closure_is_the_gaussian_one_for_physical_moments() {
+        let rates = huxley_rates();
+        let q = isometric_steady_state(&rates).unwrap();
+        let phi = closure(&rates, &q);
+        for k in 0..3 {
+            assert!((phi[k] - rates.beta(k)).abs() < 1e-12 * rates.beta(k).abs().max(1.0));
         }
     }
 }
