@@ -78,6 +78,8 @@ pub struct DomainParticipantBuilder {
 
   same_host_loopback: bool, // prefer loopback for same-host peers + localhost SPDP discovery peers
 
+  bind_address: Ipv4Addr, // local address of the UDP sockets (UNSPECIFIED: all interfaces)
+
   socket_receive_buffer_size: usize,
   socket_send_buffer_size: usize,
 
@@ -93,6 +95,7 @@ impl DomainParticipantBuilder {
       domain_id,
       only_networks: None,
       same_host_loopback: true,
+      bind_address: Ipv4Addr::UNSPECIFIED,
       socket_receive_buffer_size: Self::DEFAULT_SOCKET_RECEIVE_BUFFER_SIZE,
       socket_send_buffer_size: Self::DEFAULT_SOCKET_SEND_BUFFER_SIZE,
       #[cfg(feature = "security")]
@@ -112,6 +115,21 @@ impl DomainParticipantBuilder {
   /// wildcard addresses for the selected ports.
   pub fn with_only_networks(mut self, addrs: impl IntoIterator<Item = impl Into<IpAddr>>) -> Self {
     self.only_networks = Some(addrs.into_iter().map(Into::into).collect());
+    self
+  }
+
+  /// Bind the participant's UDP sockets to this local address (default:
+  /// `0.0.0.0`, all interfaces).
+  ///
+  /// With a specific address (e.g. `127.0.0.1`) the unicast discovery and user
+  /// traffic listeners and the unicast sender socket are bound to it, so that
+  /// datagrams sent to any other local address are not received, and the
+  /// multicast listeners are not created (a socket bound to a unicast address
+  /// receives no multicast). Combine with
+  /// [`with_only_networks`](Self::with_only_networks) to announce only that
+  /// address.
+  pub fn with_bind_address(mut self, addr: Ipv4Addr) -> Self {
+    self.bind_address = addr;
     self
   }
 
@@ -344,6 +362,7 @@ impl DomainParticipantBuilder {
       self.socket_send_buffer_size,
       self.only_networks,
       self.same_host_loopback,
+      self.bind_address,
       dp_waker,
       discovery_sample_sender,
     )?;
@@ -977,6 +996,7 @@ impl DomainParticipantDisc {
     socket_send_buffer_size: usize,
     only_networks: Option<Vec<IpAddr>>,
     same_host_loopback: bool,
+    bind_address: Ipv4Addr,
     dp_waker: LoopWaker,
     discovery_sample_sender: ReadySender<mio1::Token>,
   ) -> CreateResult<Self> {
@@ -994,6 +1014,7 @@ impl DomainParticipantDisc {
       socket_send_buffer_size,
       only_networks,
       same_host_loopback,
+      bind_address,
       dp_waker,
       discovery_sample_sender,
     )?;
@@ -1236,6 +1257,7 @@ impl DomainParticipantInner {
     socket_send_buffer_size: usize,
     only_networks: Option<Vec<IpAddr>>,
     same_host_loopback: bool,
+    bind_address: Ipv4Addr,
     dp_waker: LoopWaker,
     discovery_sample_sender: ReadySender<mio1::Token>,
   ) -> CreateResult<Self> {
@@ -1245,18 +1267,25 @@ impl DomainParticipantInner {
     let only_networks: Option<Arc<[IpAddr]>> = only_networks.map(|v| v.into());
 
     let mut listeners = HashMap::new();
+    // Multicast is received only on sockets bound to all interfaces.
+    let bind_host = bind_address.to_string();
+    let multicast = bind_address.is_unspecified();
 
-    match UDPListener::new_multicast_with_buf_size(
-      "0.0.0.0",
-      spdp_well_known_multicast_port(domain_id),
-      Ipv4Addr::new(239, 255, 0, 1),
-      socket_receive_buffer_size,
-      only_networks.as_deref(),
-    ) {
-      Ok(l) => {
-        listeners.insert(DISCOVERY_MUL_LISTENER_TOKEN, l);
+    if multicast {
+      match UDPListener::new_multicast_with_buf_size(
+        "0.0.0.0",
+        spdp_well_known_multicast_port(domain_id),
+        Ipv4Addr::new(239, 255, 0, 1),
+        socket_receive_buffer_size,
+        only_networks.as_deref(),
+      ) {
+        Ok(l) => {
+          listeners.insert(DISCOVERY_MUL_LISTENER_TOKEN, l);
+        }
+        Err(e) => warn!("Cannot get multicast discovery listener: {e:?}"),
       }
-      Err(e) => warn!("Cannot get multicast discovery listener: {e:?}"),
+    } else {
+      info!("UDP sockets bound to {bind_address}: no multicast listeners");
     }
 
     let mut participant_id = 0;
@@ -1267,7 +1296,7 @@ impl DomainParticipantInner {
     // Numbers"
     while discovery_listener.is_none() && participant_id < 120 {
       discovery_listener = UDPListener::new_unicast_with_buf_size(
-        "0.0.0.0",
+        &bind_host,
         spdp_well_known_unicast_port(domain_id, participant_id),
         socket_receive_buffer_size,
       )
@@ -1288,21 +1317,23 @@ impl DomainParticipantInner {
 
     // Now the user traffic listeners
 
-    match UDPListener::new_multicast_with_buf_size(
-      "0.0.0.0",
-      user_traffic_multicast_port(domain_id),
-      Ipv4Addr::new(239, 255, 0, 1),
-      socket_receive_buffer_size,
-      only_networks.as_deref(),
-    ) {
-      Ok(l) => {
-        listeners.insert(USER_TRAFFIC_MUL_LISTENER_TOKEN, l);
+    if multicast {
+      match UDPListener::new_multicast_with_buf_size(
+        "0.0.0.0",
+        user_traffic_multicast_port(domain_id),
+        Ipv4Addr::new(239, 255, 0, 1),
+        socket_receive_buffer_size,
+        only_networks.as_deref(),
+      ) {
+        Ok(l) => {
+          listeners.insert(USER_TRAFFIC_MUL_LISTENER_TOKEN, l);
+        }
+        Err(e) => warn!("Cannot get multicast user traffic listener: {e:?}"),
       }
-      Err(e) => warn!("Cannot get multicast user traffic listener: {e:?}"),
     }
 
     let user_traffic_listener = UDPListener::new_unicast_with_buf_size(
-      "0.0.0.0",
+      &bind_host,
       user_traffic_unicast_port(domain_id, participant_id),
       socket_receive_buffer_size,
     )
@@ -1310,7 +1341,7 @@ impl DomainParticipantInner {
       if matches!(e.kind(), ErrorKind::AddrInUse) {
         // If we do not get the preferred listening port,
         // try again, with "any" port number.
-        UDPListener::new_unicast_with_buf_size("0.0.0.0", 0, socket_receive_buffer_size).or_else(
+        UDPListener::new_unicast_with_buf_size(&bind_host, 0, socket_receive_buffer_size).or_else(
           |e| {
             create_error_out_of_resources!(
               "Could not open unicast user traffic listener, any port number: {:?}",
@@ -1410,6 +1441,7 @@ impl DomainParticipantInner {
           status_sender,
           security_plugins_clone,
           only_networks_for_ev_loop,
+          bind_address,
           socket_send_buffer_size,
           same_host_loopback,
           reader_ready_rx,

@@ -2,10 +2,8 @@ use std::{
   cell::RefCell,
   collections::HashMap,
   io,
-  net::{IpAddr, SocketAddr, UdpSocket},
+  net::{IpAddr, Ipv4Addr, SocketAddr, UdpSocket},
 };
-#[cfg(test)]
-use std::net::Ipv4Addr;
 #[cfg(unix)]
 use std::os::unix::io::{AsRawFd, RawFd};
 
@@ -43,7 +41,7 @@ pub struct UDPSender {
 impl UDPSender {
   #[cfg(test)]
   pub fn new(sender_port: u16) -> io::Result<Self> {
-    Self::new_with_networks(sender_port, None, 0)
+    Self::new_with_networks(Ipv4Addr::UNSPECIFIED, sender_port, None, 0)
   }
 
   // Request (and verify) SO_SNDBUF on a sender socket. `size == 0` leaves the
@@ -72,12 +70,13 @@ impl UDPSender {
   }
 
   pub fn new_with_networks(
+    bind_address: Ipv4Addr,
     sender_port: u16,
     only_networks: Option<&[IpAddr]>,
     send_buffer_size: usize,
   ) -> io::Result<Self> {
     let unicast_socket = {
-      let saddr: SocketAddr = SocketAddr::new("0.0.0.0".parse().unwrap(), sender_port);
+      let saddr: SocketAddr = SocketAddr::new(bind_address.into(), sender_port);
       let raw_socket = Socket::new(Domain::IPV4, Type::DGRAM, Some(Protocol::UDP))?;
       Self::set_and_verify_send_buffer(&raw_socket, send_buffer_size);
       raw_socket.bind(&SockAddr::from(saddr))?;

@@ -1,7 +1,7 @@
 use std::{
   cell::RefCell,
   collections::{BTreeMap, BTreeSet, HashMap, VecDeque},
-  net::IpAddr,
+  net::{IpAddr, Ipv4Addr},
   rc::Rc,
   sync::{Arc, RwLock},
   time::{Duration, Instant},
@@ -162,6 +162,7 @@ impl DPEventLoop {
     participant_status_sender: StatusChannelSender<DomainParticipantStatusEvent>,
     security_plugins_opt: Option<SecurityPluginsHandle>,
     only_networks: Option<Arc<[IpAddr]>>,
+    bind_address: Ipv4Addr,
     socket_send_buffer_size: usize,
     same_host_loopback: bool,
     reader_ready: ReadyReceiver<EntityId>,
@@ -212,7 +213,12 @@ impl DPEventLoop {
 
     // port number 0 means OS chooses an available port number.
     let udp_sender = try_init!(
-      UDPSender::new_with_networks(0, only_networks.as_deref(), socket_send_buffer_size),
+      UDPSender::new_with_networks(
+        bind_address,
+        0,
+        only_networks.as_deref(),
+        socket_send_buffer_size,
+      ),
       "UDPSender construction fail"
     );
 
@@ -1342,6 +1348,7 @@ mod tests {
         participant_status_sender,
         None,
         None,
+        Ipv4Addr::UNSPECIFIED,
         0,
         true,
         reader_ready,
