@@ -525,12 +525,16 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         })
         .map_err(|e| format!("cannot start the signal thread: {e}"))?;
 
-    // DDS participant: ROS_DOMAIN_ID, discovery on loopback unless SUBNET.
+    // DDS participant: ROS_DOMAIN_ID. Unless SUBNET, discovery stays on this host: only 127.0.0.1
+    // is announced and every UDP socket is bound to it (rustdds binds 0.0.0.0 otherwise, open to
+    // any host), so there is no multicast listener and discovery is unicast on loopback.
     let domain = domain_id_from_env()?;
     let local = discovery_is_local();
     let mut builder = DomainParticipantBuilder::new(domain);
     if local {
-        builder = builder.with_only_networks([IpAddr::V4(Ipv4Addr::LOCALHOST)]);
+        builder = builder
+            .with_only_networks([IpAddr::V4(Ipv4Addr::LOCALHOST)])
+            .with_bind_address(Ipv4Addr::LOCALHOST);
     }
     let participant = builder
         .build()

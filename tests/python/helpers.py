@@ -382,3 +382,36 @@ def finite_state(state):
     for m in state.muscles:
         vals += [m.force, m.activation, m.fiber_length, m.stiffness, m.q0, m.q1, m.q2]
     return all(math.isfinite(v) for v in vals)
+
+
+def _proc_ip(hexaddr):
+    """An address as /proc/net/udp{,6} prints it (32-bit words in host byte order)."""
+    import socket
+    import struct
+
+    raw = b"".join(struct.pack("=I", int(hexaddr[i : i + 8], 16)) for i in range(0, len(hexaddr), 8))
+    return socket.inet_ntop(socket.AF_INET if len(raw) == 4 else socket.AF_INET6, raw)
+
+
+def udp_sockets(pid):
+    """The UDP sockets process `pid` holds, as sorted (local address, port) pairs, read from
+    /proc/PID/fd and /proc/PID/net/udp{,6} (the process's own network namespace)."""
+    inodes = set()
+    for fd in os.listdir(f"/proc/{pid}/fd"):
+        try:
+            link = os.readlink(f"/proc/{pid}/fd/{fd}")
+        except OSError:  # closed meanwhile
+            continue
+        if link.startswith("socket:["):
+            inodes.add(link[len("socket:[") : -1])
+    found = []
+    for table in ("udp", "udp6"):
+        path = Path(f"/proc/{pid}/net/{table}")
+        if not path.exists():
+            continue
+        for line in path.read_text().splitlines()[1:]:
+            f = line.split()
+            if len(f) > 9 and f[9] in inodes:
+                addr, port = f[1].split(":")
+                found.append((_proc_ip(addr), int(port, 16)))
+    return sorted(found)
