@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError, SyncSender, TrySendError};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -39,6 +39,9 @@ pub struct ChannelSpec {
 pub struct RecorderOptions {
     /// Messages the channel holds before producers start dropping.
     pub capacity: usize,
+    /// Message bytes the channel holds before producers start dropping (a flood of large
+    /// messages must not pile up in memory while the disk catches up).
+    pub capacity_bytes: usize,
     /// Longest time a written message may stay in an open (unreadable) chunk.
     pub flush_interval: Duration,
     /// Chunk size target, bytes.
@@ -51,6 +54,7 @@ impl Default for RecorderOptions {
     fn default() -> Self {
         Self {
             capacity: 8192,
+            capacity_bytes: 32 << 20,
             flush_interval: Duration::from_millis(500),
             chunk_size: 1 << 20,
             compression_level: 3,
@@ -78,6 +82,9 @@ pub struct RecorderStats {
     pub dropped: AtomicU64,
     /// Serialized message bytes written (before compression).
     pub message_bytes: AtomicU64,
+    /// Message bytes handed over but not yet written.
+    queued_bytes: AtomicUsize,
+    capacity_bytes: usize,
     state: Mutex<RecorderState>,
 }
 
@@ -185,6 +192,8 @@ impl Recorder {
             written: AtomicU64::new(0),
             dropped: AtomicU64::new(0),
             message_bytes: AtomicU64::new(0),
+            queued_bytes: AtomicUsize::new(0),
+            capacity_bytes: options.capacity_bytes.max(1),
             state: Mutex::new(RecorderState::Recording),
         });
         let (tx, rx) = mpsc::sync_channel::<Item>(options.capacity.max(1));
@@ -213,6 +222,7 @@ impl Recorder {
                             publish_time,
                             data,
                         }) => {
+                            w.stats.queued_bytes.fetch_sub(data.len(), Ordering::Relaxed);
                             if w.write(channel, log_time, publish_time, &data).is_err() {
                                 break;
                             }
@@ -280,15 +290,20 @@ impl Recorder {
         data: Vec<u8>,
     ) -> bool {
         let Some(tx) = &self.tx else { return false };
-        let ok = tx
+        let len = data.len();
+        self.stats.queued_bytes.fetch_add(len, Ordering::Relaxed);
+        let sent = tx
             .send(Item::Message {
                 channel,
                 log_time,
                 publish_time,
                 data,
             })
-            .is_ok()
-            && self.stats.state() == RecorderState::Recording;
+            .is_ok();
+        if !sent {
+            self.stats.queued_bytes.fetch_sub(len, Ordering::Relaxed);
+        }
+        let ok = sent && self.stats.state() == RecorderState::Recording;
         if !ok {
             self.stats.dropped.fetch_add(1, Ordering::Relaxed);
         }
@@ -325,9 +340,17 @@ pub struct RecordSender {
 }
 
 impl RecordSender {
-    /// Hands a message over without waiting; false (and counted) if it was dropped.
+    /// Hands a message over without waiting; false (and counted) if it was dropped: the channel
+    /// is full, or holds its budget of bytes already.
     pub fn record(&self, channel: usize, log_time: u64, publish_time: u64, data: Vec<u8>) -> bool {
         let Some(tx) = &self.tx else { return false };
+        let len = data.len();
+        let queued = self.stats.queued_bytes.fetch_add(len, Ordering::Relaxed);
+        if queued + len > self.stats.capacity_bytes {
+            self.stats.queued_bytes.fetch_sub(len, Ordering::Relaxed);
+            self.stats.dropped.fetch_add(1, Ordering::Relaxed);
+            return false;
+        }
         match tx.try_send(Item::Message {
             channel,
             log_time,
@@ -336,6 +359,7 @@ impl RecordSender {
         }) {
             Ok(()) => true,
             Err(TrySendError::Full(_)) | Err(TrySendError::Disconnected(_)) => {
+                self.stats.queued_bytes.fetch_sub(len, Ordering::Relaxed);
                 self.stats.dropped.fetch_add(1, Ordering::Relaxed);
                 false
             }

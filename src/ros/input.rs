@@ -13,12 +13,14 @@ pub struct Accepted {
     pub clamped: Vec<(String, f64)>,
 }
 
-/// Why a command was rejected.
+/// Why a command was rejected. Names from the command are kept as short excerpts
+/// ([`quote`]): a rejection is logged, counted and shown in `/diagnostics`, and a hostile name may
+/// be megabytes long.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Rejection {
     /// The two arrays differ in length.
     LengthMismatch { names: usize, values: usize },
-    /// A name that the actuator does not have.
+    /// A name that the actuator does not have (quoted).
     UnknownName { name: String, known: Vec<String> },
     /// The same name twice in one command.
     DuplicateName(String),
@@ -49,14 +51,31 @@ impl fmt::Display for Rejection {
                 "{names} names but {values} values: the arrays must have the same length"
             ),
             Rejection::UnknownName { name, known } => {
-                write!(f, "unknown name {name:?} (known: {})", known.join(", "))
+                const SHOWN: usize = 16;
+                write!(f, "unknown name {name} (known: ")?;
+                write!(f, "{}", known[..known.len().min(SHOWN)].join(", "))?;
+                if known.len() > SHOWN {
+                    write!(f, " and {} more", known.len() - SHOWN)?;
+                }
+                write!(f, ")")
             }
-            Rejection::DuplicateName(n) => write!(f, "name {n:?} given twice"),
+            Rejection::DuplicateName(n) => write!(f, "name {n} given twice"),
             Rejection::NonFinite { name, value } => {
-                write!(f, "value for {name:?} is {value}: must be finite")
+                write!(f, "value for {name} is {value}: must be finite")
             }
             Rejection::Empty => write!(f, "no names given"),
         }
+    }
+}
+
+/// A user-supplied name as the log and the diagnostics show it: quoted, at most 64 characters,
+/// with its length when it was cut.
+pub fn quote(name: &str) -> String {
+    let e = crate::config::excerpt(name);
+    if e.len() == name.len() {
+        format!("{name:?}")
+    } else {
+        format!("{e:?} ({} bytes)", name.len())
     }
 }
 
@@ -76,15 +95,15 @@ fn common(names: &[String], values: &[f64], known: &[String]) -> Result<Vec<usiz
             .iter()
             .position(|k| k == n)
             .ok_or_else(|| Rejection::UnknownName {
-                name: n.clone(),
+                name: quote(n),
                 known: known.to_vec(),
             })?;
         if idx.contains(&i) {
-            return Err(Rejection::DuplicateName(n.clone()));
+            return Err(Rejection::DuplicateName(quote(n)));
         }
         if !v.is_finite() {
             return Err(Rejection::NonFinite {
-                name: n.clone(),
+                name: quote(n),
                 value: *v,
             });
         }
@@ -160,6 +179,24 @@ mod tests {
         // Rejected whole: a bad entry after a good one still rejects.
         let e = validate_activation(&s(&["flexor", "x"]), &[0.5, 0.5], &known).unwrap_err();
         assert_eq!(e.kind(), "unknown_name");
+    }
+
+    /// A hostile name is quoted as a short excerpt with its length, never whole.
+    #[test]
+    fn rejections_quote_names_briefly() {
+        let known = s(&["flexor", "extensor"]);
+        let huge = "x".repeat(1 << 20);
+        for e in [
+            validate_activation(&[huge.clone()], &[0.5], &known).unwrap_err(),
+            validate_activation(&s(&["flexor"]), &[0.5, 0.1], &known).unwrap_err(),
+        ] {
+            assert!(e.to_string().len() < 200, "{} bytes", e.to_string().len());
+        }
+        let e = validate_activation(&[huge], &[0.5], &known).unwrap_err();
+        assert!(e.to_string().contains("(1048576 bytes)"), "{e}");
+        let many: Vec<String> = (0..100).map(|i| format!("m{i}")).collect();
+        let e = validate_load(&s(&["knee"]), &[1.0], &many).unwrap_err();
+        assert!(e.to_string().ends_with("m15 and 84 more)"), "{e}");
     }
 
     #[test]

@@ -67,11 +67,23 @@ pub struct Logger {
     name: String,
 }
 
+/// Longest log line, characters: what a user sends is quoted as an excerpt already; this is
+/// the last guard (a line goes to stderr and `/rosout`).
+const MAX_LOG_CHARS: usize = 1000;
+
 impl Logger {
     fn log(&self, sev: Severity, msg: &str) {
         if sev < self.level {
             return;
         }
+        let cut;
+        let msg = match msg.char_indices().nth(MAX_LOG_CHARS) {
+            Some((at, _)) => {
+                cut = format!("{}... ({} bytes)", &msg[..at], msg.len());
+                cut.as_str()
+            }
+            None => msg,
+        };
         if self.stdout {
             let t = std::time::SystemTime::now()
                 .duration_since(std::time::UNIX_EPOCH)
@@ -199,6 +211,32 @@ impl Shared {
     }
 }
 
+/// Longest a parameter change may take to build its actuator (configuration file read and
+/// calibration) before it is refused.
+const BUILD_TIMEOUT: Duration = Duration::from_secs(5);
+
+/// Builds the actuator `params` describe on a thread of its own: the parameter callbacks run on
+/// the node's executor, which must not wait on a slow file system for longer than
+/// [`BUILD_TIMEOUT`] (a configuration is read only from a regular file of at most 1 MiB, but that
+/// file may sit on a stalled network mount).
+fn build_off_executor(params: &NodeParams) -> Result<crate::sim::Actuator, String> {
+    let (tx, rx) = mpsc::sync_channel(1);
+    let p = params.clone();
+    std::thread::Builder::new()
+        .name("build".into())
+        .spawn(move || {
+            let _ = tx.send(p.build());
+        })
+        .map_err(|e| format!("cannot start a thread to build the actuator: {e}"))?;
+    rx.recv_timeout(BUILD_TIMEOUT).map_err(|_| {
+        format!(
+            "building the actuator took longer than {} s (is the configuration file on a \
+             stalled file system?)",
+            BUILD_TIMEOUT.as_secs()
+        )
+    })?
+}
+
 /// Checks one parameter change against the current set (and builds the actuator it would give
 /// when it affects the simulation), without applying it.
 fn validate_param(
@@ -213,7 +251,7 @@ fn validate_param(
         .clone();
     candidate.set(name, value, false)?;
     if matches!(name, params::MODEL | params::RATE_HZ | params::CONFIG) {
-        candidate.build()?;
+        build_off_executor(&candidate)?;
     }
     Ok(())
 }
@@ -235,7 +273,7 @@ fn apply_param(
     candidate.set(name, value, false)?;
     match name {
         params::MODEL | params::RATE_HZ | params::CONFIG => {
-            let act = candidate.build()?;
+            let act = build_off_executor(&candidate)?;
             if let Ok(mut n) = shared.names.write() {
                 *n = Names {
                     muscles: act.muscle_names().to_vec(),
@@ -251,7 +289,11 @@ fn apply_param(
     *p = candidate;
     drop(p);
     if let Some(l) = shared.log() {
-        l.info(&format!("parameter {name} set to {value:?}"));
+        let shown = match value {
+            ros2_client::ParameterValue::String(s) => format!("{:?}", crate::config::excerpt(s)),
+            other => crate::config::excerpt(&format!("{other:?}")),
+        };
+        l.info(&format!("parameter {name} set to {shown}"));
     }
     Ok(())
 }

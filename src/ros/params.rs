@@ -1,6 +1,6 @@
 //! The node's six parameters (SPEC.md): their defaults, types and validation.
 
-use crate::config::ActuatorConfig;
+use crate::config::{excerpt, ActuatorConfig};
 use crate::physics::model::ModelKind;
 use crate::sim::Actuator;
 use ros2_client::ParameterValue;
@@ -17,6 +17,10 @@ pub const ALL: [&str; 6] = [MODEL, RATE_HZ, PUBLISH_RATE_HZ, CONFIG, RECORD, REC
 
 /// Upper bound on the tick rate (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;
+/// Longest `model` value, characters (a model name).
+pub const MAX_NAME_CHARS: usize = 64;
+/// Longest `config` and `record_dir` values, bytes (PATH_MAX).
+pub const MAX_PATH_BYTES: usize = 4096;
 
 /// The values of the node's parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -85,7 +89,21 @@ impl NodeParams {
         };
         let as_string = |v: &ParameterValue| -> Result<String, String> {
             match v {
-                ParameterValue::String(s) => Ok(s.clone()),
+                ParameterValue::String(s) => {
+                    let (limit, too_long) = if name == MODEL {
+                        ("64 characters", s.chars().count() > MAX_NAME_CHARS)
+                    } else {
+                        ("4096 bytes", s.len() > MAX_PATH_BYTES)
+                    };
+                    if too_long {
+                        return Err(format!(
+                            "parameter {name:?} is too long ({} bytes, at most {limit}): {}",
+                            s.len(),
+                            excerpt(s)
+                        ));
+                    }
+                    Ok(s.clone())
+                }
                 other => Err(format!(
                     "parameter {name:?} must be a string, got {}",
                     describe(other)
@@ -130,7 +148,8 @@ impl NodeParams {
             RECORD_DIR => self.record_dir = as_string(value)?,
             other => {
                 return Err(format!(
-                    "unknown parameter {other:?} (known: {})",
+                    "unknown parameter {:?} (known: {})",
+                    excerpt(other),
                     ALL.join(", ")
                 ))
             }
@@ -174,8 +193,8 @@ fn describe(v: &ParameterValue) -> String {
         ParameterValue::Boolean(b) => format!("bool {b}"),
         ParameterValue::Integer(i) => format!("integer {i}"),
         ParameterValue::Double(d) => format!("double {d}"),
-        ParameterValue::String(s) => format!("string {s:?}"),
-        other => format!("{other:?}"),
+        ParameterValue::String(s) => format!("string {:?}", excerpt(s)),
+        other => excerpt(&format!("{other:?}")),
     }
 }
 
@@ -219,6 +238,30 @@ mod tests {
         assert_eq!(publish_every(1000.0, 100.0), 10);
         assert_eq!(publish_every(1000.0, 2000.0), 1);
         assert_eq!(p.values().len(), 6);
+    }
+
+    /// Oversized strings are refused with an excerpt, never echoed whole (a parameter reply of
+    /// 70 kB silenced the parameter service for that client).
+    #[test]
+    fn long_strings_are_refused_briefly() {
+        let mut p = NodeParams::default();
+        for (name, len) in [(MODEL, 65), (MODEL, 70_000), (CONFIG, 4097), (RECORD_DIR, 120_000)] {
+            let e = p
+                .set(name, &ParameterValue::String("m".repeat(len)), false)
+                .unwrap_err();
+            assert!(e.contains("too long") && e.len() < 200, "{name}: {e}");
+        }
+        assert!(p
+            .set(CONFIG, &ParameterValue::String("c".repeat(4096)), false)
+            .is_ok());
+        let e = p
+            .set(&"n".repeat(10_000), &ParameterValue::Boolean(true), false)
+            .unwrap_err();
+        assert!(e.len() < 200, "{e}");
+        let e = p
+            .set(RECORD, &ParameterValue::String("y".repeat(10_000)), false)
+            .unwrap_err();
+        assert!(e.len() < 200, "{e}");
     }
 
     #[test]
