@@ -193,7 +193,7 @@ struct Names {
 struct Shared {
     params: Mutex<NodeParams>,
     names: RwLock<Names>,
-    commands: Mutex<mpsc::Sender<Command>>,
+    commands: tick::CommandSender,
     /// Parameter changes act only once the node is up (the store also runs the action for the
     /// initial values).
     armed: AtomicBool,
@@ -205,9 +205,8 @@ impl Shared {
         self.logger.get()
     }
     fn send(&self, c: Command) {
-        if let Ok(tx) = self.commands.lock() {
-            let _ = tx.send(c);
-        }
+        // Never waits for the tick loop; a full queue drops (and counts) the command.
+        let _ = self.commands.send(c);
     }
 }
 
@@ -439,6 +438,9 @@ fn diagnostics(
             ),
             kv("states_dropped", ld(&stats.samples_dropped)),
             kv("applied_inputs_dropped", ld(&stats.applied_dropped)),
+            kv("commands_dropped", ld(&stats.commands_dropped)),
+            kv("commands_deferred", ld(&stats.commands_deferred)),
+            kv("events_dropped", ld(&stats.events_dropped)),
             kv("publish_errors", publish_errors),
             kv("step_failures", step_failures),
             kv("resets", ld(&stats.resets)),
@@ -592,7 +594,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             muscles: actuator.muscle_names().to_vec(),
             joints: actuator.joint_names().to_vec(),
         }),
-        commands: Mutex::new(cmd_tx.clone()),
+        commands: cmd_tx.clone(),
         armed: AtomicBool::new(false),
         logger: OnceLock::new(),
     });

@@ -1,13 +1,20 @@
 //! The fixed-rate tick loop, on its own thread. It owns the actuator; everything else talks to
-//! it through channels, so it never waits for DDS: commands queue in a channel and are applied
-//! at the next tick boundary, samples go out through a bounded channel (dropped and counted when
-//! the publisher falls behind), events for the log through another.
+//! it through queues, so it never waits for DDS: commands queue in a bounded [`command_channel`]
+//! and are applied at the next tick boundary, samples go out through a bounded channel (dropped
+//! and counted when the publisher falls behind), events for the log through another (likewise).
+//!
+//! The command queue is a mutex-guarded ring that the loop only ever `try_lock`s: a sender that
+//! holds it (and was preempted, e.g. by this very thread running under SCHED_FIFO on the same
+//! core) makes the loop leave the commands for the next tick, never wait. `std::sync::mpsc`'s
+//! `try_recv` does wait in that case (it spins until a sender that has claimed a slot finishes
+//! writing it), which under a flood of commands stalled the loop for 30-350 ms at a time.
 
 use crate::physics::model::ModelKind;
 use crate::sim::{Actuator, StateSnapshot};
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError, TrySendError};
-use std::sync::Arc;
+use std::collections::VecDeque;
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::mpsc::{SyncSender, TrySendError};
+use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 /// A request for the tick loop, applied at the next tick boundary.
@@ -86,6 +93,14 @@ pub struct TickStats {
     pub samples_dropped: AtomicU64,
     /// Applied inputs the recorder channel had no room for.
     pub applied_dropped: AtomicU64,
+    /// Commands the command queue had no room for (dropped on the sending side; a copy of the
+    /// queue's own count, updated every tick).
+    pub commands_dropped: AtomicU64,
+    /// Ticks at which the command queue was busy (a sender held it): its commands were left for
+    /// the next tick rather than waited for.
+    pub commands_deferred: AtomicU64,
+    /// Events (for the log) the event channel had no room for.
+    pub events_dropped: AtomicU64,
     /// Resets after a failed step.
     pub step_failures: AtomicU64,
     /// Resets on request.
@@ -190,7 +205,7 @@ pub struct RunSummary {
 
 /// The channels and flags of a running loop.
 pub struct LoopIo {
-    pub commands: Receiver<Command>,
+    pub commands: CommandReceiver,
     pub samples: SyncSender<Sample>,
     pub events: SyncSender<Event>,
     pub stats: Arc<TickStats>,
@@ -287,14 +302,28 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
     let mut origin_wall = wall_ns();
     let mut n: u64 = 0; // ticks since `origin`
     let send_event = |e: Event| {
-        let _ = io.events.try_send(e);
+        if let Err(TrySendError::Full(_)) = io.events.try_send(e) {
+            io.stats.events_dropped.fetch_add(1, Ordering::Relaxed);
+        }
     };
+    let mut commands = io.commands.buffer();
 
     while !io.stop.load(Ordering::Relaxed) {
-        // 1. Inputs that arrived since the last tick take effect now.
-        loop {
-            match io.commands.try_recv() {
-                Ok(Command::Excitation(v)) => {
+        // 1. Inputs that arrived since the last tick take effect now (never waiting for the
+        //    queue: when a sender holds it, they take effect at the next tick).
+        match io.commands.try_drain(&mut commands) {
+            Drain::Taken => {}
+            Drain::Busy => {
+                io.stats.commands_deferred.fetch_add(1, Ordering::Relaxed);
+            }
+            Drain::Disconnected => io.stop.store(true, Ordering::Relaxed),
+        }
+        io.stats
+            .commands_dropped
+            .store(io.commands.dropped(), Ordering::Relaxed);
+        for command in commands.drain(..) {
+            match command {
+                Command::Excitation(v) => {
                     for &(i, u) in &v {
                         if let Some(slot) = excitation.get_mut(i) {
                             *slot = u;
@@ -303,7 +332,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     }
                     hand_applied(&io, &actuator, true, &muscle_names, v);
                 }
-                Ok(Command::Load(v)) => {
+                Command::Load(v) => {
                     for &(i, t) in &v {
                         if let Some(slot) = load.get_mut(i) {
                             *slot = t;
@@ -312,7 +341,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     }
                     hand_applied(&io, &actuator, false, &joint_names, v);
                 }
-                Ok(Command::Reset(reply)) => {
+                Command::Reset(reply) => {
                     let before = actuator.tick();
                     actuator.reset();
                     excitation.iter_mut().for_each(|u| *u = 0.0);
@@ -323,7 +352,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         let _ = r.send(before);
                     }
                 }
-                Ok(Command::Replace(new)) => {
+                Command::Replace(new) => {
                     actuator = *new;
                     muscle_names = actuator.muscle_names().into();
                     joint_names = actuator.joint_names().into();
@@ -350,12 +379,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         rate_hz: actuator.rate_hz(),
                     });
                 }
-                Ok(Command::PublishEvery(k)) => publish_every = k.max(1),
-                Err(TryRecvError::Empty) => break,
-                Err(TryRecvError::Disconnected) => {
-                    io.stop.store(true, Ordering::Relaxed);
-                    break;
-                }
+                Command::PublishEvery(k) => publish_every = k.max(1),
             }
         }
 
@@ -477,9 +501,144 @@ pub fn spawn(
         .spawn(move || run(actuator, publish_every, io))
 }
 
-/// A channel pair for commands (unbounded: commands are small and rate-limited by DDS).
-pub fn command_channel() -> (mpsc::Sender<Command>, Receiver<Command>) {
-    mpsc::channel()
+/// Inputs (excitations, loads) the command queue holds before it drops new ones: a second of
+/// commands at 1 kHz, far more than arrive between two ticks unless the loop is stopped.
+pub const COMMAND_CAPACITY: usize = 1024;
+
+/// Extra room for control commands (reset, actuator replacement, publish rate), so that a
+/// flood of inputs never crowds them out; beyond it they are dropped (and counted) too.
+pub const CONTROL_RESERVE: usize = 64;
+
+/// The command queue shared by the senders and the loop.
+struct CommandQueue {
+    items: Mutex<VecDeque<Command>>,
+    /// Live senders; none left (and the queue empty) = disconnected.
+    senders: AtomicUsize,
+    dropped: AtomicU64,
+    inputs_capacity: usize,
+    capacity: usize,
+}
+
+impl CommandQueue {
+    fn lock(&self) -> MutexGuard<'_, VecDeque<Command>> {
+        // A panic while the lock was held cannot leave the deque inconsistent: use it.
+        self.items.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// The sending side of the command queue (the DDS side, any thread). Never waits for a tick:
+/// only, briefly, for another sender's push or the loop's drain (a copy of the queued commands);
+/// a full queue drops the command and counts it.
+pub struct CommandSender {
+    queue: Arc<CommandQueue>,
+}
+
+impl CommandSender {
+    /// Queues `c` for the next tick; gives it back when the queue is full (it is then counted
+    /// as dropped).
+    pub fn send(&self, c: Command) -> Result<(), Command> {
+        let q = &self.queue;
+        let limit = match c {
+            Command::Excitation(_) | Command::Load(_) => q.inputs_capacity,
+            _ => q.capacity,
+        };
+        let mut items = q.lock();
+        if items.len() >= limit {
+            drop(items);
+            q.dropped.fetch_add(1, Ordering::Relaxed);
+            return Err(c);
+        }
+        items.push_back(c);
+        Ok(())
+    }
+
+    /// Commands dropped so far because the queue was full.
+    pub fn dropped(&self) -> u64 {
+        self.queue.dropped.load(Ordering::Relaxed)
+    }
+}
+
+impl Clone for CommandSender {
+    fn clone(&self) -> Self {
+        self.queue.senders.fetch_add(1, Ordering::AcqRel);
+        Self {
+            queue: self.queue.clone(),
+        }
+    }
+}
+
+impl Drop for CommandSender {
+    fn drop(&mut self) {
+        self.queue.senders.fetch_sub(1, Ordering::AcqRel);
+    }
+}
+
+/// What [`CommandReceiver::try_drain`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Drain {
+    /// The queued commands (maybe none) were moved to the buffer.
+    Taken,
+    /// A sender held the queue: nothing taken, try again at the next tick.
+    Busy,
+    /// Every sender is gone and nothing is left.
+    Disconnected,
+}
+
+/// The loop's side of the command queue.
+pub struct CommandReceiver {
+    queue: Arc<CommandQueue>,
+}
+
+impl CommandReceiver {
+    /// A buffer for [`Self::try_drain`] that never has to grow (allocated once, before the
+    /// loop starts).
+    pub fn buffer(&self) -> Vec<Command> {
+        Vec::with_capacity(self.queue.capacity)
+    }
+
+    /// Moves every queued command to `out`, in order, if the queue is free; never waits (a
+    /// `try_lock`, never a blocking lock or a spin).
+    pub fn try_drain(&self, out: &mut Vec<Command>) -> Drain {
+        let mut items = match self.queue.items.try_lock() {
+            Ok(g) => g,
+            Err(TryLockError::Poisoned(e)) => e.into_inner(),
+            Err(TryLockError::WouldBlock) => return Drain::Busy,
+        };
+        if items.is_empty() && self.queue.senders.load(Ordering::Acquire) == 0 {
+            return Drain::Disconnected;
+        }
+        out.extend(items.drain(..));
+        Drain::Taken
+    }
+
+    /// Commands dropped so far because the queue was full.
+    pub fn dropped(&self) -> u64 {
+        self.queue.dropped.load(Ordering::Relaxed)
+    }
+}
+
+/// The command queue, bounded: [`COMMAND_CAPACITY`] inputs plus [`CONTROL_RESERVE`] for control
+/// commands.
+pub fn command_channel() -> (CommandSender, CommandReceiver) {
+    command_channel_with(COMMAND_CAPACITY, CONTROL_RESERVE)
+}
+
+/// The command queue with room for `inputs` inputs and `reserve` more control commands.
+pub fn command_channel_with(inputs: usize, reserve: usize) -> (CommandSender, CommandReceiver) {
+    let capacity = inputs + reserve;
+    let queue = Arc::new(CommandQueue {
+        items: Mutex::new(VecDeque::with_capacity(capacity)),
+        senders: AtomicUsize::new(1),
+        dropped: AtomicU64::new(0),
+        inputs_capacity: inputs,
+        capacity,
+    });
+    (
+        CommandSender {
+            queue: queue.clone(),
+        },
+        CommandReceiver { queue },
+    )
 }
 
 #[cfg(test)]
@@ -500,5 +659,137 @@ mod tests {
         assert_eq!(h.quantile_ns(1.0), 1_000_000_000);
         h.clear();
         assert_eq!(h.quantile_ns(0.5), 0);
+    }
+
+    fn excitation(u: f64) -> Command {
+        Command::Excitation(vec![(0, u)])
+    }
+
+    #[test]
+    fn command_queue_is_bounded_and_counts_drops() {
+        let (tx, rx) = command_channel_with(4, 2);
+        for k in 0..4 {
+            assert!(tx.send(excitation(k as f64 / 10.0)).is_ok());
+        }
+        // Inputs beyond their capacity are dropped and counted...
+        assert!(matches!(
+            tx.send(excitation(0.9)),
+            Err(Command::Excitation(_))
+        ));
+        assert!(tx.send(Command::Load(vec![(0, 1.0)])).is_err());
+        assert_eq!(tx.dropped(), 2);
+        // ...control commands still have their reserve, then are dropped too.
+        assert!(tx.send(Command::Reset(None)).is_ok());
+        assert!(tx.send(Command::PublishEvery(2)).is_ok());
+        assert!(tx.send(Command::Reset(None)).is_err());
+        assert_eq!(rx.dropped(), 3);
+        let mut buf = rx.buffer();
+        assert_eq!(rx.try_drain(&mut buf), Drain::Taken);
+        assert_eq!(buf.len(), 6);
+        let us: Vec<f64> = buf
+            .iter()
+            .filter_map(|c| match c {
+                Command::Excitation(v) => Some(v[0].1),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            us,
+            vec![0.0, 0.1, 0.2, 0.3],
+            "in order, the first ones kept"
+        );
+        assert!(matches!(buf[4], Command::Reset(None)));
+        assert!(matches!(buf[5], Command::PublishEvery(2)));
+        // Room again once drained; the buffer never grew.
+        let cap = buf.capacity();
+        buf.clear();
+        assert!(tx.send(excitation(0.5)).is_ok());
+        assert_eq!(rx.try_drain(&mut buf), Drain::Taken);
+        assert_eq!((buf.len(), buf.capacity()), (1, cap));
+        assert_eq!(cap, 6);
+    }
+
+    #[test]
+    fn draining_never_waits_for_a_sender_holding_the_queue() {
+        let (tx, rx) = command_channel();
+        tx.send(excitation(0.5)).ok();
+        let mut buf = rx.buffer();
+        {
+            // A sender inside `send` (e.g. preempted there) holds the lock.
+            let _held = rx.queue.items.lock().unwrap();
+            assert_eq!(rx.try_drain(&mut buf), Drain::Busy);
+            assert!(buf.is_empty());
+        }
+        assert_eq!(rx.try_drain(&mut buf), Drain::Taken);
+        assert_eq!(buf.len(), 1);
+    }
+
+    #[test]
+    fn command_queue_disconnects_once_senders_are_gone_and_it_is_empty() {
+        let (tx, rx) = command_channel();
+        let tx2 = tx.clone();
+        drop(tx);
+        tx2.send(excitation(0.1)).ok();
+        drop(tx2);
+        let mut buf = rx.buffer();
+        assert_eq!(rx.try_drain(&mut buf), Drain::Taken);
+        assert_eq!(buf.len(), 1);
+        assert_eq!(rx.try_drain(&mut buf), Drain::Disconnected);
+    }
+
+    /// The loop keeps ticking while a sender holds the command queue (the commands then take
+    /// effect at a later tick). No timing figure is asserted: with a loop that waited for the
+    /// queue the tick count would not move at all while it is held.
+    #[test]
+    fn loop_keeps_ticking_while_a_sender_holds_the_queue() {
+        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
+        let (tx, rx) = command_channel();
+        let (sample_tx, _sample_rx) = std::sync::mpsc::sync_channel(4);
+        let (event_tx, _event_rx) = std::sync::mpsc::sync_channel(4);
+        let stats = Arc::new(TickStats::default());
+        let stop = Arc::new(AtomicBool::new(false));
+        let queue = rx.queue.clone();
+        let handle = spawn(
+            actuator,
+            1,
+            LoopIo {
+                commands: rx,
+                samples: sample_tx,
+                events: event_tx,
+                stats: stats.clone(),
+                stop: stop.clone(),
+                applied: None,
+            },
+        )
+        .unwrap();
+        let wait_for = |what: &str, cond: &mut dyn FnMut() -> bool| {
+            let end = Instant::now() + Duration::from_secs(30);
+            while !cond() {
+                assert!(Instant::now() < end, "timed out waiting for {what}");
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        };
+        wait_for("the first tick", &mut || {
+            stats.ticks.load(Ordering::Relaxed) > 0
+        });
+        let (reply_tx, mut reply_rx) = futures::channel::oneshot::channel();
+        {
+            let _held = queue.items.lock().unwrap();
+            let t0 = stats.ticks.load(Ordering::Relaxed);
+            wait_for("ticks while the queue is held", &mut || {
+                stats.ticks.load(Ordering::Relaxed) >= t0 + 5
+                    && stats.commands_deferred.load(Ordering::Relaxed) >= 1
+            });
+        }
+        // The queue is free again: a command goes through.
+        tx.send(Command::Reset(Some(reply_tx))).ok();
+        wait_for("the reset's reply", &mut || {
+            matches!(reply_rx.try_recv(), Ok(Some(_)))
+        });
+        assert_eq!(stats.resets.load(Ordering::Relaxed), 1);
+        assert_eq!(stats.commands_dropped.load(Ordering::Relaxed), 0);
+        stop.store(true, Ordering::Relaxed);
+        let summary = handle.join().unwrap();
+        assert!(summary.ticks >= 6);
     }
 }
