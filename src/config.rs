@@ -250,10 +250,10 @@ impl ActuatorConfig {
     pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
         let parse_err = |message: String| ConfigError::Parse {
             path: "<text>".into(),
-            message,
+            message: one_line(&message),
         };
         let mut raw: toml::Table =
-            toml::from_str(text).map_err(|e| parse_err(e.to_string().trim().replace('\n', " ")))?;
+            toml::from_str(text).map_err(|e| parse_err(toml_error(&e, text)))?;
         if let Some(k) = raw.keys().find(|k| *k != "joint" && *k != "muscle") {
             return Err(parse_err(format!(
                 "unknown key {:?}: expected `joint` and `muscle`",
@@ -612,6 +612,42 @@ pub fn read_regular_file(path: &Path, max_bytes: u64) -> std::io::Result<Vec<u8>
         ));
     }
     Ok(buf)
+}
+
+/// Longest parse error message, characters (it may quote the file).
+pub const MAX_MESSAGE_CHARS: usize = 300;
+
+/// A message on one line (whitespace runs, newlines included, made one space), at most
+/// [`MAX_MESSAGE_CHARS`] characters.
+pub fn one_line(message: &str) -> String {
+    let flat = message.split_whitespace().collect::<Vec<_>>().join(" ");
+    if flat.chars().count() <= MAX_MESSAGE_CHARS {
+        flat
+    } else {
+        let mut e: String = flat.chars().take(MAX_MESSAGE_CHARS - 3).collect();
+        e.push_str("...");
+        e
+    }
+}
+
+/// A TOML parse error of `text` as `line L, column C: message` on one line (the parser's own
+/// rendering quotes the whole offending line, however long).
+pub fn toml_error(e: &toml::de::Error, text: &str) -> String {
+    let at = match e.span() {
+        Some(span) => {
+            let before = &text.as_bytes()[..span.start.min(text.len())];
+            let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+            let column = before.len()
+                - before
+                    .iter()
+                    .rposition(|&b| b == b'\n')
+                    .map_or(0, |i| i + 1)
+                + 1;
+            format!("TOML parse error at line {line}, column {column}: ")
+        }
+        None => "TOML parse error: ".into(),
+    };
+    one_line(&format!("{at}{}", e.message()))
 }
 
 /// A user string as quoted in messages: at most 64 characters.

@@ -19,9 +19,20 @@ pub fn check_rate_hz(name: &str, r: f64) -> Result<(), String> {
         Ok(())
     } else {
         Err(format!(
-            "{name} = {r} is invalid: must be a finite number > 0 and <= {MAX_RATE_HZ} (the \
-             node's limit for rate_hz)"
+            "{name} = {} is invalid: must be a finite number > 0 and <= {MAX_RATE_HZ} (the \
+             node's limit for rate_hz)",
+            shown(r)
         ))
+    }
+}
+
+/// A number as written in messages: plainly, or in scientific notation if that is long.
+fn shown(v: f64) -> String {
+    let plain = v.to_string();
+    if plain.len() <= 20 {
+        plain
+    } else {
+        format!("{v:e}")
     }
 }
 
