@@ -127,7 +127,7 @@ fn mutate(text: &str, rng: &mut Rng) -> Vec<u8> {
             ls.swap(line, other);
             rebuild(ls)
         }
-        3 | 4 | 5 => {
+        3..=5 => {
             // Numbers replaced: one, or several at once.
             let spans = numbers(text);
             if spans.is_empty() {
@@ -139,7 +139,7 @@ fn mutate(text: &str, rng: &mut Rng) -> Vec<u8> {
             chosen.dedup();
             let mut out = text.to_string();
             for (a, b) in chosen.into_iter().rev() {
-                let value: &str = *rng.pick::<&str>(&HOSTILE_NUMBERS);
+                let value: &str = rng.pick::<&str>(&HOSTILE_NUMBERS);
                 out.replace_range(a..b, value);
             }
             out.into_bytes()

@@ -94,6 +94,9 @@ struct Msg {
 
 type Meta = Vec<(String, BTreeMap<String, String>)>;
 
+/// A change to one recorded state.
+type StateEdit = fn(&mut ActuatorState);
+
 fn messages(buf: &[u8]) -> Vec<Msg> {
     mcap::MessageStream::new(buf)
         .unwrap()
@@ -367,12 +370,11 @@ impl Rebuild<'_> {
 }
 
 fn map_states(msgs: &mut [Msg], mut f: impl FnMut(usize, &mut ActuatorState)) {
-    let mut k = 0;
-    for m in msgs.iter_mut().filter(|m| m.schema_name == STATE_TYPE) {
+    let states = msgs.iter_mut().filter(|m| m.schema_name == STATE_TYPE);
+    for (k, m) in states.enumerate() {
         let mut s: ActuatorState = decode_cdr(&m.data).unwrap();
         f(k, &mut s);
         m.data = encode_cdr(&s).unwrap();
-        k += 1;
     }
 }
 
@@ -533,7 +535,7 @@ fn hostile_ticks_and_values(c: &mut Corpus, r: &Rebuild) {
     });
     c.add("inputs_negative_stamp", &b, Expect::Refuse);
     // Non-finite values, in states and inputs.
-    let values: [(&str, fn(&mut ActuatorState)); 4] = [
+    let values: [(&str, StateEdit); 4] = [
         ("nan_force", |s| s.muscles[0].state.force = f64::NAN),
         ("inf_position", |s| s.joints[0].position = f64::INFINITY),
         ("nan_stiffness_matrix", |s| s.stiffness_matrix[0] = f64::NAN),
@@ -576,7 +578,7 @@ fn hostile_ticks_and_values(c: &mut Corpus, r: &Rebuild) {
     });
     c.add("value_inf_torque", &b, Expect::Refuse);
     // States that do not match the metadata's muscles and joints.
-    let names: [(&str, fn(&mut ActuatorState)); 4] = [
+    let names: [(&str, StateEdit); 4] = [
         ("muscle_renamed", |s| s.muscles[0].name = "intruder".into()),
         ("muscle_dropped", |s| {
             s.muscles.pop();

@@ -125,7 +125,7 @@ fn check_length(
     }
     let simulated = last as f64 / meta.rate_hz;
     let allowed = recorded_span_s * SPAN_SLACK_FACTOR + SPAN_SLACK_S;
-    if !(simulated <= allowed) {
+    if simulated > allowed {
         return Err(format!(
             "its last state is at tick {last} ({simulated:.6e} s at {} Hz), but its messages \
              span only {recorded_span_s:.6e} s",

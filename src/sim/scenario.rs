@@ -359,7 +359,7 @@ impl Scenario {
             + 3 * 16) as f64
             + (joints as f64).powi(2) * 8.0;
         let bytes = (ticks + 1.0) * record;
-        if !(bytes <= MAX_RUN_BYTES) {
+        if !bytes.is_finite() || bytes > MAX_RUN_BYTES {
             return Err(format!(
                 "a run of {} s at {rate_hz} Hz is {ticks} ticks, whose records ({muscles} \
                  muscles, {joints} joints) take about {:.0} MiB, more than the {} MiB a run may \
