@@ -229,23 +229,14 @@ impl ActuatorConfig {
             path: shown.clone(),
             reason,
         };
-        let meta = std::fs::metadata(path).map_err(|e| {
+        let bytes = read_regular_file(path, MAX_FILE_BYTES).map_err(|e| {
             io(if e.kind() == std::io::ErrorKind::NotFound {
                 format!("{e} (built-in configurations: {})", Self::built_in_names())
             } else {
                 e.to_string()
             })
         })?;
-        if !meta.is_file() {
-            return Err(io("not a regular file".into()));
-        }
-        if meta.len() > MAX_FILE_BYTES {
-            return Err(io(format!(
-                "{} bytes, more than the {MAX_FILE_BYTES} a configuration may have",
-                meta.len()
-            )));
-        }
-        let text = std::fs::read_to_string(path).map_err(|e| io(e.to_string()))?;
+        let text = String::from_utf8(bytes).map_err(|e| io(e.to_string()))?;
         Self::from_toml_str(&text).map_err(|e| match e {
             ConfigError::Parse { message, .. } => ConfigError::Parse {
                 path: shown.clone(),
@@ -259,10 +250,10 @@ impl ActuatorConfig {
     pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
         let parse_err = |message: String| ConfigError::Parse {
             path: "<text>".into(),
-            message,
+            message: one_line(&message),
         };
         let mut raw: toml::Table =
-            toml::from_str(text).map_err(|e| parse_err(e.to_string().trim().replace('\n', " ")))?;
+            toml::from_str(text).map_err(|e| parse_err(toml_error(&e, text)))?;
         if let Some(k) = raw.keys().find(|k| *k != "joint" && *k != "muscle") {
             return Err(parse_err(format!(
                 "unknown key {:?}: expected `joint` and `muscle`",
@@ -578,6 +569,85 @@ impl ActuatorConfig {
             })
             .collect()
     }
+}
+
+/// Reads `path` if it is a regular file of at most `max_bytes` bytes. The type and size are
+/// checked before reading, so a device (`/dev/zero`), a FIFO or a directory is refused instead of
+/// read without end or waited on; the read itself stops after `max_bytes` + 1 bytes, so a file
+/// that grows meanwhile cannot make it allocate more. Errors give the reason only (the caller
+/// names the file).
+pub fn read_regular_file(path: &Path, max_bytes: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::{Error, ErrorKind, Read};
+    use std::os::unix::fs::OpenOptionsExt;
+    let check = |meta: &std::fs::Metadata| -> std::io::Result<()> {
+        if !meta.is_file() {
+            return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+        }
+        if meta.len() > max_bytes {
+            return Err(Error::new(
+                ErrorKind::InvalidInput,
+                format!(
+                    "{} bytes, more than the {max_bytes} such a file may have",
+                    meta.len()
+                ),
+            ));
+        }
+        Ok(())
+    };
+    check(&std::fs::metadata(path)?)?;
+    // Non-blocking open: should the path become a FIFO after the check above, opening it does
+    // not wait for a writer; the check is repeated on the open file.
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)?;
+    let meta = file.metadata()?;
+    check(&meta)?;
+    let mut buf = Vec::with_capacity(meta.len() as usize);
+    file.take(max_bytes + 1).read_to_end(&mut buf)?;
+    if buf.len() as u64 > max_bytes {
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            format!("grew beyond the {max_bytes} bytes such a file may have while read"),
+        ));
+    }
+    Ok(buf)
+}
+
+/// Longest parse error message, characters (it may quote the file).
+pub const MAX_MESSAGE_CHARS: usize = 300;
+
+/// A message on one line (whitespace runs, newlines included, made one space), at most
+/// [`MAX_MESSAGE_CHARS`] characters.
+pub fn one_line(message: &str) -> String {
+    let flat = message.split_whitespace().collect::<Vec<_>>().join(" ");
+    if flat.chars().count() <= MAX_MESSAGE_CHARS {
+        flat
+    } else {
+        let mut e: String = flat.chars().take(MAX_MESSAGE_CHARS - 3).collect();
+        e.push_str("...");
+        e
+    }
+}
+
+/// A TOML parse error of `text` as `line L, column C: message` on one line (the parser's own
+/// rendering quotes the whole offending line, however long).
+pub fn toml_error(e: &toml::de::Error, text: &str) -> String {
+    let at = match e.span() {
+        Some(span) => {
+            let before = &text.as_bytes()[..span.start.min(text.len())];
+            let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+            let column = before.len()
+                - before
+                    .iter()
+                    .rposition(|&b| b == b'\n')
+                    .map_or(0, |i| i + 1)
+                + 1;
+            format!("TOML parse error at line {line}, column {column}: ")
+        }
+        None => "TOML parse error: ".into(),
+    };
+    one_line(&format!("{at}{}", e.message()))
 }
 
 /// A user string as quoted in messages: at most 64 characters.

@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::runs::limits;
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::{default_stepping, Stepping};
 use std::path::PathBuf;
@@ -103,6 +104,10 @@ fn run(cli: Cli) -> Result<(), String> {
             csv,
             out,
         } => {
+            limits::check_rate_hz("--rate-hz", rate_hz)?;
+            if let Some(n) = substeps {
+                limits::check_substeps("--substeps", n)?;
+            }
             let model: ModelKind = model
                 .parse()
                 .map_err(|e: muscle_actuator::physics::model::UnknownModel| e.to_string())?;

@@ -1,6 +1,7 @@
 //! `compare A B`: the differences between two recorded runs, per muscle and joint.
 
 use super::{load_run, LoadedRun};
+use crate::config::excerpt;
 use crate::figures::plot::{write_chart, Chart, Series};
 use plotters::style::RGBColor;
 use serde::Serialize;
@@ -130,15 +131,15 @@ pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> 
     if sorted_names(a, false) != sorted_names(b, false) {
         return Err(format!(
             "the runs cannot be compared: different muscles ({} vs {})",
-            a.meta.muscles.join(", "),
-            b.meta.muscles.join(", ")
+            excerpt(&a.meta.muscles.join(", ")),
+            excerpt(&b.meta.muscles.join(", "))
         ));
     }
     if sorted_names(a, true) != sorted_names(b, true) {
         return Err(format!(
             "the runs cannot be compared: different joints ([{}] vs [{}])",
-            a.meta.joints.join(", "),
-            b.meta.joints.join(", ")
+            excerpt(&a.meta.joints.join(", ")),
+            excerpt(&b.meta.joints.join(", "))
         ));
     }
     let sa = series(a);
@@ -204,17 +205,47 @@ pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> 
             rise_time_b: rise_time(&vb),
         });
     }
-    Ok(Comparison {
+    let c = Comparison {
         model_a: a.meta.model.name().into(),
         model_b: b.meta.model.name().into(),
         start,
         end,
         samples,
         signals,
-    })
+    };
+    c.check_finite()?;
+    Ok(c)
 }
 
 impl Comparison {
+    /// Refuses a comparison with a figure that is not finite: values too large to difference,
+    /// or a signal without a sample of A inside the common span.
+    fn check_finite(&self) -> Result<(), String> {
+        for d in &self.signals {
+            let figures = [
+                ("rms diff", Some(d.rms_diff)),
+                ("max diff", Some(d.max_abs_diff)),
+                ("time of the max diff", Some(d.max_diff_time)),
+                ("peak A", Some(d.peak_a)),
+                ("peak B", Some(d.peak_b)),
+                ("time of peak A", Some(d.peak_time_a)),
+                ("time of peak B", Some(d.peak_time_b)),
+                ("rise time A", d.rise_time_a),
+                ("rise time B", d.rise_time_b),
+            ];
+            for (name, v) in figures {
+                if let Some(v) = v.filter(|v| !v.is_finite()) {
+                    return Err(format!(
+                        "the runs cannot be compared: {} has no finite {name} ({v}): values too \
+                         large to difference, or no sample inside the common span",
+                        excerpt(&d.signal)
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// A readable table.
     pub fn table(&self) -> String {
         let opt = |v: Option<f64>| v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "-".into());
@@ -314,6 +345,14 @@ pub fn plot(a: &LoadedRun, b: &LoadedRun, out: &Path) -> Result<(), String> {
 pub fn compare_files(a: &Path, b: &Path, plot_out: Option<&Path>) -> Result<Comparison, String> {
     let ra = load_run(a)?;
     let rb = load_run(b)?;
+    for (run, path) in [(&ra, a), (&rb, b)] {
+        if run.states.is_empty() {
+            return Err(format!(
+                "{}: the recording holds no actuator state",
+                path.display()
+            ));
+        }
+    }
     let c = compare_runs(&ra, &rb)?;
     if let Some(p) = plot_out {
         plot(&ra, &rb, p)?;

@@ -6,9 +6,11 @@
 //! the input topics themselves; the node records inputs as received on the input topics and, as
 //! applied by the tick loop, on `<node>/applied/activation` and `<node>/applied/external_load`.
 
+pub mod checks;
 pub mod compare;
+pub mod limits;
 
-use crate::config::ActuatorConfig;
+use crate::config::{excerpt, ActuatorConfig};
 use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;
@@ -17,7 +19,7 @@ use crate::recording::{
     RecorderState, Recording,
 };
 use crate::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
-use crate::ros::msgs::{definition, state_messages, type_hash, Header};
+use crate::ros::msgs::{definition, state_messages, type_hash, Header, JointState};
 use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
 use crate::sim::simulation::{default_stepping, Simulation, Stepping};
 use crate::sim::snapshot::StateSnapshot;
@@ -176,14 +178,16 @@ impl RunMeta {
             m.get(k)
                 .ok_or_else(|| format!("metadata record {METADATA_NAME:?} has no {k:?}"))
         };
-        let bad = |k: &str, v: &str| format!("metadata {METADATA_NAME}.{k} = {v:?} is invalid");
+        let bad = |k: &str, v: &str| {
+            format!("metadata {METADATA_NAME}.{k} = {:?} is invalid", excerpt(v))
+        };
         let f64_of = |k: &str| -> Result<f64, String> {
             let v = get(k)?;
             v.parse::<f64>().map_err(|_| bad(k, v))
         };
         let model: ModelKind = get("model")?
             .parse()
-            .map_err(|e: crate::physics::model::UnknownModel| e.to_string())?;
+            .map_err(|_| bad("model", &m["model"]))?;
         let stepping =
             parse_stepping(get("stepping")?).ok_or_else(|| bad("stepping", &m["stepping"]))?;
         let attachment = match get("attachment")?.as_str() {
@@ -196,8 +200,12 @@ impl RunMeta {
             },
             other => return Err(bad("attachment", other)),
         };
-        let config = ActuatorConfig::from_toml_str(get("config_toml")?)
-            .map_err(|e| format!("metadata {METADATA_NAME}.config_toml: {e}"))?;
+        let config = ActuatorConfig::from_toml_str(get("config_toml")?).map_err(|e| {
+            format!(
+                "metadata {METADATA_NAME}.config_toml: {}",
+                e.to_string().replace('\n', "; ")
+            )
+        })?;
         let list = |k: &str| -> Vec<String> {
             m.get(k)
                 .map(|s| {
@@ -208,7 +216,7 @@ impl RunMeta {
                 })
                 .unwrap_or_default()
         };
-        Ok(RunMeta {
+        let meta = RunMeta {
             source: m.get("source").cloned().unwrap_or_default(),
             model,
             rate_hz: f64_of("rate_hz")?,
@@ -222,7 +230,50 @@ impl RunMeta {
                 .unwrap_or(0),
             muscles: list("muscles"),
             joints: list("joints"),
-        })
+        };
+        meta.check()?;
+        Ok(meta)
+    }
+
+    /// The numbers within their limits (a rate the node would accept, sub-steps the simulation
+    /// would), the attachment's numbers finite, the muscle and joint lists those of the
+    /// configuration's topology.
+    fn check(&self) -> Result<(), String> {
+        let key = |k: &str| format!("metadata {METADATA_NAME}.{k}");
+        limits::check_rate_hz(&key("rate_hz"), self.rate_hz)?;
+        limits::check_stepping(&key("stepping"), self.stepping)?;
+        match self.attachment {
+            AttachmentMeta::Clamped { length } if !(length.is_finite() && length > 0.0) => {
+                return Err(format!(
+                    "{} = {length} is invalid: must be a finite number > 0",
+                    key("length")
+                ));
+            }
+            AttachmentMeta::Force { initial_force }
+                if !(initial_force.is_finite() && initial_force >= 0.0) =>
+            {
+                return Err(format!(
+                    "{} = {initial_force} is invalid: must be a finite number >= 0",
+                    key("initial_force")
+                ));
+            }
+            _ => {}
+        }
+        let topology = self.topology();
+        for (k, listed, actual) in [
+            ("muscles", &self.muscles, topology.muscle_names()),
+            ("joints", &self.joints, topology.joint_names()),
+        ] {
+            if *listed != actual {
+                return Err(format!(
+                    "{} = {:?} does not match its configuration ({})",
+                    key(k),
+                    excerpt(&listed.join(",")),
+                    excerpt(&actual.join(","))
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The topology of the run.
@@ -268,8 +319,10 @@ fn stamp(ns: u64) -> Header {
     }
 }
 
-fn header_ns(h: &Header) -> u64 {
-    h.stamp.to_nanos().max(0) as u64
+/// A recorded input's stamp, ns (refused before the epoch: it names no tick).
+fn header_ns(h: &Header) -> Result<u64, String> {
+    u64::try_from(h.stamp.to_nanos())
+        .map_err(|_| format!("stamp {} ns is before the epoch", h.stamp.to_nanos()))
 }
 
 /// Writes a run to MCAP tick by tick: states, joint states (with a joint) and inputs (when they
@@ -481,46 +534,71 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
         format!("no {METADATA_NAME:?} metadata record: not a muscle_actuator recording")
     })?;
     let meta = RunMeta::from_map(meta_map)?;
-    let decode_err = |topic: &str, e: String| format!("message on {topic}: {e}");
+    let ours = [STATE_TYPE, JOINT_STATE_TYPE, ACTIVATION_TYPE, LOAD_TYPE];
     let mut states = Vec::new();
-    for m in rec.messages.iter().filter(|m| m.type_name == STATE_TYPE) {
-        states.push(
-            recording::decode_cdr::<ActuatorState>(&m.data).map_err(|e| decode_err(&m.topic, e))?,
-        );
-    }
-    let applied_act = rec
-        .messages
-        .iter()
-        .any(|m| m.type_name == ACTIVATION_TYPE && m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX));
-    let applied_load = rec
-        .messages
-        .iter()
-        .any(|m| m.type_name == LOAD_TYPE && m.topic.ends_with(APPLIED_LOAD_SUFFIX));
     let mut activations = Vec::new();
     let mut loads = Vec::new();
-    for m in &rec.messages {
-        if m.type_name == ACTIVATION_TYPE
-            && (!applied_act || m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX))
-        {
-            let a: ActivationCommand =
-                recording::decode_cdr(&m.data).map_err(|e| decode_err(&m.topic, e))?;
-            let tick = ns_tick(header_ns(&a.header), meta.rate_hz);
-            activations.push((tick, a.muscle, a.excitation));
-        } else if m.type_name == LOAD_TYPE
-            && (!applied_load || m.topic.ends_with(APPLIED_LOAD_SUFFIX))
-        {
-            let l: ExternalLoad =
-                recording::decode_cdr(&m.data).map_err(|e| decode_err(&m.topic, e))?;
-            let tick = ns_tick(header_ns(&l.header), meta.rate_hz);
-            loads.push((tick, l.joint, l.torque));
+    let applied = |ty: &str, suffix: &str| {
+        rec.messages
+            .iter()
+            .any(|m| m.type_name == ty && m.topic.ends_with(suffix))
+    };
+    let applied_act = applied(ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX);
+    let applied_load = applied(LOAD_TYPE, APPLIED_LOAD_SUFFIX);
+    for m in rec
+        .messages
+        .iter()
+        .filter(|m| ours.contains(&m.type_name.as_str()))
+    {
+        let on = |e: String| format!("message on {}: {e}", excerpt(&m.topic));
+        if m.encoding != "cdr" || m.schema_encoding != "ros2msg" {
+            return Err(on(format!(
+                "encoding {:?} with a {:?} schema, where {} is recorded as \"cdr\" with a \
+                 \"ros2msg\" schema",
+                excerpt(&m.encoding),
+                excerpt(&m.schema_encoding),
+                m.type_name
+            )));
+        }
+        match m.type_name.as_str() {
+            STATE_TYPE => states.push(recording::decode_cdr::<ActuatorState>(&m.data).map_err(on)?),
+            // Not used, but a recording whose messages do not decode is not accepted.
+            JOINT_STATE_TYPE => {
+                recording::decode_cdr::<JointState>(&m.data).map_err(on)?;
+            }
+            ACTIVATION_TYPE => {
+                let a: ActivationCommand = recording::decode_cdr(&m.data).map_err(on)?;
+                if !applied_act || m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX) {
+                    let tick = ns_tick(header_ns(&a.header).map_err(on)?, meta.rate_hz);
+                    activations.push((tick, a.muscle, a.excitation));
+                }
+            }
+            _ => {
+                let l: ExternalLoad = recording::decode_cdr(&m.data).map_err(on)?;
+                if !applied_load || m.topic.ends_with(APPLIED_LOAD_SUFFIX) {
+                    let tick = ns_tick(header_ns(&l.header).map_err(on)?, meta.rate_hz);
+                    loads.push((tick, l.joint, l.torque));
+                }
+            }
         }
     }
-    Ok(LoadedRun {
+    let run = LoadedRun {
         meta,
         states,
         activations,
         loads,
-    })
+    };
+    checks::check_run(&run, recorded_span_s(rec))?;
+    Ok(run)
+}
+
+/// The time from the first message's log time to the last's, s.
+fn recorded_span_s(rec: &Recording) -> f64 {
+    let times = rec.messages.iter().map(|m| m.log_time);
+    match (times.clone().min(), times.max()) {
+        (Some(a), Some(b)) => (b - a) as f64 * 1e-9,
+        _ => 0.0,
+    }
 }
 
 /// What a replay did.
@@ -563,17 +641,6 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
             input.display()
         ));
     }
-    for w in run.states.windows(2) {
-        if w[1].tick <= w[0].tick {
-            return Err(format!(
-                "{}: the run was reset or rebuilt (tick {} followed by {}); replay covers runs \
-                 without resets or parameter changes",
-                input.display(),
-                w[0].tick,
-                w[1].tick
-            ));
-        }
-    }
     let last_tick = run
         .states
         .last()
@@ -589,7 +656,7 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
     let mut out_meta = meta.clone();
     out_meta.model = model;
     out_meta.stepping = stepping;
-    out_meta.source = format!("replay of {} ({})", input.display(), meta.source);
+    out_meta.source = format!("replay of {} ({})", input.display(), excerpt(&meta.source));
     out_meta.start_time_ns = now_ns();
     out_meta.parameters_json = None;
     let mut w = RunWriter::start(out, &out_meta)?;

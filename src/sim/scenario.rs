@@ -16,6 +16,13 @@ use std::path::Path;
 /// The built-in scenarios' names.
 pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
 
+/// Most memory the records of a run may take, bytes (1 GiB): a run keeps one record per tick
+/// (for the CSV and the summary), so duration × rate and the limb's size are bounded together.
+pub const MAX_RUN_BYTES: f64 = (1u64 << 30) as f64;
+
+/// Longest scenario name, characters (it names the run in reports and recordings).
+pub const MAX_NAME_CHARS: usize = 200;
+
 /// How the muscles are attached in a scenario.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -176,15 +183,19 @@ impl Scenario {
         }
     }
 
-    /// A scenario from a TOML file.
+    /// A scenario from a TOML file (a regular file of at most 1 MiB).
     pub fn from_file(path: &Path) -> Result<Self, String> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read scenario file {}: {e}", path.display()))?;
+        let cannot = |e: &dyn std::fmt::Display| {
+            format!("cannot read scenario file {}: {e}", path.display())
+        };
+        let bytes = crate::config::read_regular_file(path, crate::config::MAX_FILE_BYTES)
+            .map_err(|e| cannot(&e))?;
+        let text = String::from_utf8(bytes).map_err(|e| cannot(&e))?;
         let s: Scenario = toml::from_str(&text).map_err(|e| {
             format!(
                 "scenario file {}: {}",
                 path.display(),
-                e.to_string().trim().replace('\n', " ")
+                crate::config::toml_error(&e, &text)
             )
         })?;
         s.check()
@@ -205,6 +216,12 @@ impl Scenario {
     }
 
     fn check(&self) -> Result<(), String> {
+        if self.name.chars().count() > MAX_NAME_CHARS {
+            return Err(format!(
+                "name {:?} is longer than {MAX_NAME_CHARS} characters",
+                crate::config::excerpt(&self.name)
+            ));
+        }
         if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= 3600.0) {
             return Err(format!(
                 "duration = {} must be in (0, 3600] s",
@@ -281,6 +298,7 @@ impl Scenario {
         let topology = self.topology(config);
         let names = topology.muscle_names();
         let joint_names = topology.joint_names();
+        self.check_size(rate_hz, names.len(), joint_names.len())?;
         let mut muscle_index = Vec::with_capacity(self.inputs.len());
         for (i, input) in self.inputs.iter().enumerate() {
             let lookup = |want: &Option<String>, names: &[String], what: &str| match want {
@@ -292,7 +310,7 @@ impl Scenario {
                         if names.is_empty() {
                             "none".to_string()
                         } else {
-                            names.join(", ")
+                            crate::config::one_line(&names.join(", "))
                         }
                     )
                 }),
@@ -323,6 +341,35 @@ impl Scenario {
         };
         runner.apply_inputs();
         Ok(runner)
+    }
+
+    /// The memory its records take at `rate_hz` with this many muscles and joints, within
+    /// [`MAX_RUN_BYTES`]. (A rate that is not a finite number > 0 is left to the simulation to
+    /// refuse.)
+    fn check_size(&self, rate_hz: f64, muscles: usize, joints: usize) -> Result<(), String> {
+        if !(rate_hz.is_finite() && rate_hz > 0.0) {
+            return Ok(());
+        }
+        let ticks = (self.duration * rate_hz).round();
+        // One record: its struct, its muscle and joint snapshots and stiffness matrix, and
+        // about 16 bytes of allocator bookkeeping for each of its three vectors.
+        let record = (std::mem::size_of::<Record>()
+            + muscles * std::mem::size_of::<MuscleSnapshot>()
+            + joints * std::mem::size_of::<JointSnapshot>()
+            + 3 * 16) as f64
+            + (joints as f64).powi(2) * 8.0;
+        let bytes = (ticks + 1.0) * record;
+        if !bytes.is_finite() || bytes > MAX_RUN_BYTES {
+            return Err(format!(
+                "a run of {} s at {rate_hz} Hz is {ticks} ticks, whose records ({muscles} \
+                 muscles, {joints} joints) take about {:.0} MiB, more than the {} MiB a run may \
+                 hold: shorten the duration or lower the rate",
+                self.duration,
+                bytes / (1u64 << 20) as f64,
+                MAX_RUN_BYTES / (1u64 << 20) as f64
+            ));
+        }
+        Ok(())
     }
 
     /// The topology this scenario runs: the configuration's limb, or its first muscle alone.

@@ -1,0 +1,136 @@
+//! What a recorded run must satisfy before it is replayed or compared, whoever wrote the file:
+//! states whose ticks only grow, within a run of bounded length consistent with the time the
+//! recording spans (replay simulates every tick up to the last); finite values; states naming
+//! the run's muscles and joints; inputs in tick order with one value per name.
+
+use super::limits::MAX_RECORDED_TICKS;
+use super::{LoadedRun, RunMeta};
+use crate::config::excerpt;
+use crate::ros::msgs::muscle_actuator_msgs::ActuatorState;
+use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+
+/// Slack of the simulated span over the recorded one: a node's tick loop keeps to the wall
+/// clock its log times follow, within jitter; offline runs log simulated time exactly.
+const SPAN_SLACK_FACTOR: f64 = 1.25;
+const SPAN_SLACK_S: f64 = 1.0;
+
+/// Every check below, on a decoded run whose messages span `recorded_span_s` seconds of log
+/// time.
+pub fn check_run(run: &LoadedRun, recorded_span_s: f64) -> Result<(), String> {
+    check_states(&run.meta, &run.states)?;
+    check_inputs("activation", &run.activations)?;
+    check_inputs("external load", &run.loads)?;
+    check_length(&run.meta, &run.states, recorded_span_s)
+}
+
+fn check_states(meta: &RunMeta, states: &[ActuatorState]) -> Result<(), String> {
+    for w in states.windows(2) {
+        if w[1].tick <= w[0].tick {
+            return Err(format!(
+                "the run was reset or rebuilt, or its ticks are out of order (tick {} followed \
+                 by {}); replay and compare cover runs without resets or parameter changes",
+                w[0].tick, w[1].tick
+            ));
+        }
+    }
+    for s in states {
+        let at = |what: String| format!("state at tick {}: {what}", s.tick);
+        let muscles: Vec<&String> = s.muscles.iter().map(|m| &m.name).collect();
+        if muscles.len() != meta.muscles.len()
+            || muscles.iter().zip(&meta.muscles).any(|(a, b)| *a != b)
+        {
+            return Err(at(format!(
+                "muscles [{}] are not the run's [{}]",
+                excerpt(
+                    &s.muscles
+                        .iter()
+                        .map(|m| m.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                ),
+                excerpt(&meta.muscles.join(","))
+            )));
+        }
+        if s.joint != meta.joints {
+            return Err(at(format!(
+                "joints [{}] are not the run's [{}]",
+                excerpt(&s.joint.join(",")),
+                excerpt(&meta.joints.join(","))
+            )));
+        }
+        for m in &s.muscles {
+            for (f, v) in MuscleSnapshot::FIELDS.iter().zip(m.state.values()) {
+                finite(v).map_err(|v| at(format!("{}.{f} = {v}", excerpt(&m.name))))?;
+            }
+        }
+        for (name, j) in s.joint.iter().zip(&s.joints) {
+            for (f, v) in JointSnapshot::FIELDS.iter().zip(j.values()) {
+                finite(v).map_err(|v| at(format!("{}.{f} = {v}", excerpt(name))))?;
+            }
+        }
+        for v in &s.stiffness_matrix {
+            finite(*v).map_err(|v| at(format!("stiffness_matrix holds {v}")))?;
+        }
+    }
+    Ok(())
+}
+
+/// `Err(v)` for a value that is not finite.
+fn finite(v: f64) -> Result<(), String> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("{v} (not a finite number)"))
+    }
+}
+
+fn check_inputs(what: &str, inputs: &[(u64, Vec<String>, Vec<f64>)]) -> Result<(), String> {
+    for w in inputs.windows(2) {
+        if w[1].0 < w[0].0 {
+            return Err(format!(
+                "{what} inputs out of tick order (tick {} after {})",
+                w[1].0, w[0].0
+            ));
+        }
+    }
+    for (tick, names, values) in inputs {
+        if names.len() != values.len() {
+            return Err(format!(
+                "{what} input at tick {tick}: {} names for {} values",
+                names.len(),
+                values.len()
+            ));
+        }
+        for (n, v) in names.iter().zip(values) {
+            finite(*v).map_err(|v| format!("{what} input at tick {tick}: {} = {v}", excerpt(n)))?;
+        }
+    }
+    Ok(())
+}
+
+/// The last tick within [`MAX_RECORDED_TICKS`], and its simulated time (from tick 0) within the
+/// time the recording's messages span.
+fn check_length(
+    meta: &RunMeta,
+    states: &[ActuatorState],
+    recorded_span_s: f64,
+) -> Result<(), String> {
+    let Some(last) = states.last().map(|s| s.tick) else {
+        return Ok(());
+    };
+    if last > MAX_RECORDED_TICKS {
+        return Err(format!(
+            "its last state is at tick {last}: a run may span at most {MAX_RECORDED_TICKS} ticks"
+        ));
+    }
+    let simulated = last as f64 / meta.rate_hz;
+    let allowed = recorded_span_s * SPAN_SLACK_FACTOR + SPAN_SLACK_S;
+    if simulated > allowed {
+        return Err(format!(
+            "its last state is at tick {last} ({simulated:.6e} s at {} Hz), but its messages \
+             span only {recorded_span_s:.6e} s",
+            meta.rate_hz
+        ));
+    }
+    Ok(())
+}
