@@ -222,7 +222,9 @@ impl Recorder {
                             publish_time,
                             data,
                         }) => {
-                            w.stats.queued_bytes.fetch_sub(data.len(), Ordering::Relaxed);
+                            w.stats
+                                .queued_bytes
+                                .fetch_sub(data.len(), Ordering::Relaxed);
                             if w.write(channel, log_time, publish_time, &data).is_err() {
                                 break;
                             }
@@ -367,6 +369,29 @@ impl RecordSender {
     }
     pub fn stats(&self) -> &Arc<RecorderStats> {
         &self.stats
+    }
+
+    /// Asks the recorder to finish the file now (what is queued before this request is written,
+    /// then the summary) and waits up to `timeout` for it: for a process that must exit before
+    /// its owner of the [`Recorder`] gets to finish it. True if the file is finished.
+    pub fn finish_now(&self, timeout: Duration) -> bool {
+        let deadline = Instant::now() + timeout;
+        let Some(tx) = &self.tx else { return false };
+        let mut sent = false;
+        while Instant::now() < deadline {
+            if !sent {
+                sent = match tx.try_send(Item::Finish) {
+                    Ok(()) => true,
+                    Err(TrySendError::Full(_)) => false,
+                    Err(TrySendError::Disconnected(_)) => true,
+                };
+            }
+            if self.stats.state() != RecorderState::Recording {
+                return self.stats.state() == RecorderState::Finished;
+            }
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        false
     }
 }
 

@@ -3,8 +3,22 @@
 //! --log-level [logger:=]level [--]`, plus name expansion and remapping of topic and service
 //! names.
 
+use crate::config::{excerpt, read_regular_file};
 use ros2_client::ParameterValue;
 use std::path::Path;
+
+/// Largest parameters file, bytes.
+pub const MAX_PARAMS_FILE_BYTES: u64 = 1 << 20;
+/// Deepest nesting of YAML flow collections (`[`, `{`) in a parameters file or a `-p` value.
+/// serde_yaml refuses more than 128 levels, but only after libyaml has parsed the rest, which
+/// takes minutes for 100,000 levels: the text is checked before it is parsed.
+pub const MAX_FLOW_DEPTH: usize = 64;
+/// Longest node name, characters (rmw's `RMW_NODE_NAME_MAX_NAME_LENGTH`).
+pub const MAX_NODE_NAME_CHARS: usize = 255;
+/// Longest namespace, characters (rmw's `RMW_NAMESPACE_MAX_LENGTH`: 247 - 2).
+pub const MAX_NAMESPACE_CHARS: usize = 245;
+/// Longest topic or service name, characters (rmw's `RMW_TOPIC_MAX_NAME_LENGTH`: 255 - 8).
+pub const MAX_TOPIC_NAME_CHARS: usize = 247;
 
 /// Log severities, ordered.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -105,8 +119,9 @@ impl RosArgs {
                     "-h" | "--help" => out.help = true,
                     other => {
                         return Err(format!(
-                            "unexpected argument {other:?}: ROS arguments go after --ros-args \
-                             (try `muscle_actuator node --help`)"
+                            "unexpected argument {:?}: ROS arguments go after --ros-args \
+                             (try `muscle_actuator node --help`)",
+                            excerpt(other)
                         ))
                     }
                 }
@@ -129,21 +144,26 @@ impl RosArgs {
                 "-p" | "--param" => {
                     let rule = value(a)?;
                     let (name, val) = rule.split_once(":=").ok_or_else(|| {
-                        format!("-p {rule:?}: expected NAME:=VALUE (e.g. -p model:=hill)")
+                        format!(
+                            "-p {:?}: expected NAME:=VALUE (e.g. -p model:=hill)",
+                            excerpt(&rule)
+                        )
                     })?;
                     if name.is_empty() {
-                        return Err(format!("-p {rule:?}: empty parameter name"));
+                        return Err(format!("-p {:?}: empty parameter name", excerpt(&rule)));
                     }
+                    check_flow_depth(val).map_err(|e| format!("-p {:?}: {e}", excerpt(&rule)))?;
                     let yaml: serde_yaml::Value = if val.is_empty() {
                         serde_yaml::Value::String(String::new())
                     } else {
                         serde_yaml::from_str(val).unwrap_or(serde_yaml::Value::String(val.into()))
                     };
-                    let value = yaml_to_param(&yaml).map_err(|e| format!("-p {rule:?}: {e}"))?;
+                    let value = yaml_to_param(&yaml)
+                        .map_err(|e| format!("-p {:?}: {e}", excerpt(&rule)))?;
                     out.params.push(ParamAssignment {
                         name: name.into(),
                         value,
-                        source: format!("-p {rule}"),
+                        source: format!("-p {}", excerpt(&rule)),
                     });
                 }
                 "--params-file" => {
@@ -161,7 +181,8 @@ impl RosArgs {
                     let level = spec.rsplit_once(":=").map(|(_, l)| l).unwrap_or(&spec);
                     out.log_level = Some(Severity::parse(level).ok_or_else(|| {
                         format!(
-                            "--log-level {spec:?}: unknown level (debug, info, warn, error, fatal)"
+                            "--log-level {:?}: unknown level (debug, info, warn, error, fatal)",
+                            excerpt(&spec)
                         )
                     })?);
                 }
@@ -175,8 +196,9 @@ impl RosArgs {
                 "--disable-external-lib-logs" | "--enable-external-lib-logs" => {}
                 other => {
                     return Err(format!(
-                        "unknown ROS argument {other:?} (expected -r, -p, --params-file, \
-                         --log-level, --)"
+                        "unknown ROS argument {:?} (expected -r, -p, --params-file, \
+                         --log-level, --)",
+                        excerpt(other)
                     ))
                 }
             }
@@ -186,16 +208,17 @@ impl RosArgs {
     }
 
     fn add_remap(&mut self, rule: &str) -> Result<(), String> {
+        let quoted = excerpt(rule);
         let (lhs, to) = rule
             .split_once(":=")
-            .ok_or_else(|| format!("-r {rule:?}: expected FROM:=TO"))?;
+            .ok_or_else(|| format!("-r {quoted:?}: expected FROM:=TO"))?;
         // An optional `node:` prefix (a name has no ':' otherwise).
         let (node, from) = match lhs.split_once(':') {
             Some((n, f)) => (Some(n.to_string()), f),
             None => (None, lhs),
         };
         if from.is_empty() || to.is_empty() {
-            return Err(format!("-r {rule:?}: empty name"));
+            return Err(format!("-r {quoted:?}: empty name"));
         }
         if node.is_some() && (from == "__ns" || from == "__node" || from == "__name") {
             // Node-specific namespace/name changes: apply only to our node; checked later.
@@ -203,17 +226,17 @@ impl RosArgs {
         match from {
             "__ns" => {
                 let ns = normalise_namespace(to)
-                    .map_err(|e| format!("-r {rule:?}: bad namespace: {e}"))?;
+                    .map_err(|e| format!("-r {quoted:?}: bad namespace: {e}"))?;
                 self.push_node_rule(node, |s| s.namespace = Some(ns));
             }
             "__node" | "__name" => {
-                check_token(to).map_err(|e| format!("-r {rule:?}: bad node name: {e}"))?;
+                check_node_name(to).map_err(|e| format!("-r {quoted:?}: bad node name: {e}"))?;
                 let name = to.to_string();
                 self.push_node_rule(node, |s| s.node_name = Some(name));
             }
             _ => {
-                check_name(from).map_err(|e| format!("-r {rule:?}: bad name {from:?}: {e}"))?;
-                check_name(to).map_err(|e| format!("-r {rule:?}: bad name {to:?}: {e}"))?;
+                check_name(from).map_err(|e| format!("-r {quoted:?}: bad name: {e}"))?;
+                check_name(to).map_err(|e| format!("-r {quoted:?}: bad name: {e}"))?;
                 self.remaps.push(Remap {
                     node,
                     from: from.into(),
@@ -297,9 +320,13 @@ pub fn yaml_to_param(v: &serde_yaml::Value) -> Result<ParameterValue, String> {
 /// `fqn` (`/**`, `/**/name`, the exact name, wildcards `*` and `**`; a key without a leading
 /// slash also matches the node's base name in any namespace). Nested keys become dotted names.
 pub fn read_params_file(path: &Path, fqn: &str) -> Result<Vec<ParamAssignment>, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read parameters file {}: {e}", path.display()))?;
-    parse_params_yaml(&text, &path.display().to_string(), fqn)
+    let shown = excerpt(&path.display().to_string());
+    let bytes = read_regular_file(path, MAX_PARAMS_FILE_BYTES).map_err(|e| {
+        format!("cannot read parameters file {shown} (a regular file of at most 1 MiB): {e}")
+    })?;
+    let text =
+        String::from_utf8(bytes).map_err(|_| format!("parameters file {shown}: not UTF-8 text"))?;
+    parse_params_yaml(&text, &shown, fqn)
 }
 
 /// See [`read_params_file`]; `source` names the file in errors.
@@ -308,6 +335,7 @@ pub fn parse_params_yaml(
     source: &str,
     fqn: &str,
 ) -> Result<Vec<ParamAssignment>, String> {
+    check_flow_depth(text).map_err(|e| format!("parameters file {source}: {e}"))?;
     let doc: serde_yaml::Value = serde_yaml::from_str(text)
         .map_err(|e| format!("parameters file {source}: not valid YAML: {e}"))?;
     let top = match &doc {
@@ -331,7 +359,10 @@ pub fn parse_params_yaml(
             .as_mapping()
             .and_then(|m| m.get("ros__parameters"))
             .ok_or_else(|| {
-                format!("parameters file {source}: section {key:?} has no `ros__parameters`")
+                format!(
+                    "parameters file {source}: section {:?} has no `ros__parameters`",
+                    excerpt(key)
+                )
             })?;
         flatten(params, "", source, &mut out)?;
     }
@@ -365,8 +396,12 @@ fn flatten(
         if val.is_mapping() {
             flatten(val, &name, source, out)?;
         } else {
-            let value = yaml_to_param(val)
-                .map_err(|e| format!("parameters file {source}: parameter {name:?}: {e}"))?;
+            let value = yaml_to_param(val).map_err(|e| {
+                format!(
+                    "parameters file {source}: parameter {:?}: {e}",
+                    excerpt(&name)
+                )
+            })?;
             out.push(ParamAssignment {
                 name,
                 value,
@@ -404,6 +439,39 @@ fn glob(pat: &[&str], name: &[&str]) -> bool {
     }
 }
 
+/// Checks the nesting of YAML flow collections before the text is parsed (see
+/// [`MAX_FLOW_DEPTH`]). Brackets are counted wherever they stand, quoted or not: a text whose
+/// strings open 64 brackets without closing them is refused too.
+pub fn check_flow_depth(text: &str) -> Result<(), String> {
+    let mut depth = 0usize;
+    for b in text.bytes() {
+        match b {
+            b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_FLOW_DEPTH {
+                    return Err(format!(
+                        "nested deeper than {MAX_FLOW_DEPTH} levels of [ ] or {{ }}"
+                    ));
+                }
+            }
+            b']' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Checks a node name: one token (see [`check_token`]) of at most 255 characters.
+pub fn check_node_name(n: &str) -> Result<(), String> {
+    if n.chars().count() > MAX_NODE_NAME_CHARS {
+        return Err(format!(
+            "{} characters: a node name has at most {MAX_NODE_NAME_CHARS}",
+            n.chars().count()
+        ));
+    }
+    check_token(n)
+}
+
 /// Checks one name token: starts with a letter or `_`, then letters, digits, `_`.
 fn check_token(t: &str) -> Result<(), String> {
     let mut chars = t.chars();
@@ -426,6 +494,12 @@ fn check_token(t: &str) -> Result<(), String> {
 
 /// Checks a topic or service name as written by a user: absolute, relative or private (`~`).
 pub fn check_name(n: &str) -> Result<(), String> {
+    if n.chars().count() > MAX_TOPIC_NAME_CHARS {
+        return Err(format!(
+            "{} characters: a topic or service name has at most {MAX_TOPIC_NAME_CHARS}",
+            n.chars().count()
+        ));
+    }
     let rest = if n == "~" {
         return Ok(());
     } else if let Some(r) = n.strip_prefix("~/") {
@@ -446,6 +520,12 @@ pub fn check_name(n: &str) -> Result<(), String> {
 
 /// Normalises a namespace: absolute, no trailing slash (except the root `/`).
 pub fn normalise_namespace(ns: &str) -> Result<String, String> {
+    if ns.chars().count() > MAX_NAMESPACE_CHARS {
+        return Err(format!(
+            "{} characters: a namespace has at most {MAX_NAMESPACE_CHARS}",
+            ns.chars().count()
+        ));
+    }
     let trimmed = ns.trim_matches('/');
     if trimmed.is_empty() {
         return Ok("/".into());
@@ -536,6 +616,57 @@ mod tests {
             let e = RosArgs::parse(&args(bad)).unwrap_err();
             assert!(!e.is_empty(), "{bad}");
         }
+    }
+
+    /// Oversized arguments are refused with the rule they break, quoted as short excerpts.
+    #[test]
+    fn oversized_arguments_are_refused_briefly() {
+        let long = |prefix: &str, n: usize| {
+            vec![
+                "--ros-args".to_string(),
+                "-r".into(),
+                format!("{prefix}{}", "n".repeat(n)),
+            ]
+        };
+        let e = RosArgs::parse(&long("__node:=", 10_000)).unwrap_err();
+        assert!(e.contains("at most 255") && e.len() < 300, "{e}");
+        assert!(RosArgs::parse(&long("__node:=", 255)).is_ok());
+        let e = RosArgs::parse(&long("__ns:=/", 300)).unwrap_err();
+        assert!(e.contains("at most 245") && e.len() < 300, "{e}");
+        let e = RosArgs::parse(&long("state:=", 300)).unwrap_err();
+        assert!(e.contains("at most 247") && e.len() < 300, "{e}");
+        let deep = format!("x:={}{}", "[".repeat(100_000), "]".repeat(100_000));
+        let e = RosArgs::parse(&["--ros-args".into(), "-p".into(), deep]).unwrap_err();
+        assert!(e.contains("nested deeper than 64") && e.len() < 300, "{e}");
+        let e = RosArgs::parse(&["--ros-args".into(), "--bogus".into(), "b".repeat(1 << 20)])
+            .unwrap_err();
+        assert!(e.len() < 300, "{e}");
+    }
+
+    /// A parameters file nested 100,000 levels deep is refused at once (libyaml alone took
+    /// minutes); `/dev/zero` and a FIFO are refused without reading them.
+    #[test]
+    fn hostile_parameters_files_are_refused() {
+        let deep = format!(
+            "/**:\n  ros__parameters:\n    x: {}1{}\n",
+            "{a: ".repeat(100_000),
+            "}".repeat(100_000)
+        );
+        let e = parse_params_yaml(&deep, "deep.yaml", "/muscle_actuator").unwrap_err();
+        assert!(e.contains("nested deeper than 64"), "{e}");
+        let e = read_params_file(Path::new("/dev/zero"), "/muscle_actuator").unwrap_err();
+        assert!(e.contains("regular file"), "{e}");
+        let dir = std::env::temp_dir().join(format!("params-fifo-{}", std::process::id()));
+        let _ = std::fs::remove_file(&dir);
+        let c = std::ffi::CString::new(dir.to_str().unwrap()).unwrap();
+        // SAFETY: a valid NUL-terminated path.
+        assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+        let e = read_params_file(&dir, "/muscle_actuator").unwrap_err();
+        let _ = std::fs::remove_file(&dir);
+        assert!(e.contains("regular file"), "{e}");
+        // Ordinary nesting still reads.
+        let ok = "/**:\n  ros__parameters:\n    rate_hz: 500.0\n    nested: {list: [1, 2, 3]}\n";
+        assert!(parse_params_yaml(ok, "ok.yaml", "/muscle_actuator").is_ok());
     }
 
     #[test]

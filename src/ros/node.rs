@@ -210,6 +210,21 @@ impl Shared {
     }
 }
 
+/// Makes glibc's allocator serve blocks of 256 kB and more with their own mappings, returned to
+/// the system when freed. Its default raises that threshold after each such block is freed, so a
+/// stream of large messages (a hostile 1 MB name at a thousand commands a second) ends up in the
+/// heaps of the DDS threads, where it stays after the flood.
+fn return_large_blocks_to_the_system() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only sets an allocator parameter; called before the other threads start.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 256 * 1024);
+    }
+}
+
+/// A second SIGINT/SIGTERM sooner than this after the first is part of the same stop request.
+const SIGNAL_INSIST_AFTER: Duration = Duration::from_secs(2);
+
 /// Longest a parameter change may take to build its actuator (configuration file read and
 /// calibration) before it is refused.
 const BUILD_TIMEOUT: Duration = Duration::from_secs(5);
@@ -543,6 +558,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     let Some(setup) = setup(argv)? else {
         return Ok(());
     };
+    return_large_blocks_to_the_system();
     let actuator = setup.params.build()?;
     let level = setup.ros_args.log_level.unwrap_or(Severity::Info);
 
@@ -554,17 +570,30 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     ])
     .map_err(|e| format!("cannot install signal handlers: {e}"))?;
     let signals_handle = signals.handle();
+    let emergency_recording: Arc<Mutex<Option<RecordSender>>> = Arc::new(Mutex::new(None));
+    let er = emergency_recording.clone();
     std::thread::Builder::new()
         .name("signals".into())
         .spawn(move || {
-            let mut count = 0;
+            let mut first: Option<Instant> = None;
             for _ in signals.forever() {
-                count += 1;
-                if count > 1 {
-                    // A second signal: the user insists.
-                    std::process::exit(130);
+                match first {
+                    None => {
+                        first = Some(Instant::now());
+                        let _ = stop_tx.try_send(());
+                    }
+                    // A terminal's Ctrl-C through a wrapper, or `timeout`, delivers the signal
+                    // to the process group too: a second one in the same instant is the same
+                    // request. Only one well after the first, while the shutdown is stuck, cuts
+                    // it short, and even then the recording is finished first.
+                    Some(t) if t.elapsed() >= SIGNAL_INSIST_AFTER => {
+                        if let Some(tx) = er.lock().ok().and_then(|g| g.clone()) {
+                            tx.finish_now(Duration::from_secs(2));
+                        }
+                        std::process::exit(130);
+                    }
+                    Some(_) => {}
                 }
-                let _ = stop_tx.try_send(());
             }
         })
         .map_err(|e| format!("cannot start the signal thread: {e}"))?;
@@ -712,6 +741,9 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         }
     }
     let rec_tx = recorder.as_ref().map(|r| r.sender());
+    if let Ok(mut g) = emergency_recording.lock() {
+        g.clone_from(&rec_tx);
+    }
     let (applied_tx, applied_thread) = match &rec_tx {
         Some(tx) => {
             let (atx, arx) = mpsc::sync_channel::<Applied>(1024);

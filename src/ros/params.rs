@@ -245,7 +245,12 @@ mod tests {
     #[test]
     fn long_strings_are_refused_briefly() {
         let mut p = NodeParams::default();
-        for (name, len) in [(MODEL, 65), (MODEL, 70_000), (CONFIG, 4097), (RECORD_DIR, 120_000)] {
+        for (name, len) in [
+            (MODEL, 65),
+            (MODEL, 70_000),
+            (CONFIG, 4097),
+            (RECORD_DIR, 120_000),
+        ] {
             let e = p
                 .set(name, &ParameterValue::String("m".repeat(len)), false)
                 .unwrap_err();

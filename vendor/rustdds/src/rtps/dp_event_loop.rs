@@ -298,6 +298,9 @@ impl DPEventLoop {
       ev_wrapper.remove_local_writer(&writer_guid);
     }
 
+    // Listeners that stopped at the per-wake cap with datagrams possibly left.
+    let mut unfinished_listeners: Vec<Token> = Vec::new();
+
     // loop starts here
     loop {
       // The poll wakes for a socket, the shared waker, or the sooner of the next
@@ -308,7 +311,11 @@ impl DPEventLoop {
       } else {
         Duration::from_millis(2)
       };
-      let poll_timeout = timeout_until(ev_wrapper.shared_timer.borrow().next_deadline(), idle_cap);
+      let poll_timeout = if unfinished_listeners.is_empty() {
+        timeout_until(ev_wrapper.shared_timer.borrow().next_deadline(), idle_cap)
+      } else {
+        Duration::ZERO
+      };
       match ev_wrapper.poll.poll(&mut events, Some(poll_timeout)) {
         Ok(_) => {}
         Err(e) => {
@@ -335,19 +342,10 @@ impl DPEventLoop {
               | DISCOVERY_MUL_LISTENER_TOKEN
               | USER_TRAFFIC_LISTENER_TOKEN
               | USER_TRAFFIC_MUL_LISTENER_TOKEN => {
-                // Edge-triggered: read until WouldBlock. A cap would leave
-                // datagrams sitting with no further readiness event.
-                let udp_messages = ev_wrapper.udp_listeners.get_mut(&token).map_or_else(
-                  || {
-                    error!("No listener with token {:?}", token);
-                    vec![]
-                  },
-                  |l| l.messages_bounded(usize::MAX),
-                );
-                for (packet, origin) in udp_messages {
-                  ev_wrapper
-                    .message_receiver
-                    .handle_received_packet(&packet, origin);
+                // Edge-triggered: read until WouldBlock, in batches handled as
+                // they are read (see `drain_listener`).
+                if ev_wrapper.drain_listener(token) && !unfinished_listeners.contains(&token) {
+                  unfinished_listeners.push(token);
                 }
               }
               LOOP_WAKE_TOKEN => {
@@ -376,6 +374,15 @@ impl DPEventLoop {
         }
       }
 
+      // Listeners left at the cap last time, whether or not they had a new event.
+      let mut still_unfinished = Vec::new();
+      for token in std::mem::take(&mut unfinished_listeners) {
+        if ev_wrapper.drain_listener(token) {
+          still_unfinished.push(token);
+        }
+      }
+      unfinished_listeners = still_unfinished;
+
       ev_wrapper.drain_timers(preparing_to_stop);
       if ev_wrapper.drain_queues(
         &mut readers_to_remove,
@@ -397,6 +404,37 @@ impl DPEventLoop {
       ev_wrapper.service_outbound();
     } // loop
   } // fn
+
+  // Reads and handles the datagrams of one listener in batches of
+  // RECEIVE_BATCH, each handled before the next is read, until WouldBlock or
+  // RECEIVE_CAP_PER_WAKE datagrams. Returns true if it stopped at the cap (the
+  // caller comes back to it after the other work of this wake).
+  //
+  // muscle_actuator patch: reading everything up to WouldBlock before handling
+  // any of it let a sender that keeps the socket full (a flood of 1 MB
+  // samples) pile gigabytes of datagrams up in memory, and starved the rest of
+  // the loop while it lasted.
+  fn drain_listener(&mut self, token: Token) -> bool {
+    const RECEIVE_BATCH: usize = 64;
+    const RECEIVE_CAP_PER_WAKE: usize = 1024;
+    let mut handled = 0;
+    while handled < RECEIVE_CAP_PER_WAKE {
+      let Some(listener) = self.udp_listeners.get_mut(&token) else {
+        error!("No listener with token {:?}", token);
+        return false;
+      };
+      let batch = listener.messages_bounded(RECEIVE_BATCH);
+      let n = batch.len();
+      for (packet, origin) in batch {
+        self.message_receiver.handle_received_packet(&packet, origin);
+      }
+      handled += n;
+      if n < RECEIVE_BATCH {
+        return false;
+      }
+    }
+    true
+  }
 
   // Returns true when the loop should exit.
   fn drain_queues(
