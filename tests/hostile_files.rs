@@ -979,16 +979,6 @@ fn hostile_recordings_are_refused_cleanly() {
         ended.len(),
         problems.len()
     );
-    assert!(
-        problems.is_empty(),
-        "{} problems:\n{}",
-        problems.len(),
-        problems
-            .iter()
-            .take(40)
-            .map(|p| p.chars().take(700).collect::<String>())
-            .collect::<Vec<_>>()
-            .join("\n")
-    );
+    child::assert_no_problems(&problems, 40, 700);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -15,8 +15,8 @@ pub const RECORD_DIR: &str = "record_dir";
 /// All of them, in the order they are declared.
 pub const ALL: [&str; 6] = [MODEL, RATE_HZ, PUBLISH_RATE_HZ, CONFIG, RECORD, RECORD_DIR];
 
-/// Upper bound on the tick rate (a sanity bound: 100 kHz).
-pub const MAX_RATE_HZ: f64 = 100_000.0;
+/// Upper bound on the tick rate (the simulation's).
+pub use crate::sim::simulation::MAX_RATE_HZ;
 /// Longest `model` value, characters (a model name).
 pub const MAX_NAME_CHARS: usize = 64;
 /// Longest `config` and `record_dir` values, bytes (PATH_MAX).

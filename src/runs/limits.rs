@@ -2,11 +2,10 @@
 //! metadata): the tick rate and sub-steps as the node's parameters and the simulation allow
 //! them, and the length of a recorded run that replay may simulate.
 
-use crate::ros::params::MAX_RATE_HZ;
-use crate::sim::simulation::Stepping;
+use crate::sim::simulation::{Stepping, MAX_RATE_HZ};
 
 /// Most sub-steps per tick, fixed or as the adaptive maximum (as `Simulation::new` allows).
-pub const MAX_SUBSTEPS: usize = 10_000;
+pub use crate::sim::simulation::MAX_SUBSTEPS;
 
 /// Most ticks a recorded run may span: replay simulates every one of them (10^8: a day at
 /// 1 kHz).
@@ -47,22 +46,9 @@ pub fn check_substeps(name: &str, n: usize) -> Result<(), String> {
     }
 }
 
-/// A stepping: sub-steps within their limits, an adaptive tolerance finite and > 0.
+/// A stepping within its rules ([`Stepping::check`]), named in the error.
 pub fn check_stepping(name: &str, s: Stepping) -> Result<(), String> {
-    match s {
-        Stepping::Fixed(n) => check_substeps(&format!("{name} (fixed sub-steps)"), n),
-        Stepping::Adaptive {
-            tolerance,
-            max_substeps,
-        } => {
-            if !(tolerance.is_finite() && tolerance > 0.0) {
-                return Err(format!(
-                    "{name}: tolerance = {tolerance} is invalid: must be a finite number > 0"
-                ));
-            }
-            check_substeps(&format!("{name} (most adaptive sub-steps)"), max_substeps)
-        }
-    }
+    s.check().map_err(|e| format!("{name}: {e}"))
 }
 
 #[cfg(test)]

@@ -28,6 +28,37 @@ pub enum Stepping {
 
 /// Most adaptive sub-steps per tick by default.
 pub const DEFAULT_MAX_SUBSTEPS: usize = 64;
+/// Highest tick rate, Hz (a sanity bound: 100 kHz).
+pub const MAX_RATE_HZ: f64 = 100_000.0;
+/// Most sub-steps per tick, fixed or adaptive (a sanity bound).
+pub const MAX_SUBSTEPS: usize = 10_000;
+
+impl Stepping {
+    /// Its rules: 1 to [`MAX_SUBSTEPS`] sub-steps, an adaptive tolerance finite and > 0.
+    pub fn check(&self) -> Result<(), String> {
+        let (what, n) = match *self {
+            Stepping::Fixed(n) => ("substeps", n),
+            Stepping::Adaptive {
+                tolerance,
+                max_substeps,
+            } => {
+                if !(tolerance.is_finite() && tolerance > 0.0) {
+                    return Err(format!(
+                        "invalid tolerance = {tolerance}: must be a finite number > 0"
+                    ));
+                }
+                ("max_substeps", max_substeps)
+            }
+        };
+        if (1..=MAX_SUBSTEPS).contains(&n) {
+            Ok(())
+        } else {
+            Err(format!(
+                "invalid {what} = {n}: must be between 1 and {MAX_SUBSTEPS}"
+            ))
+        }
+    }
+}
 
 /// The default stepping of a model (its [`SubstepPolicy`]).
 pub fn default_stepping(model: ModelKind) -> Stepping {
@@ -77,34 +108,12 @@ impl Simulation {
                 "invalid rate_hz = {rate_hz}: must be a finite number > 0"
             ));
         }
-        match stepping {
-            Stepping::Fixed(n) if n == 0 || n > 10_000 => {
-                return Err(format!(
-                    "invalid substeps = {n}: must be between 1 and 10000"
-                ));
-            }
-            Stepping::Adaptive {
-                tolerance,
-                max_substeps,
-            } => {
-                if !(tolerance.is_finite() && tolerance > 0.0) {
-                    return Err(format!(
-                        "invalid tolerance = {tolerance}: must be a finite number > 0"
-                    ));
-                }
-                if max_substeps == 0 || max_substeps > 10_000 {
-                    return Err(format!(
-                        "invalid max_substeps = {max_substeps}: must be between 1 and 10000"
-                    ));
-                }
-                if !plant.model.is_ode() {
-                    return Err(format!(
-                        "the {} model needs a fixed number of sub-steps",
-                        plant.model
-                    ));
-                }
-            }
-            Stepping::Fixed(_) => {}
+        stepping.check()?;
+        if matches!(stepping, Stepping::Adaptive { .. }) && !plant.model.is_ode() {
+            return Err(format!(
+                "the {} model needs a fixed number of sub-steps",
+                plant.model
+            ));
         }
         let (n, m, j) = (plant.dim(), plant.muscle_count(), plant.joint_count());
         if inputs.excitation.len() != m

@@ -176,3 +176,18 @@ impl Rng {
         &v[self.below(v.len())]
     }
 }
+
+/// Fails with the first `shown` problems (each cut to `width` characters) if there are any.
+pub fn assert_no_problems(problems: &[String], shown: usize, width: usize) {
+    assert!(
+        problems.is_empty(),
+        "{} problems:\n{}",
+        problems.len(),
+        problems
+            .iter()
+            .take(shown)
+            .map(|p| p.chars().take(width).collect::<String>())
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}

@@ -415,3 +415,11 @@ def udp_sockets(pid):
                 addr, port = f[1].split(":")
                 found.append((_proc_ip(addr), int(port, 16)))
     return sorted(found)
+
+
+def doctor(path):
+    """`pymcap-cli doctor` (a GPL test tool, run as a program) finds no problem."""
+    import sys
+    exe = Path(sys.executable).parent / "pymcap-cli"
+    r = subprocess.run([str(exe), "doctor", str(path)], capture_output=True, text=True)
+    assert r.returncode == 0 and "passed MCAP doctor checks" in r.stdout, r.stdout + r.stderr

@@ -7,12 +7,9 @@ import os
 import time
 
 import pytest
-from diagnostic_msgs.msg import DiagnosticArray
-from rcl_interfaces.msg import Log
 from rclpy.parameter import Parameter
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
-from helpers import NodeProcess, Watch, wait_until
+from helpers import NodeProcess, Watch
 
 NS = "/t_big"
 MB = 1 << 20
@@ -33,21 +30,10 @@ def node(node_factory, tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def watch(peer, node):
-    return Watch(peer, node)
+    return Watch(peer, node, rosout=True)
 
 
 def test_a_flood_of_megabyte_names_costs_no_memory(peer, node, watch):
-    rosout = peer.subscribe(
-        Log,
-        "/rosout",
-        QoSProfile(
-            reliability=ReliabilityPolicy.RELIABLE,
-            history=HistoryPolicy.KEEP_LAST,
-            depth=1000,
-            durability=DurabilityPolicy.VOLATILE,
-        ),
-    )
-    peer.wait_matched_sub(rosout)
     watch.diagnostics(timeout=10.0)
     before = rss_mb(node.proc.pid)
     topic = node.topic("~/activation")
@@ -87,7 +73,7 @@ def test_a_flood_of_megabyte_names_costs_no_memory(peer, node, watch):
     assert int(inputs["rejected_unknown_name"]) > 0
     problem = inputs.get("last_problem", "")
     assert "(1048576 bytes)" in problem and len(problem) < 300, problem[:400]
-    lines = [m.msg for m in rosout.msgs() if "unknown name" in m.msg]
+    lines = [m.msg for m in watch.rosout.msgs() if "unknown name" in m.msg]
     assert lines and max(len(x) for x in lines) < 1100, [len(x) for x in lines]
     # And the node still takes a valid command.
     watch.activation(flexor=0.4, extensor=0.1)

@@ -8,7 +8,6 @@ import csv
 import os
 import signal
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
@@ -23,7 +22,7 @@ from muscle_actuator_msgs.msg import ActuatorState
 from rosbags.highlevel import AnyReader
 from sensor_msgs.msg import JointState
 
-from helpers import NodeProcess, wait_until
+from helpers import NodeProcess, doctor, wait_until
 
 MUSCLE_FIELDS = [
     "excitation", "activation", "force", "ce_force", "pe_force", "fiber_length",
@@ -61,13 +60,6 @@ def decode_rosbags(path):
         for conn, t, raw in reader.messages():
             out.append((conn.topic, t, reader.deserialize(raw, conn.msgtype)))
     return out
-
-
-def doctor(path):
-    """`pymcap-cli doctor` (a GPL test tool, run as a program) finds no problem."""
-    exe = Path(sys.executable).parent / "pymcap-cli"
-    r = subprocess.run([str(exe), "doctor", str(path)], capture_output=True, text=True)
-    assert r.returncode == 0 and "passed MCAP doctor checks" in r.stdout, r.stdout + r.stderr
 
 
 def muscle_values(m):

@@ -10,7 +10,6 @@ import os
 import random
 import signal
 import subprocess
-import sys
 import threading
 import time
 from pathlib import Path
@@ -21,7 +20,7 @@ from mcap.stream_reader import StreamReader
 from mcap.records import Footer, Message
 from muscle_actuator_msgs.msg import ActivationCommand
 
-from helpers import NodeProcess, wait_until
+from helpers import NodeProcess, doctor, wait_until
 
 STOPS = int(os.environ.get("MUSCLE_ACTUATOR_STOPS", "100"))
 MAGIC = b"\x89MCAP0\r\n"
@@ -46,12 +45,6 @@ def strict_read(path):
         indexed = sum(1 for _ in reader.iter_messages())
     assert streamed == indexed == summary.statistics.message_count, (streamed, indexed)
     return streamed
-
-
-def doctor(path):
-    exe = Path(sys.executable).parent / "pymcap-cli"
-    r = subprocess.run([str(exe), "doctor", str(path)], capture_output=True, text=True)
-    assert r.returncode == 0 and "passed MCAP doctor checks" in r.stdout, r.stdout + r.stderr
 
 
 class Flood:
