@@ -210,18 +210,6 @@ impl Shared {
     }
 }
 
-/// Makes glibc's allocator serve blocks of 256 kB and more with their own mappings, returned to
-/// the system when freed. Its default raises that threshold after each such block is freed, so a
-/// stream of large messages (a hostile 1 MB name at a thousand commands a second) ends up in the
-/// heaps of the DDS threads, where it stays after the flood.
-fn return_large_blocks_to_the_system() {
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    // SAFETY: mallopt only sets an allocator parameter; called before the other threads start.
-    unsafe {
-        libc::mallopt(libc::M_MMAP_THRESHOLD, 256 * 1024);
-    }
-}
-
 /// A second SIGINT/SIGTERM sooner than this after the first is part of the same stop request.
 const SIGNAL_INSIST_AFTER: Duration = Duration::from_secs(2);
 
@@ -558,7 +546,6 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     let Some(setup) = setup(argv)? else {
         return Ok(());
     };
-    return_large_blocks_to_the_system();
     let actuator = setup.params.build()?;
     let level = setup.ros_args.log_level.unwrap_or(Severity::Info);
 
