@@ -18,7 +18,7 @@
 //!
 //! The antagonistic pair of earlier versions is still read: a single `[joint]` table with a
 //! pulley `radius` (and optional common `path_length`), and two muscles without spans, the first
-//! pulling towards positive angles.
+//! pulling towards positive angles; or one, which replaces the default muscle of its name.
 //!
 //! Built-in configurations by name: `elbow` (the default) and `arm` (after OpenSim's arm26).
 
@@ -277,7 +277,7 @@ impl ActuatorConfig {
                 ))
             }
         };
-        let muscles = match muscle_tables {
+        let mut muscles = match muscle_tables {
             None => Vec::new(),
             Some(tables) => tables
                 .into_iter()
@@ -321,17 +321,34 @@ impl ActuatorConfig {
                         }
                         None => (DEFAULT_RADIUS, None),
                     };
-                    if !muscles.is_empty() {
-                        if muscles.len() != 2 {
+                    match muscles.len() {
+                        0 => {}
+                        // One muscle of the pair given: the other keeps its default.
+                        1 => {
+                            let m = muscles.remove(0);
+                            let Some(k) = cfg.muscles.iter().position(|d| d.name == m.name) else {
+                                return Err(ConfigError::Invalid(vec![rule(
+                                    format!("muscle.{}", excerpt(&m.name)),
+                                    "not a muscle of the pair",
+                                    "a single muscle without `span` replaces the default pair's \
+                                     muscle of the same name (flexor or extensor); give two to \
+                                     replace both (agonist first), or give each muscle a \
+                                     [[muscle.span]] for other topologies",
+                                )]));
+                            };
+                            cfg.muscles[k] = m;
+                        }
+                        2 => cfg.muscles = muscles,
+                        n => {
                             return Err(ConfigError::Invalid(vec![rule(
                                 "muscle".into(),
-                                format!("{} entries", muscles.len()),
+                                format!("{n} entries"),
                                 "muscles without `span` form an antagonistic pair on one joint: \
-                                 exactly two (agonist, antagonist); give each muscle a \
-                                 [[muscle.span]] for other topologies",
+                                 one (replacing the default muscle of its name) or two (agonist, \
+                                 antagonist); give each muscle a [[muscle.span]] for other \
+                                 topologies",
                             )]));
                         }
-                        cfg.muscles = muscles;
                     }
                     cfg.set_pair_geometry(radius, path_length);
                     cfg.validate()?;
@@ -693,4 +710,26 @@ fn muscle_from_table(i: usize, mut table: toml::Table) -> Result<MuscleConfig, S
         path_length,
         spans,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One muscle of the pair, without spans: it replaces the default muscle of its name, and
+    /// everything else keeps its default (the rule the README states).
+    #[test]
+    fn a_single_pair_muscle_replaces_its_namesake() {
+        let default = ActuatorConfig::default();
+        let cfg =
+            ActuatorConfig::from_toml_str("[[muscle]]\nname = \"extensor\"\nf_max = 1000.0\n")
+                .unwrap();
+        assert_eq!(cfg.muscle_names(), default.muscle_names());
+        assert_eq!(cfg.muscles[0].params, default.muscles[0].params);
+        assert_eq!(cfg.muscles[1].params.f_max, 1000.0);
+        assert_eq!(cfg.muscles[1].spans, default.muscles[1].spans);
+        assert_eq!(cfg.joints, default.joints);
+        let e = ActuatorConfig::from_toml_str("[[muscle]]\nname = \"biceps\"\n").unwrap_err();
+        assert!(e.to_string().contains("muscle.biceps"), "{e}");
+    }
 }

@@ -79,8 +79,12 @@ fn each_invalid_parameter_gets_its_own_error() {
             &["fmax"],
         ),
         (
-            "[[muscle]]\nname = \"flexor\"\n",
-            &["antagonistic pair", "exactly two"],
+            "[[muscle]]\nname = \"biceps\"\n",
+            &["muscle.biceps", "replaces the default pair's muscle of the same name"],
+        ),
+        (
+            "[[muscle]]\nname = \"a\"\n[[muscle]]\nname = \"b\"\n[[muscle]]\nname = \"c\"\n",
+            &["3 entries", "antagonistic pair"],
         ),
         (
             "[[muscle]]\nname = \"a\"\n[[muscle]]\nname = \"a\"\n",
