@@ -48,7 +48,8 @@ def main():
     pub = node.create_publisher(ActivationCommand, f"{a.node}/activation", qos)
     ex = SingleThreadedExecutor()
     ex.add_node(node)
-    threading.Thread(target=ex.spin, daemon=True).start()
+    spin = threading.Thread(target=ex.spin, daemon=True)
+    spin.start()
 
     def wait(pred, timeout, what):
         end = time.monotonic() + timeout
@@ -88,7 +89,10 @@ def main():
         with lock:
             s = latest["s"]
         print(f"{u:9.2f} {s.stiffness[0]:18.2f} {s.position[0]:10.4f} {s.muscles[0].force:16.1f} {s.muscles[1].force:16.1f}")
+    # The spin thread ends before the node and the context go (rclpy aborts the process when the
+    # context is shut down under a running executor).
     ex.shutdown()
+    spin.join(timeout=5.0)
     node.destroy_node()
     rclpy.try_shutdown()
 

@@ -6,7 +6,8 @@
 #                              [--domain ID] [--subnet] [-- more ROS arguments]
 #
 # Discovery stays on this host unless --subnet is given. The binary is $MUSCLE_ACTUATOR_BIN, or
-# the newer of target/release and target/debug (built with `cargo build` if neither exists).
+# the newer of target/release and target/debug under $CARGO_TARGET_DIR or target/ (built with
+# `cargo build` if neither exists).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
@@ -30,14 +31,16 @@ export ROS_AUTOMATIC_DISCOVERY_RANGE="${ROS_AUTOMATIC_DISCOVERY_RANGE:-LOCALHOST
 
 bin="${MUSCLE_ACTUATOR_BIN:-}"
 if [ -z "$bin" ]; then
-  # The newer of the release and debug builds.
-  for b in "$ROOT/target/release/muscle_actuator" "$ROOT/target/debug/muscle_actuator"; do
+  # The newer of the release and debug builds (in CARGO_TARGET_DIR when set).
+  target="${CARGO_TARGET_DIR:-$ROOT/target}"
+  case "$target" in /*) ;; *) target="$ROOT/$target" ;; esac
+  for b in "$target/release/muscle_actuator" "$target/debug/muscle_actuator"; do
     if [ -x "$b" ] && { [ -z "$bin" ] || [ "$b" -nt "$bin" ]; }; then bin="$b"; fi
   done
 fi
 if [ -z "$bin" ]; then
   (cd "$ROOT" && cargo build --quiet --bin muscle_actuator)
-  bin="$ROOT/target/debug/muscle_actuator"
+  bin="$target/debug/muscle_actuator"
 fi
 
 args=(--ros-args -r "__ns:=$ns")

@@ -4,10 +4,13 @@
 #      solver, conservation laws; the CLI), and the benchmarks compiled and run once in test mode;
 #   2. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
 #      a loopback-only network namespace (scripts/test-ros.sh; it creates .venv and builds the
-#      message package for rclpy on first use).
+#      message package for rclpy on first use);
+#   3. the demo of the README, which must end cleanly.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 echo "== Rust tests" >&2
 cargo test --all-targets
 echo "== ROS 2 tests (rclpy peer)" >&2
-bash scripts/test-ros.sh -q
+MUSCLE_ACTUATOR_BUILT=1 bash scripts/test-ros.sh -q
+echo "== Demo (launch-scripts/demo.sh: the node and an rclpy co-contraction sweep)" >&2
+bash launch-scripts/demo.sh

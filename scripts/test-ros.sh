@@ -14,11 +14,16 @@ cd "$ROOT"
 
 VENV="$("$ROOT/scripts/py-env.sh" | tail -n 1)"
 
-echo "[test-ros] building the node (cargo build)" >&2
-cargo build --quiet --bin muscle_actuator
 TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
 case "$TARGET_DIR" in /*) ;; *) TARGET_DIR="$ROOT/$TARGET_DIR" ;; esac
 BIN="$TARGET_DIR/debug/muscle_actuator"
+# scripts/test-all.sh sets MUSCLE_ACTUATOR_BUILT=1: its `cargo test --all-targets` has just built
+# this binary (the integration tests run it), and a plain `cargo build` would compile the crate
+# again with other features (dev-dependencies unify features differently).
+if [ "${MUSCLE_ACTUATOR_BUILT:-}" != 1 ] || [ ! -x "$BIN" ]; then
+  echo "[test-ros] building the node (cargo build)" >&2
+  cargo build --quiet --bin muscle_actuator
+fi
 [ -x "$BIN" ] || { echo "[test-ros] no binary at $BIN" >&2; exit 1; }
 
 export MUSCLE_ACTUATOR_BIN="$BIN"
