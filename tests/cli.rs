@@ -80,7 +80,10 @@ fn each_invalid_parameter_gets_its_own_error() {
         ),
         (
             "[[muscle]]\nname = \"biceps\"\n",
-            &["muscle.biceps", "replaces the default pair's muscle of the same name"],
+            &[
+                "muscle.biceps",
+                "replaces the default pair's muscle of the same name",
+            ],
         ),
         (
             "[[muscle]]\nname = \"a\"\n[[muscle]]\nname = \"b\"\n[[muscle]]\nname = \"c\"\n",

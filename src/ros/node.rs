@@ -210,6 +210,50 @@ impl Shared {
     }
 }
 
+/// A tick later than this many periods is warned about on its own (rate-limited); later than
+/// one period, it is counted in the summary logged every [`LATENESS_SUMMARY_PERIOD`].
+const LATE_WARN_PERIODS: f64 = 5.0;
+const LATENESS_SUMMARY_PERIOD: Duration = Duration::from_secs(10);
+
+/// Ticks that started more than one period late since the last summary.
+struct LateTicks {
+    count: u64,
+    worst_us: f64,
+    since: Instant,
+}
+
+impl LateTicks {
+    fn new() -> Self {
+        Self {
+            count: 0,
+            worst_us: 0.0,
+            since: Instant::now(),
+        }
+    }
+    /// Counts a late tick; true if it deserves a warning of its own.
+    fn add(&mut self, lateness_us: f64, period_us: f64) -> bool {
+        self.count += 1;
+        self.worst_us = self.worst_us.max(lateness_us);
+        lateness_us > LATE_WARN_PERIODS * period_us
+    }
+    /// The summary line, once a period is over and there was a late tick in it.
+    fn summary_due(&mut self) -> Option<String> {
+        if self.since.elapsed() < LATENESS_SUMMARY_PERIOD {
+            return None;
+        }
+        let line = (self.count > 0).then(|| {
+            format!(
+                "{} ticks started more than one period late in the last {} s (worst {:.0} us)",
+                self.count,
+                LATENESS_SUMMARY_PERIOD.as_secs(),
+                self.worst_us
+            )
+        });
+        *self = Self::new();
+        line
+    }
+}
+
 /// A second SIGINT/SIGTERM sooner than this after the first is part of the same stop request.
 const SIGNAL_INSIST_AFTER: Duration = Duration::from_secs(2);
 
@@ -963,8 +1007,12 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         }
     };
     let events_task = async {
+        let mut late = LateTicks::new();
         loop {
             smol::Timer::after(Duration::from_millis(50)).await;
+            if let Some(summary) = late.summary_due() {
+                logger.info(&summary);
+            }
             while let Ok(e) = event_rx.try_recv() {
                 match e {
                     Event::StepFailed { tick, reason } => report(
@@ -975,13 +1023,19 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                              inputs cleared until the next command"
                         ),
                     ),
-                    Event::Overrun { tick, lateness_us } => report(
-                        "overrun",
-                        Severity::Warn,
-                        format!(
-                            "tick {tick} started {lateness_us:.0} us late (more than one period)"
-                        ),
-                    ),
+                    Event::Overrun { tick, lateness_us } => {
+                        let period_us = 1e6 / stats.rate_hz();
+                        if late.add(lateness_us, period_us) {
+                            report(
+                                "overrun",
+                                Severity::Warn,
+                                format!(
+                                    "tick {tick} started {lateness_us:.0} us late (more than \
+                                     {LATE_WARN_PERIODS} periods)"
+                                ),
+                            );
+                        }
+                    }
                     Event::Resync { skipped } => logger.warn(&format!(
                         "the tick loop stalled: {skipped} ticks skipped, schedule restarted"
                     )),
@@ -1093,6 +1147,24 @@ pub fn run(argv: &[String]) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Late ticks are counted for the 10 s summary; only those later than five periods are
+    /// warned about on their own.
+    #[test]
+    fn late_ticks_are_summarised() {
+        let mut late = LateTicks::new();
+        assert!(!late.add(1500.0, 1000.0));
+        assert!(late.add(6000.0, 1000.0));
+        assert_eq!(late.summary_due(), None, "not before 10 s");
+        late.since = Instant::now() - Duration::from_secs(11);
+        let line = late.summary_due().unwrap();
+        assert!(
+            line.starts_with("2 ticks started") && line.ends_with("(worst 6000 us)"),
+            "{line}"
+        );
+        late.since = Instant::now() - Duration::from_secs(11);
+        assert_eq!(late.summary_due(), None, "nothing late: nothing said");
+    }
 
     #[test]
     fn rate_limit_holds_back_repeats() {
