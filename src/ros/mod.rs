@@ -1,4 +1,4 @@
-//! The ROS 2 node (`muscle_actuator node`): SPEC.md "ROS 2 interface".
+//! The ROS 2 node (`muscle_actuator node`): README, "The ROS interface".
 //!
 //! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS:
 //! - [`args`]: the standard ROS 2 command-line arguments, name expansion and remapping;

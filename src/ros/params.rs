@@ -1,4 +1,4 @@
-//! The node's six parameters (SPEC.md): their defaults, types and validation.
+//! The node's six parameters (README, "The ROS interface"): their defaults, types and validation.
 
 use crate::config::{excerpt, ActuatorConfig};
 use crate::physics::model::ModelKind;

@@ -24,7 +24,8 @@ from std_srvs.srv import Trigger
 
 ROOT = Path(__file__).resolve().parents[2]
 
-# Service calls to a RustDDS server: the first one can take ~3 s (ROS2_PYPI.md).
+# Service calls to a RustDDS server: the first one can take ~3 s (discovery of the service's
+# two topics).
 SERVICE_TIMEOUT = 15.0
 DISCOVERY_TIMEOUT = 20.0
 
