@@ -591,3 +591,35 @@ fn the_comparison_catches_a_difference() {
     );
     assert!(compare("MuscleState", &got, &want).is_err());
 }
+
+/// The messages document themselves: each starts with a description comment, every float field
+/// states its unit (or says it is dimensionless), and `ActuatorState` names every model the
+/// program has, and no other, in its `MODEL_*` constants.
+#[test]
+fn messages_document_units_and_model_names() {
+    for entry in std::fs::read_dir(msg_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        assert!(text.starts_with("# "), "{name} starts without a description");
+        for line in text.lines().filter(|l| l.starts_with("float64")) {
+            let comment = line.split_once('#').map(|(_, c)| c).unwrap_or("");
+            let has_unit = ["rad", "N m", "N/m", "N", "m/s", " m", "J", "dimensionless", " h"]
+                .iter()
+                .any(|u| comment.contains(u));
+            assert!(has_unit, "{name}: no unit in {line:?}");
+        }
+    }
+    let text = std::fs::read_to_string(msg_dir().join("ActuatorState.msg")).unwrap();
+    let mut constants: Vec<String> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("string MODEL_"))
+        .map(|l| l.split_once('=').unwrap().1.trim_matches('"').to_string())
+        .collect();
+    let mut models: Vec<String> = muscle_actuator::physics::model::ModelKind::all()
+        .map(|m| m.name().to_string())
+        .collect();
+    constants.sort();
+    models.sort();
+    assert_eq!(constants, models);
+}

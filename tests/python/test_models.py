@@ -5,9 +5,16 @@ import time
 
 import pytest
 
+from muscle_actuator_msgs.msg import ActuatorState
+
 from helpers import NodeProcess, Watch, muscle, finite_state
 
-MODELS = ["hill", "huxley", "huxley-pde"]
+# The message's own constants name the models.
+MODELS = [ActuatorState.MODEL_HILL, ActuatorState.MODEL_HUXLEY, ActuatorState.MODEL_HUXLEY_PDE]
+
+
+def test_model_constants_are_the_parameter_values():
+    assert MODELS == ["hill", "huxley", "huxley-pde"]
 
 
 @pytest.mark.parametrize("model", MODELS)
