@@ -317,8 +317,12 @@ pub fn yaml_to_param(v: &serde_yaml::Value) -> Result<ParameterValue, String> {
 }
 
 /// Reads the `ros__parameters` of every section of a parameters file that applies to the node
-/// `fqn` (`/**`, `/**/name`, the exact name, wildcards `*` and `**`; a key without a leading
-/// slash also matches the node's base name in any namespace). Nested keys become dotted names.
+/// `fqn`, as rcl does (`rcl_yaml_param_parser` then rclcpp's `parameter_map_from`): the keys
+/// above a `ros__parameters` join with `/` into the section's node name (`/arm:` then
+/// `muscle_actuator:` is `/arm/muscle_actuator`); a name without a leading slash gets one, so
+/// `muscle_actuator:` is the node in the root namespace only; `*` stands for one name segment
+/// and `**` for any number (`/**` is every node). Nested keys become dotted parameter names.
+/// Every matching section applies, in file order.
 pub fn read_params_file(path: &Path, fqn: &str) -> Result<Vec<ParamAssignment>, String> {
     let shown = excerpt(&path.display().to_string());
     let bytes = read_regular_file(path, MAX_PARAMS_FILE_BYTES).map_err(|e| {
@@ -328,6 +332,9 @@ pub fn read_params_file(path: &Path, fqn: &str) -> Result<Vec<ParamAssignment>, 
         String::from_utf8(bytes).map_err(|_| format!("parameters file {shown}: not UTF-8 text"))?;
     parse_params_yaml(&text, &shown, fqn)
 }
+
+/// The key that holds a node's parameters.
+const PARAMS_KEY: &str = "ros__parameters";
 
 /// See [`read_params_file`]; `source` names the file in errors.
 pub fn parse_params_yaml(
@@ -347,26 +354,77 @@ pub fn parse_params_yaml(
             ))
         }
     };
+    let mut sections = Vec::new();
+    node_sections(top, "", source, &mut sections)?;
     let mut out = Vec::new();
-    for (key, section) in top {
+    for (node, params) in sections {
+        if node_key_matches(&node, fqn) {
+            flatten(params, "", source, &mut out)?;
+        }
+    }
+    Ok(out)
+}
+
+/// Joins a node-name key to the names above it, as rcl's `add_name_to_ns` does: with a `/`
+/// unless the names above already end with one.
+fn join_node_key(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else if prefix.ends_with('/') {
+        format!("{prefix}{key}")
+    } else {
+        format!("{prefix}/{key}")
+    }
+}
+
+/// Collects `(node name, ros__parameters value)` for every section below `map`, whose keys
+/// so far joined into `prefix`. As in rcl, the keys beside a `ros__parameters` are names in
+/// the node's namespace (siblings of the node), and a plain value before any
+/// `ros__parameters` is an error.
+fn node_sections<'a>(
+    map: &'a serde_yaml::Mapping,
+    prefix: &str,
+    source: &str,
+    out: &mut Vec<(String, &'a serde_yaml::Value)>,
+) -> Result<(), String> {
+    let parent = match map.get(PARAMS_KEY) {
+        Some(params) => {
+            if prefix.is_empty() {
+                return Err(format!(
+                    "parameters file {source}: `{PARAMS_KEY}` needs a node name above it"
+                ));
+            }
+            out.push((prefix.to_string(), params));
+            // The node's own name dropped: its siblings live in its namespace.
+            match prefix.rfind('/') {
+                Some(0) => "/".to_string(),
+                Some(i) => prefix[..i].to_string(),
+                None => String::new(),
+            }
+        }
+        None => prefix.to_string(),
+    };
+    for (key, value) in map {
         let key = key
             .as_str()
             .ok_or_else(|| format!("parameters file {source}: node keys must be strings"))?;
-        if !node_key_matches(key, fqn) {
+        if key == PARAMS_KEY {
             continue;
         }
-        let params = section
-            .as_mapping()
-            .and_then(|m| m.get("ros__parameters"))
-            .ok_or_else(|| {
-                format!(
-                    "parameters file {source}: section {:?} has no `ros__parameters`",
-                    excerpt(key)
-                )
-            })?;
-        flatten(params, "", source, &mut out)?;
+        if key.is_empty() {
+            return Err(format!("parameters file {source}: empty node key"));
+        }
+        let name = join_node_key(&parent, key);
+        let Some(inner) = value.as_mapping() else {
+            return Err(format!(
+                "parameters file {source}: {:?} holds a value before any `{PARAMS_KEY}` \
+                 (expected `node_name: {{{PARAMS_KEY}: {{...}}}}`)",
+                excerpt(&name)
+            ));
+        };
+        node_sections(inner, &name, source, out)?;
     }
-    Ok(out)
+    Ok(())
 }
 
 fn flatten(
@@ -412,31 +470,39 @@ fn flatten(
     Ok(())
 }
 
-/// Whether a parameters-file node key applies to the node `fqn`.
+/// Whether a parameters-file node name applies to the node `fqn`, as rclcpp's
+/// `parameter_map_from` decides: a leading `/` is added when missing (so a bare name is a node
+/// in the root namespace), then the whole name must match, `*` standing for one segment and
+/// `**` for any number of segments (none included).
 pub fn node_key_matches(key: &str, fqn: &str) -> bool {
-    let base = fqn.rsplit('/').next().unwrap_or(fqn);
-    if key == "/**" || key == "**" || key == base {
-        return true;
-    }
-    let key = if key.starts_with('/') {
-        key.to_string()
-    } else {
-        format!("/{key}")
-    };
-    let pat: Vec<&str> = key.split('/').skip(1).collect();
+    let key = key.strip_prefix('/').unwrap_or(key);
+    let pat: Vec<&str> = key.split('/').collect();
     let name: Vec<&str> = fqn.split('/').skip(1).collect();
     glob(&pat, &name)
 }
 
+/// Whole-name match of segment patterns (`*` one segment, `**` any number), by dynamic
+/// programming: a hostile key of thousands of `**` costs `pat × name` steps, not exponential.
 fn glob(pat: &[&str], name: &[&str]) -> bool {
-    match pat.split_first() {
-        None => name.is_empty(),
-        Some((&"**", rest)) => (0..=name.len()).any(|k| glob(rest, &name[k..])),
-        Some((p, rest)) => match name.split_first() {
-            Some((n, nrest)) => (*p == "*" || p == n) && glob(rest, nrest),
-            None => false,
-        },
+    // ok[j]: pat[..i] matches name[..j].
+    let mut ok = vec![false; name.len() + 1];
+    ok[0] = true;
+    for p in pat {
+        let mut next = vec![false; name.len() + 1];
+        if *p == "**" {
+            let mut any = false;
+            for j in 0..=name.len() {
+                any |= ok[j];
+                next[j] = any;
+            }
+        } else {
+            for j in 1..=name.len() {
+                next[j] = ok[j - 1] && (*p == "*" || *p == name[j - 1]);
+            }
+        }
+        ok = next;
     }
+    ok[name.len()]
 }
 
 /// Checks the nesting of YAML flow collections before the text is parsed (see
@@ -700,12 +766,22 @@ mod tests {
         assert_eq!(resolve("~/activation", "/a", "m", "m", &r), "/a/cmd");
     }
 
+    /// The names of the parameters a file gives the node `fqn`.
+    fn names_for(yaml: &str, fqn: &str) -> Vec<String> {
+        parse_params_yaml(yaml, "f.yaml", fqn)
+            .unwrap()
+            .into_iter()
+            .map(|a| a.name)
+            .collect()
+    }
+
     #[test]
     fn params_file_sections_apply_by_node_name() {
         let yaml = "
 /**:
   ros__parameters:
     record: false
+    robot_name: r2
 muscle_actuator:
   ros__parameters:
     model: hill
@@ -718,14 +794,89 @@ muscle_actuator:
   ros__parameters:
     rate_hz: 250.0
 ";
-        let p = parse_params_yaml(yaml, "f.yaml", "/lab/muscle_actuator").unwrap();
-        let names: Vec<_> = p.iter().map(|a| a.name.as_str()).collect();
-        assert_eq!(names, ["record", "model", "nested.value", "rate_hz"]);
-        let p = parse_params_yaml(yaml, "f.yaml", "/other/node").unwrap();
-        let names: Vec<_> = p.iter().map(|a| a.name.as_str()).collect();
-        assert_eq!(names, ["record", "model"]);
+        // `muscle_actuator:` is the root namespace's node only.
+        assert_eq!(
+            names_for(yaml, "/lab/muscle_actuator"),
+            ["record", "robot_name", "rate_hz"]
+        );
+        assert_eq!(
+            names_for(yaml, "/muscle_actuator"),
+            ["record", "robot_name", "model", "nested.value"]
+        );
+        assert_eq!(
+            names_for(yaml, "/other/node"),
+            ["record", "robot_name", "model"]
+        );
         assert!(parse_params_yaml("a: [", "f", "/x").is_err());
         assert!(parse_params_yaml("x:\n  nope: 1\n", "f", "/x").is_err());
+        assert!(parse_params_yaml("ros__parameters:\n  a: 1\n", "f", "/x").is_err());
+    }
+
+    /// Each layout of the rcl documentation, for the node `/arm/muscle_actuator`.
+    #[test]
+    fn params_file_layouts() {
+        let fqn = "/arm/muscle_actuator";
+        let one = |key: &str| format!("{key}:\n  ros__parameters:\n    rate_hz: 250.0\n");
+        // Flat `/**`, `/**/name`, the exact name, `/arm/*`.
+        for key in [
+            "/**",
+            "\"**\"",
+            "/**/muscle_actuator",
+            "/arm/muscle_actuator",
+            "/arm/*",
+        ] {
+            assert_eq!(names_for(&one(key), fqn), ["rate_hz"], "{key}");
+        }
+        // A key without a leading slash is the root namespace's node; others do not apply.
+        for key in [
+            "muscle_actuator",
+            "/muscle_actuator",
+            "/other/muscle_actuator",
+            "/*",
+        ] {
+            assert!(names_for(&one(key), fqn).is_empty(), "{key}");
+        }
+        assert_eq!(
+            names_for(&one("muscle_actuator"), "/muscle_actuator"),
+            ["rate_hz"]
+        );
+        assert_eq!(names_for(&one("/*"), "/muscle_actuator"), ["rate_hz"]);
+        // Nested namespace keys: `/arm:` then `muscle_actuator:`.
+        let nested = "
+/arm:
+  muscle_actuator:
+    ros__parameters:
+      rate_hz: 250.0
+      model: hill
+  other_node:
+    ros__parameters:
+      robot_name: r2
+";
+        assert_eq!(names_for(nested, fqn), ["rate_hz", "model"]);
+        assert!(names_for(nested, "/muscle_actuator").is_empty());
+        assert_eq!(names_for(nested, "/arm/other_node"), ["robot_name"]);
+        // Deeper: `/lab:` then `arm:` then the node; `arm/` ending in a slash; `/**:` then the node.
+        let deeper =
+            "/lab:\n  arm:\n    muscle_actuator:\n      ros__parameters:\n        record: true\n";
+        assert_eq!(names_for(deeper, "/lab/arm/muscle_actuator"), ["record"]);
+        assert!(names_for(deeper, fqn).is_empty());
+        let slash = "/lab/:\n  muscle_actuator:\n    ros__parameters:\n      record: true\n";
+        assert_eq!(names_for(slash, "/lab/muscle_actuator"), ["record"]);
+        let wild = "/**:\n  muscle_actuator:\n    ros__parameters:\n      record: true\n";
+        assert_eq!(names_for(wild, fqn), ["record"]);
+        assert_eq!(names_for(wild, "/muscle_actuator"), ["record"]);
+        assert!(names_for(wild, "/arm/other").is_empty());
+        // A bare top key nests the same way: `arm:` then the node is `/arm/muscle_actuator`.
+        let bare = "arm:\n  muscle_actuator:\n    ros__parameters:\n      record: true\n";
+        assert_eq!(names_for(bare, fqn), ["record"]);
+        // Keys beside `ros__parameters` are the node's siblings, as rcl reads them.
+        let sib = "/arm:\n  a:\n    ros__parameters:\n      x: 1\n    b:\n      ros__parameters:\n        y: 2\n";
+        assert_eq!(names_for(sib, "/arm/a"), ["x"]);
+        assert_eq!(names_for(sib, "/arm/b"), ["y"]);
+        // A section for another node with values this node would refuse is not read.
+        let other =
+            "/other:\n  ros__parameters:\n    x: ~\n/**:\n  ros__parameters:\n    record: true\n";
+        assert_eq!(names_for(other, fqn), ["record"]);
     }
 
     #[test]
@@ -733,9 +884,15 @@ muscle_actuator:
         assert!(node_key_matches("/**", "/a/b"));
         assert!(node_key_matches("/**/b", "/a/b"));
         assert!(node_key_matches("/**/b", "/b"));
+        assert!(node_key_matches("/a/**/b", "/a/b"));
+        assert!(node_key_matches("/a/**/b", "/a/x/y/b"));
         assert!(node_key_matches("/a/*", "/a/b"));
         assert!(!node_key_matches("/a/*", "/a/c/b"));
-        assert!(node_key_matches("b", "/a/b"));
+        assert!(!node_key_matches("b", "/a/b"));
+        assert!(node_key_matches("b", "/b"));
         assert!(!node_key_matches("/c/b", "/a/b"));
+        // Thousands of `**` cost little.
+        let hostile = format!("/{}x", "**/".repeat(100_000));
+        assert!(!node_key_matches(&hostile, &"/a".repeat(100)));
     }
 }

@@ -551,6 +551,9 @@ struct Setup {
     fqn: String,
     params: NodeParams,
     ros_args: RosArgs,
+    /// Notes on the undeclared parameters ignored, logged at debug level once the logger
+    /// exists.
+    ignored: Vec<String>,
 }
 
 fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
@@ -566,7 +569,18 @@ fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
         .unwrap_or_else(|| DEFAULT_NODE_NAME.into());
     let fqn = args::expand("~", &namespace, &name);
     let mut p = NodeParams::default();
+    let mut ignored = Vec::new();
     for a in ros_args.resolved_params(&fqn)? {
+        // As rclcpp and rclpy do (without `allow_undeclared_parameters`), a parameter this
+        // node does not declare is ignored: a shared file holds other nodes' parameters.
+        if a.name != "use_sim_time" && !params::ALL.contains(&a.name.as_str()) {
+            ignored.push(format!(
+                "ignoring undeclared parameter {:?} (from {})",
+                crate::config::excerpt(&a.name),
+                a.source
+            ));
+            continue;
+        }
         if a.name == "use_sim_time" {
             if !matches!(a.value, ros2_client::ParameterValue::Boolean(_)) {
                 return Err(format!("{}: use_sim_time must be a bool", a.source));
@@ -582,6 +596,7 @@ fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
         fqn,
         params: p,
         ros_args,
+        ignored,
     }))
 }
 
@@ -686,6 +701,9 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         name: setup.fqn.trim_start_matches('/').replace('/', "."),
     };
     let _ = shared.logger.set(logger.clone());
+    for note in &setup.ignored {
+        logger.debug(note);
+    }
 
     // Topics and the service, with the remap rules.
     let resolve = |n: &str| {
@@ -1191,10 +1209,19 @@ mod tests {
             .map(String::from)
             .collect();
         assert!(setup(&bad).unwrap_err().contains("rate_hz"));
-        let bad: Vec<String> = "--ros-args -p colour:=red"
+        // An undeclared parameter is ignored with a note; a declared one keeps its checks.
+        let unknown: Vec<String> = "--ros-args -p colour:=red -p model:=hill"
             .split_whitespace()
             .map(String::from)
             .collect();
-        assert!(setup(&bad).unwrap_err().contains("colour"));
+        let s = setup(&unknown).unwrap().unwrap();
+        assert_eq!(s.params.model.name(), "hill");
+        assert_eq!(s.ignored.len(), 1);
+        assert!(s.ignored[0].contains("colour"), "{:?}", s.ignored);
+        let bad: Vec<String> = "--ros-args -p colour:=red -p record:=maybe"
+            .split_whitespace()
+            .map(String::from)
+            .collect();
+        assert!(setup(&bad).unwrap_err().contains("record"));
     }
 }

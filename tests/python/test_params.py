@@ -18,7 +18,8 @@ def params_file(tmp_path_factory):
     p = tmp_path_factory.mktemp("params") / "node.yaml"
     p.write_text(
         "/**:\n  ros__parameters:\n    record: false\n"
-        "muscle_actuator:\n  ros__parameters:\n    record_dir: /tmp/from_file\n    model: huxley\n"
+        "/t_params/muscle_actuator:\n  ros__parameters:\n    record_dir: /tmp/from_file\n"
+        "    model: huxley\n"
     )
     return p
 
@@ -129,7 +130,7 @@ def test_bad_start_up_parameter_is_one_clear_error():
     for args, word in [
         (["-p", "model:=bogus"], "bogus"),
         (["-p", "rate_hz:=-3"], "rate_hz"),
-        (["-p", "colour:=red"], "colour"),
+        (["-p", "colour:=red", "-p", "record:=maybe"], "record"),
         (["--params-file", "/nonexistent/p.yaml"], "/nonexistent/p.yaml"),
     ]:
         n = NodeProcess("/t_params_bad", args)
@@ -139,3 +140,61 @@ def test_bad_start_up_parameter_is_one_clear_error():
         assert rc != 0, out
         assert word in out, out
         assert "panicked" not in out, out
+
+
+def started_with_file(node_factory, peer, namespace, text, tmp_path, *extra):
+    """A node started with a parameters file holding `text`, and its parameter client."""
+    f = tmp_path / "shared.yaml"
+    f.write_text(text)
+    n = node_factory(namespace, "--params-file", str(f), *extra)
+    return n, peer.param_client(n)
+
+
+def test_shared_file_with_other_nodes_parameters(node_factory, peer, tmp_path):
+    # `/**` holds parameters of other nodes too; `-p` names one nobody declared. Both are
+    # ignored (a debug-level note each) and the node's own values apply.
+    n, c = started_with_file(
+        node_factory,
+        peer,
+        "/t_params_shared",
+        "/**:\n  ros__parameters:\n    robot_name: r2\n    use_sim_time: false\n"
+        "    rate_hz: 500.0\n"
+        "/camera:\n  ros__parameters:\n    exposure: 0.01\n",
+        tmp_path,
+        "-p", "colour:=red", "--log-level", "debug",
+    )
+    v = values(peer, c, ["rate_hz", "model"])
+    assert v == {"rate_hz": 500.0, "model": "huxley"}
+    assert n.alive()
+    wait_until(lambda: "robot_name" in n.output(), 5.0, what="the debug note")
+    out = n.output()
+    assert "ignoring undeclared parameter \"robot_name\"" in out, out
+    assert "ignoring undeclared parameter \"colour\"" in out, out
+    assert "exposure" not in out, out  # another node's section is not read at all
+
+
+def test_nested_namespace_layout(node_factory, peer, tmp_path):
+    # The layout of the rcl documentation: namespace, then node name, then ros__parameters.
+    n, c = started_with_file(
+        node_factory,
+        peer,
+        "/t_params_arm",
+        "/t_params_arm:\n"
+        "  muscle_actuator:\n    ros__parameters:\n      model: hill\n      rate_hz: 250.0\n"
+        "  other_node:\n    ros__parameters:\n      model: huxley-pde\n",
+        tmp_path,
+    )
+    assert values(peer, c, ["model", "rate_hz"]) == {"model": "hill", "rate_hz": 250.0}
+
+
+def test_key_without_slash_is_the_root_namespace_only(node_factory, peer, tmp_path):
+    n, c = started_with_file(
+        node_factory,
+        peer,
+        "/t_params_noslash",
+        "muscle_actuator:\n  ros__parameters:\n    model: hill\n"
+        "/**:\n  ros__parameters:\n    publish_rate_hz: 50.0\n",
+        tmp_path,
+    )
+    v = values(peer, c, ["model", "publish_rate_hz"])
+    assert v == {"model": "huxley", "publish_rate_hz": 50.0}
