@@ -601,12 +601,25 @@ fn messages_document_units_and_model_names() {
         let path = entry.unwrap().path();
         let text = std::fs::read_to_string(&path).unwrap();
         let name = path.file_name().unwrap().to_string_lossy().to_string();
-        assert!(text.starts_with("# "), "{name} starts without a description");
+        assert!(
+            text.starts_with("# "),
+            "{name} starts without a description"
+        );
         for line in text.lines().filter(|l| l.starts_with("float64")) {
             let comment = line.split_once('#').map(|(_, c)| c).unwrap_or("");
-            let has_unit = ["rad", "N m", "N/m", "N", "m/s", " m", "J", "dimensionless", " h"]
-                .iter()
-                .any(|u| comment.contains(u));
+            let has_unit = [
+                "rad",
+                "N m",
+                "N/m",
+                "N",
+                "m/s",
+                " m",
+                "J",
+                "dimensionless",
+                " h",
+            ]
+            .iter()
+            .any(|u| comment.contains(u));
             assert!(has_unit, "{name}: no unit in {line:?}");
         }
     }

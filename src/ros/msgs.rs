@@ -295,6 +295,36 @@ pub struct JointState {
 }
 impl Message for JointState {}
 
+/// `std_msgs/msg/Float64`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Float64 {
+    pub data: f64,
+}
+impl Message for Float64 {}
+
+/// `std_msgs/msg/MultiArrayDimension`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct MultiArrayDimension {
+    pub label: String,
+    pub size: u32,
+    pub stride: u32,
+}
+
+/// `std_msgs/msg/MultiArrayLayout`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct MultiArrayLayout {
+    pub dim: Vec<MultiArrayDimension>,
+    pub data_offset: u32,
+}
+
+/// `std_msgs/msg/Float64MultiArray`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Float64MultiArray {
+    pub layout: MultiArrayLayout,
+    pub data: Vec<f64>,
+}
+impl Message for Float64MultiArray {}
+
 /// `diagnostic_msgs/msg/KeyValue`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct KeyValue {
@@ -377,6 +407,19 @@ pub const DEFINITIONS: &[(&str, &str)] = &[
         "sensor_msgs/msg/JointState",
         "std_msgs/Header header\n\nstring[] name\nfloat64[] position\nfloat64[] velocity\nfloat64[] effort\n",
     ),
+    ("std_msgs/msg/Float64", "float64 data\n"),
+    (
+        "std_msgs/msg/Float64MultiArray",
+        "MultiArrayLayout layout\nfloat64[] data\n",
+    ),
+    (
+        "std_msgs/msg/MultiArrayLayout",
+        "MultiArrayDimension[] dim\nuint32 data_offset\n",
+    ),
+    (
+        "std_msgs/msg/MultiArrayDimension",
+        "string label\nuint32 size\nuint32 stride\n",
+    ),
 ];
 
 /// The `.msg` text of `pkg/msg/Type`, if it is one of [`DEFINITIONS`].
@@ -407,6 +450,14 @@ pub const TYPE_HASHES: &[(&str, &str)] = &[
     (
         "sensor_msgs/msg/JointState",
         "RIHS01_a13ee3a330e346c9d87b5aa18d24e11690752bd33a0350f11c5882bc9179260e",
+    ),
+    (
+        "std_msgs/msg/Float64",
+        "RIHS01_705ba9c3d1a09df43737eb67095534de36fd426c0587779bda2bc51fe790182a",
+    ),
+    (
+        "std_msgs/msg/Float64MultiArray",
+        "RIHS01_1025ddc6b9552d191f89ef1a8d2f60f3d373e28b283d8891ddcc974e8c55397f",
     ),
 ];
 

@@ -6,14 +6,15 @@ use super::args::{self, RosArgs, Severity};
 use super::input::{self, Rejection};
 use super::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use super::msgs::{
-    state_messages, DiagnosticArray, DiagnosticStatus, Header, JointState, KeyValue,
-    TriggerRequest, TriggerResponse,
+    state_messages, DiagnosticArray, DiagnosticStatus, Float64, Float64MultiArray, Header,
+    JointState, KeyValue, TriggerRequest, TriggerResponse,
 };
 use super::params::{self, NodeParams};
 use super::record;
 use super::tick::{self, Applied, Command, Event, LoopIo, RunSummary, Sample, TickStats};
 use super::DEFAULT_NODE_NAME;
 use crate::recording::{RecordSender, RecorderState};
+use crate::runs;
 use futures::{FutureExt, StreamExt};
 use ros2_client::builtin_interfaces::Time;
 use ros2_client::log::LogLevel;
@@ -744,6 +745,32 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     let activation_sub = node
         .create_subscription::<ActivationCommand>(&activation_topic, Some(qos.clone()))
         .map_err(|e| format!("cannot subscribe to {activation_name}: {e:?}"))?;
+    let (activation_array_topic, activation_array_name) = mk_topic(
+        &node,
+        "~/activation_array",
+        ("std_msgs", "Float64MultiArray"),
+    )?;
+    let activation_array_sub = node
+        .create_subscription::<Float64MultiArray>(&activation_array_topic, Some(qos.clone()))
+        .map_err(|e| format!("cannot subscribe to {activation_array_name}: {e:?}"))?;
+    // One `~/<muscle>/cmd_activation` per muscle of the start-up configuration whose name makes
+    // a valid topic name.
+    let mut muscle_command_subs = Vec::new();
+    let mut muscle_command_names = Vec::new();
+    let mut muscle_command_skipped = Vec::new();
+    for m in actuator.muscle_names() {
+        let rel = format!("~/{m}/cmd_activation");
+        if args::check_name(&rel).is_err() {
+            muscle_command_skipped.push(m.clone());
+            continue;
+        }
+        let (t, n) = mk_topic(&node, &rel, ("std_msgs", "Float64"))?;
+        let sub = node
+            .create_subscription::<Float64>(&t, Some(qos.clone()))
+            .map_err(|e| format!("cannot subscribe to {n}: {e:?}"))?;
+        muscle_command_subs.push((m.clone(), sub));
+        muscle_command_names.push(n);
+    }
     let load_sub = node
         .create_subscription::<ExternalLoad>(&load_topic, Some(qos.clone()))
         .map_err(|e| format!("cannot subscribe to {load_name}: {e:?}"))?;
@@ -782,6 +809,8 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                 joint_states: &js_name,
                 activation: &activation_name,
                 load: &load_name,
+                activation_array: &activation_array_name,
+                muscle_commands: &muscle_command_names,
             },
             &actuator,
         ) {
@@ -861,6 +890,53 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         report(key, Severity::Warn, msg);
     };
 
+    let muscle_names = || {
+        shared
+            .names
+            .read()
+            .map(|n| n.muscles.clone())
+            .unwrap_or_default()
+    };
+    // Excitations by name, from any of the three activation topics: validated the same way and
+    // applied at the next tick boundary.
+    let excite =
+        |names: &[String], values: &[f64], known: &[String]| match input::validate_activation(
+            names, values, known,
+        ) {
+            Ok(acc) => {
+                if !acc.clamped.is_empty() {
+                    inputs.clamped_commands.fetch_add(1, Ordering::Relaxed);
+                    inputs
+                        .clamped_values
+                        .fetch_add(acc.clamped.len() as u64, Ordering::Relaxed);
+                    let what: Vec<String> = acc
+                        .clamped
+                        .iter()
+                        .map(|(n, u)| format!("{n}={u}"))
+                        .collect();
+                    let m = format!(
+                        "activation: excitation outside [0, 1] clamped: {}",
+                        what.join(", ")
+                    );
+                    input_problem("clamped", m);
+                }
+                shared.send(Command::Excitation(acc.values));
+            }
+            Err(rej) => {
+                inputs.activation_rejected.fetch_add(1, Ordering::Relaxed);
+                inputs.count_rejection(&rej);
+                let m = format!("activation command rejected: {rej}");
+                input_problem(rej.kind(), m);
+            }
+        };
+    let unreadable = |what: &str, e: String| {
+        inputs.malformed.fetch_add(1, Ordering::Relaxed);
+        report(
+            "malformed",
+            Severity::Warn,
+            format!("unreadable {what} message: {e}"),
+        );
+    };
     let activation_task = async {
         let mut stream = std::pin::pin!(activation_sub.async_stream());
         while let Some(r) = stream.next().await {
@@ -870,47 +946,64 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                     if let Some(tx) = &rec_tx {
                         record::put(tx, record::CH_ACTIVATION, msg.header.stamp.to_nanos(), &msg);
                     }
-                    let known = shared
-                        .names
-                        .read()
-                        .map(|n| n.muscles.clone())
-                        .unwrap_or_default();
-                    match input::validate_activation(&msg.muscle, &msg.excitation, &known) {
-                        Ok(acc) => {
-                            if !acc.clamped.is_empty() {
-                                inputs.clamped_commands.fetch_add(1, Ordering::Relaxed);
-                                inputs
-                                    .clamped_values
-                                    .fetch_add(acc.clamped.len() as u64, Ordering::Relaxed);
-                                let what: Vec<String> = acc
-                                    .clamped
-                                    .iter()
-                                    .map(|(n, u)| format!("{n}={u}"))
-                                    .collect();
-                                let m = format!(
-                                    "activation: excitation outside [0, 1] clamped: {}",
-                                    what.join(", ")
-                                );
-                                input_problem("clamped", m);
-                            }
-                            shared.send(Command::Excitation(acc.values));
-                        }
-                        Err(rej) => {
-                            inputs.activation_rejected.fetch_add(1, Ordering::Relaxed);
-                            inputs.count_rejection(&rej);
-                            let m = format!("activation command rejected: {rej}");
-                            input_problem(rej.kind(), m);
-                        }
+                    excite(&msg.muscle, &msg.excitation, &muscle_names());
+                }
+                Err(e) => unreadable("activation", format!("{e:?}")),
+            }
+        }
+    };
+    // `~/activation_array`: every muscle's excitation, in the configuration's order.
+    let activation_array_task = async {
+        let mut stream = std::pin::pin!(activation_array_sub.async_stream());
+        while let Some(r) = stream.next().await {
+            inputs.activation_received.fetch_add(1, Ordering::Relaxed);
+            match r {
+                Ok((msg, _info)) => {
+                    if let Some(tx) = &rec_tx {
+                        record::put(tx, record::CH_ACTIVATION_ARRAY, runs::now_ns(), &msg);
                     }
+                    let known = muscle_names();
+                    // All of them, in order: the names are the configuration's own.
+                    let names: Vec<String> = known.iter().take(msg.data.len()).cloned().collect();
+                    if msg.data.len() != known.len() {
+                        let rej = Rejection::LengthMismatch {
+                            names: known.len(),
+                            values: msg.data.len(),
+                        };
+                        inputs.activation_rejected.fetch_add(1, Ordering::Relaxed);
+                        inputs.count_rejection(&rej);
+                        let m = format!(
+                            "activation_array rejected: {} values for {} muscles (in order: {})",
+                            msg.data.len(),
+                            known.len(),
+                            crate::config::excerpt(&known.join(", "))
+                        );
+                        input_problem(rej.kind(), m);
+                        continue;
+                    }
+                    excite(&names, &msg.data, &known);
                 }
-                Err(e) => {
-                    inputs.malformed.fetch_add(1, Ordering::Relaxed);
-                    report(
-                        "malformed",
-                        Severity::Warn,
-                        format!("unreadable activation message: {e:?}"),
-                    );
+                Err(e) => unreadable("activation_array", format!("{e:?}")),
+            }
+        }
+    };
+    // `~/<muscle>/cmd_activation`: one muscle's excitation.
+    let muscle_command_task = async {
+        let streams = muscle_command_subs
+            .iter()
+            .enumerate()
+            .map(|(k, (name, sub))| sub.async_stream().map(move |r| (k, name.clone(), r)));
+        let mut all = futures::stream::select_all(streams.map(Box::pin));
+        while let Some((k, name, r)) = all.next().await {
+            inputs.activation_received.fetch_add(1, Ordering::Relaxed);
+            match r {
+                Ok((msg, _info)) => {
+                    if let Some(tx) = &rec_tx {
+                        record::put(tx, record::CH_MUSCLE_COMMANDS + k, runs::now_ns(), &msg);
+                    }
+                    excite(&[name], &[msg.data], &muscle_names());
                 }
+                Err(e) => unreadable("cmd_activation", format!("{e:?}")),
             }
         }
     };
@@ -1072,11 +1165,13 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         let spin = spinner.spin().fuse();
         let stop_fut = stop_rx.recv().fuse();
         let a = activation_task.fuse();
+        let aa = activation_array_task.fuse();
+        let mc = muscle_command_task.fuse();
         let l = load_task.fuse();
         let r = reset_task.fuse();
         let d = diag_task.fuse();
         let e = events_task.fuse();
-        futures::pin_mut!(spin, stop_fut, a, l, r, d, e);
+        futures::pin_mut!(spin, stop_fut, a, aa, mc, l, r, d, e);
         futures::select! {
             _ = stop_fut => {},
             res = spin => {
@@ -1085,6 +1180,8 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                 }
             },
             _ = a => {}, _ = l => {}, _ = r => {}, _ = d => {}, _ = e => {},
+            _ = aa => {},
+            _ = mc => {},
         }
     });
 
@@ -1155,6 +1252,8 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     signals_handle.close();
     drop(reset_server);
     drop(activation_sub);
+    drop(activation_array_sub);
+    drop(muscle_command_subs);
     drop(load_sub);
     drop(diag_pub);
     drop(node);

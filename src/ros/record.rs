@@ -9,7 +9,7 @@ use super::tick::Applied;
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
 use crate::runs::{
     self, channel, AttachmentMeta, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
-    APPLIED_LOAD_SUFFIX, JOINT_STATE_TYPE, LOAD_TYPE, STATE_TYPE,
+    APPLIED_LOAD_SUFFIX, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, STATE_TYPE,
 };
 use crate::sim::Actuator;
 use ros2_client::builtin_interfaces::Time;
@@ -23,6 +23,9 @@ pub const CH_ACTIVATION: usize = 2;
 pub const CH_LOAD: usize = 3;
 pub const CH_APPLIED_ACTIVATION: usize = 4;
 pub const CH_APPLIED_LOAD: usize = 5;
+pub const CH_ACTIVATION_ARRAY: usize = 6;
+/// The first of the `~/<muscle>/cmd_activation` channels, one per muscle topic in order.
+pub const CH_MUSCLE_COMMANDS: usize = 7;
 
 /// The resolved topic names the node uses.
 pub struct Topics<'a> {
@@ -30,6 +33,8 @@ pub struct Topics<'a> {
     pub joint_states: &'a str,
     pub activation: &'a str,
     pub load: &'a str,
+    pub activation_array: &'a str,
+    pub muscle_commands: &'a [String],
 }
 
 /// Whether these parameters ask for a recording.
@@ -76,7 +81,7 @@ pub fn start(
         muscles: actuator.muscle_names().to_vec(),
         joints: actuator.joint_names().to_vec(),
     };
-    let channels = vec![
+    let mut channels = vec![
         channel(topics.state, STATE_TYPE)?,
         channel(topics.joint_states, JOINT_STATE_TYPE)?,
         channel(topics.activation, ACTIVATION_TYPE)?,
@@ -86,7 +91,11 @@ pub fn start(
             ACTIVATION_TYPE,
         )?,
         channel(&format!("{fqn}{APPLIED_LOAD_SUFFIX}"), LOAD_TYPE)?,
+        channel(topics.activation_array, FLOAT64_ARRAY_TYPE)?,
     ];
+    for t in topics.muscle_commands {
+        channels.push(channel(t, FLOAT64_TYPE)?);
+    }
     Recorder::start(
         &file_path(p, fqn, start_ns),
         channels,

@@ -39,6 +39,8 @@ pub const STATE_TYPE: &str = "muscle_actuator_msgs/msg/ActuatorState";
 pub const JOINT_STATE_TYPE: &str = "sensor_msgs/msg/JointState";
 pub const ACTIVATION_TYPE: &str = "muscle_actuator_msgs/msg/ActivationCommand";
 pub const LOAD_TYPE: &str = "muscle_actuator_msgs/msg/ExternalLoad";
+pub const FLOAT64_TYPE: &str = "std_msgs/msg/Float64";
+pub const FLOAT64_ARRAY_TYPE: &str = "std_msgs/msg/Float64MultiArray";
 
 /// Name of our metadata record.
 pub const METADATA_NAME: &str = "muscle_actuator";
