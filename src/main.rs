@@ -68,6 +68,14 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Rewrite a recording cut by a crash (no summary) as a complete, indexed MCAP file holding
+    /// everything readable in it.
+    Recover {
+        /// The damaged recording (.mcap).
+        input: PathBuf,
+        /// The recovered recording (.mcap; not the input).
+        output: PathBuf,
+    },
     /// Run the ROS 2 node; everything after `node` goes to it (`--ros-args ...`, see `node --help`).
     #[command(disable_help_flag = true)]
     Node {
@@ -156,6 +164,9 @@ fn run(cli: Cli) -> Result<(), String> {
                 })
                 .transpose()?;
             let s = muscle_actuator::runs::replay(&input, model, &out)?;
+            if let Some(w) = &s.warning {
+                eprintln!("warning: {w}");
+            }
             if s.compared > 0 {
                 eprintln!(
                     "replayed {} ticks with {}: {} of {} recorded states reproduced bit for bit{}",
@@ -182,6 +193,9 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Compare { a, b, plot, json } => {
             let c = muscle_actuator::runs::compare::compare_files(&a, &b, plot.as_deref())?;
+            for w in &c.warnings {
+                eprintln!("warning: {w}");
+            }
             if json {
                 println!(
                     "{}",
@@ -190,6 +204,18 @@ fn run(cli: Cli) -> Result<(), String> {
             } else {
                 print!("{}", c.table());
             }
+            Ok(())
+        }
+        Command::Recover { input, output } => {
+            let r = muscle_actuator::recording::recover::recover(&input, &output)?;
+            if let Some(w) = &r.stopped_early {
+                eprintln!(
+                    "warning: {} is truncated (no summary); reading stopped: {}",
+                    input.display(),
+                    muscle_actuator::config::excerpt(w)
+                );
+            }
+            eprintln!("{}", r.line(&input, &output));
             Ok(())
         }
         Command::Figures { out } => muscle_actuator::figures::write_all(&out),

@@ -12,7 +12,9 @@
 //! a time limit and a 1 GiB address-space limit. Every run must end cleanly: no panic, no signal
 //! (a failed allocation aborts), no hang, an `error:` line whenever it fails. Files marked
 //! [`Expect::Refuse`] must be refused; damage that may land where nothing is read (a bit flip in
-//! the summary section) may also be accepted, but then with finite figures only. The summary
+//! the summary section) may also be accepted, but then with finite figures only; a file cut
+//! short ([`Expect::Truncated`], as by a crash) may be accepted for what its whole chunks hold,
+//! with finite figures and one warning. The summary
 //! line (`cargo test --test hostile_files -- --nocapture`) gives the counts.
 
 #[path = "common/child.rs"]
@@ -48,6 +50,9 @@ enum Expect {
     Refuse,
     /// Damage that may land where nothing is read: refused, or accepted with finite figures.
     Either,
+    /// A file cut short (a crash): refused, or accepted with finite figures and exactly one
+    /// `warning:` line naming the file as truncated.
+    Truncated,
 }
 
 struct Case {
@@ -250,7 +255,7 @@ fn truncations(c: &mut Corpus, base: &[u8], rng: &mut Rng) {
     cuts.sort();
     cuts.dedup();
     for n in cuts {
-        c.add(&format!("truncated_at_{n}"), &base[..n], Expect::Refuse);
+        c.add(&format!("truncated_at_{n}"), &base[..n], Expect::Truncated);
     }
 }
 
@@ -948,6 +953,18 @@ fn hostile_recordings_are_refused_cleanly() {
                 ));
             } else if let Err(why) = accepted_soundly(e, compare) {
                 problems.push(format!("{}: {why}", case.name));
+            } else if case.expect == Expect::Truncated {
+                let warnings: Vec<&str> = e
+                    .stderr
+                    .lines()
+                    .filter(|l| l.starts_with("warning:"))
+                    .collect();
+                if warnings.len() != 1 || !warnings[0].contains("is truncated (no summary)") {
+                    problems.push(format!(
+                        "{}: accepted without one truncation warning: {}",
+                        case.name, e.stderr
+                    ));
+                }
             }
         } else {
             refused += 1;

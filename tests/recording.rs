@@ -260,6 +260,8 @@ fn damaged_files_are_clean_errors() {
     let garbage = dir().join("garbage.mcap");
     std::fs::write(&garbage, b"not an mcap file at all").unwrap();
     let good = pulse("huxley");
+    // A complete file damaged inside, no MCAP file at all, or a file cut inside its one chunk of
+    // messages (nothing whole to read) is refused.
     for bad in [&truncated, &corrupted, &garbage] {
         for args in [
             vec![
@@ -278,11 +280,31 @@ fn damaged_files_are_clean_errors() {
             assert_eq!(err.lines().count(), 1, "{err}");
         }
     }
-    // A truncated file still yields what was flushed before the cut.
-    let rec = read_recording(&truncated, true).unwrap();
+    // A file cut in its summary (a crash) is read up to the cut, with one warning.
+    let cut_late = dir().join("cut_late.mcap");
+    std::fs::write(&cut_late, &src[..src.len() - 1000]).unwrap();
+    let o = bin()
+        .arg("replay")
+        .arg(&cut_late)
+        .arg("--out")
+        .arg(dir().join("x.mcap"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert_eq!(
+        err.lines().filter(|l| l.starts_with("warning:")).count(),
+        1,
+        "{err}"
+    );
+    assert!(err.contains(cut_late.to_str().unwrap()), "{err}");
+    // A truncated file still yields the whole chunks flushed before the cut, and no more.
+    let rec = read_recording(&cut_late, true).unwrap();
     assert!(rec.stopped_early.is_some());
     assert!(!rec.messages.is_empty());
-    assert!(read_recording(&truncated, false).is_err());
+    assert!(read_recording(&cut_late, false).is_err());
+    let rec = read_recording(&truncated, true).unwrap();
+    assert!(rec.stopped_early.is_some() && rec.messages.is_empty());
 }
 
 /// A whole limb records, replays bit for bit, replays with another model, and compares per

@@ -4,9 +4,11 @@
 //! - [`schema`]: `ros2msg` schema texts with their dependencies appended;
 //! - [`writer`]: the recorder thread (bounded channel, drops counted, chunks flushed on time);
 //! - [`reader`]: reading a recording back (strictly, or recovering what a truncated file holds);
+//! - [`recover`]: rewriting a file cut by a crash as a complete, indexed one;
 //! - [`encode_cdr`] / [`decode_cdr`]: CDR with its 4-byte encapsulation header.
 
 pub mod reader;
+pub mod recover;
 pub mod schema;
 pub mod writer;
 

@@ -37,6 +37,9 @@ pub struct Comparison {
     /// Samples compared.
     pub samples: usize,
     pub signals: Vec<SignalDiff>,
+    /// Warnings on the files read (one per file cut by a crash, read up to the cut).
+    #[serde(skip)]
+    pub warnings: Vec<String>,
 }
 
 /// The muscle fields compared, by their names in the one field list
@@ -212,6 +215,7 @@ pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> 
         end,
         samples,
         signals,
+        warnings: Vec::new(),
     };
     c.check_finite()?;
     Ok(c)
@@ -341,7 +345,8 @@ pub fn plot(a: &LoadedRun, b: &LoadedRun, out: &Path) -> Result<(), String> {
     )
 }
 
-/// `compare A B`: loads both (strictly), compares, optionally plots.
+/// `compare A B`: loads both (a file cut by a crash up to the cut, with a warning), compares,
+/// optionally plots.
 pub fn compare_files(a: &Path, b: &Path, plot_out: Option<&Path>) -> Result<Comparison, String> {
     let ra = load_run(a)?;
     let rb = load_run(b)?;
@@ -353,7 +358,11 @@ pub fn compare_files(a: &Path, b: &Path, plot_out: Option<&Path>) -> Result<Comp
             ));
         }
     }
-    let c = compare_runs(&ra, &rb)?;
+    let mut c = compare_runs(&ra, &rb)?;
+    c.warnings = [&ra, &rb]
+        .iter()
+        .filter_map(|r| r.warning.clone())
+        .collect();
     if let Some(p) = plot_out {
         plot(&ra, &rb, p)?;
     }

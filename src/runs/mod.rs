@@ -15,7 +15,7 @@ use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;
 use crate::recording::{
-    self, qos_yaml, read_recording, schema::ros2msg_schema, ChannelSpec, Recorder, RecorderOptions,
+    self, qos_yaml, reader::read_run_file, schema::ros2msg_schema, ChannelSpec, Recorder, RecorderOptions,
     RecorderState, Recording,
 };
 use crate::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
@@ -523,12 +523,17 @@ pub struct LoadedRun {
     pub activations: Vec<(u64, Vec<String>, Vec<f64>)>,
     /// (tick, joint names, torques), in order.
     pub loads: Vec<(u64, Vec<String>, Vec<f64>)>,
+    /// For a file cut by a crash (read up to the cut): the warning naming what was read.
+    pub warning: Option<String>,
 }
 
-/// Reads a run file strictly (a truncated or corrupted file is an error).
+/// Reads a run file: a complete one strictly (damage is an error), one cut by a crash up to the
+/// cut, with a warning ([`crate::recording::reader::read_run_file`]).
 pub fn load_run(path: &Path) -> Result<LoadedRun, String> {
-    let rec = read_recording(path, false)?;
-    load_from(&rec).map_err(|e| format!("{}: {e}", path.display()))
+    let rec = read_run_file(path)?;
+    let mut run = load_from(&rec).map_err(|e| format!("{}: {e}", path.display()))?;
+    run.warning = rec.truncation_warning(path);
+    Ok(run)
 }
 
 fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
@@ -589,6 +594,7 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
         states,
         activations,
         loads,
+        warning: None,
     };
     checks::check_run(&run, recorded_span_s(rec))?;
     Ok(run)
@@ -615,6 +621,8 @@ pub struct ReplaySummary {
     pub identical: u64,
     /// The first tick that differed.
     pub first_difference: Option<u64>,
+    /// The input was cut by a crash and read up to the cut: what was read.
+    pub warning: Option<String>,
 }
 
 /// The bits of a state's simulated fields (everything but the header), iterating the field
@@ -672,6 +680,7 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
         compared: 0,
         identical: 0,
         first_difference: None,
+        warning: run.warning.clone(),
     };
     let mut check = |tick: u64, state: &StateSnapshot| {
         if model != meta.model {

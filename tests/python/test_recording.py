@@ -1,7 +1,8 @@
 """Recordings read with the tools users have: `mcap` + `mcap-ros2-support` and `rosbags`
 (AnyReader, with only the schemas embedded in the file). Files from `simulate` (against the CSV
 of the same run) and from the node (against what rclpy received live); a SIGKILLed recording
-keeps what was flushed up to about a second before the kill; a recording directory that cannot
+keeps what was flushed up to about a second before the kill, and `recover` makes it a complete
+file the summary-based reader opens; a recording directory that cannot
 be written leaves the node running and reporting."""
 
 import csv
@@ -218,6 +219,23 @@ def test_sigkill_loses_at_most_about_a_second(workdir):
     states = [lt for (t, lt) in msgs if t.endswith("/state")]
     assert len(states) > 1000
     assert killed_at - max(states) < 1.5e9, (killed_at - max(states)) / 1e9
+    # `recover` rewrites it as a complete file: a summary, and every message read above (the
+    # stream reader may also yield the first messages of the chunk cut short, never recovered).
+    out = workdir / "recovered.mcap"
+    r = subprocess.run(
+        [NodeProcess.binary(), "recover", str(path), str(out)], capture_output=True, text=True,
+    )
+    assert r.returncode == 0, r.stderr
+    assert "recovered " in r.stderr, r.stderr
+    with open(out, "rb") as f:
+        reader = make_reader(f)
+        summary = reader.get_summary()
+        assert summary is not None
+        recovered = [(ch.topic, m.log_time) for _, ch, m in reader.iter_messages(log_time_order=False)]
+    assert summary.statistics.message_count == len(recovered)
+    assert len(recovered) > 1000
+    assert recovered == msgs[: len(recovered)]
+    assert max(lt for (t, lt) in recovered if t.endswith("/state")) > max(states) - 1.5e9
 
 
 def recorder_error(diags, fqn):
