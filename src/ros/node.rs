@@ -757,11 +757,13 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     // a valid topic name.
     let mut muscle_command_subs = Vec::new();
     let mut muscle_command_names = Vec::new();
-    let mut muscle_command_skipped = Vec::new();
     for m in actuator.muscle_names() {
         let rel = format!("~/{m}/cmd_activation");
-        if args::check_name(&rel).is_err() {
-            muscle_command_skipped.push(m.clone());
+        if let Err(e) = args::check_name(&rel) {
+            logger.warn(&format!(
+                "no ~/<muscle>/cmd_activation topic for muscle {}: not a valid name ({e})",
+                input::quote(m)
+            ));
             continue;
         }
         let (t, n) = mk_topic(&node, &rel, ("std_msgs", "Float64"))?;

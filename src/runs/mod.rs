@@ -15,8 +15,8 @@ use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;
 use crate::recording::{
-    self, qos_yaml, reader::read_run_file, schema::ros2msg_schema, ChannelSpec, Recorder, RecorderOptions,
-    RecorderState, Recording,
+    self, qos_yaml, reader::read_run_file, schema::ros2msg_schema, ChannelSpec, Recorder,
+    RecorderOptions, RecorderState, Recording,
 };
 use crate::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::ros::msgs::{definition, state_messages, type_hash, Header, JointState};
