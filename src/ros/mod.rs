@@ -11,7 +11,9 @@
 //!   logging, signals.
 
 pub mod args;
+pub mod diagnostics;
 pub mod input;
+pub mod logging;
 pub mod msgs;
 pub mod node;
 pub mod params;

@@ -3,11 +3,13 @@
 //! validates and forwards inputs, and publishes what the tick thread hands over.
 
 use super::args::{self, RosArgs, Severity};
+use super::diagnostics::{diagnostics, DiagPrev, InputStats};
 use super::input::{self, Rejection};
+use super::logging::{LateTicks, Logger, RateLimit, LATE_WARN_PERIODS};
 use super::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use super::msgs::{
-    state_messages, DiagnosticArray, DiagnosticStatus, Float64, Float64MultiArray, Header,
-    JointState, KeyValue, TriggerRequest, TriggerResponse,
+    state_messages, DiagnosticArray, DiagnosticStatus, Float64, Float64MultiArray, JointState,
+    TriggerRequest, TriggerResponse,
 };
 use super::params::{self, NodeParams};
 use super::record;
@@ -16,15 +18,12 @@ use super::DEFAULT_NODE_NAME;
 use crate::recording::{RecordSender, RecorderState};
 use crate::runs;
 use futures::{FutureExt, StreamExt};
-use ros2_client::builtin_interfaces::Time;
-use ros2_client::log::LogLevel;
 use ros2_client::qos::{Durability, History, WhenFull};
 use ros2_client::{
-    Context, MessageTypeName, Name, NodeLoggingHandle, NodeName, NodeOptions, Publisher,
-    QosProfile, RosoutRaw, ServiceMapping, ServiceTypeName,
+    Context, MessageTypeName, Name, NodeName, NodeOptions, Publisher, QosProfile, ServiceMapping,
+    ServiceTypeName,
 };
 use rustdds::DomainParticipantBuilder;
-use std::collections::HashMap;
 use std::net::{IpAddr, Ipv4Addr};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver};
@@ -59,130 +58,6 @@ pub fn discovery_is_local() -> bool {
     )
 }
 
-/// Logging to stderr and `/rosout`, with a level threshold.
-#[derive(Clone)]
-pub struct Logger {
-    rosout: Option<Arc<NodeLoggingHandle>>,
-    level: Severity,
-    stdout: bool,
-    name: String,
-}
-
-/// Longest log line, characters: what a user sends is quoted as an excerpt already; this is
-/// the last guard (a line goes to stderr and `/rosout`).
-const MAX_LOG_CHARS: usize = 1000;
-
-impl Logger {
-    fn log(&self, sev: Severity, msg: &str) {
-        if sev < self.level {
-            return;
-        }
-        let cut;
-        let msg = match msg.char_indices().nth(MAX_LOG_CHARS) {
-            Some((at, _)) => {
-                cut = format!("{}... ({} bytes)", &msg[..at], msg.len());
-                cut.as_str()
-            }
-            None => msg,
-        };
-        if self.stdout {
-            let t = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map(|d| d.as_secs_f64())
-                .unwrap_or(0.0);
-            eprintln!("[{}] [{t:.6}] [{}]: {msg}", sev.label(), self.name);
-        }
-        if let Some(h) = &self.rosout {
-            let level = match sev {
-                Severity::Debug => LogLevel::Debug,
-                Severity::Info => LogLevel::Info,
-                Severity::Warn => LogLevel::Warn,
-                Severity::Error => LogLevel::Error,
-                Severity::Fatal => LogLevel::Fatal,
-            };
-            h.rosout_raw(Time::now(), level, &self.name, msg, file!(), "", line!());
-        }
-    }
-    pub fn info(&self, msg: &str) {
-        self.log(Severity::Info, msg)
-    }
-    pub fn warn(&self, msg: &str) {
-        self.log(Severity::Warn, msg)
-    }
-    pub fn error(&self, msg: &str) {
-        self.log(Severity::Error, msg)
-    }
-    pub fn debug(&self, msg: &str) {
-        self.log(Severity::Debug, msg)
-    }
-}
-
-/// Says a repeated thing at most once a second per key, with the count of what it held back.
-#[derive(Default)]
-struct RateLimit {
-    last: HashMap<String, (Instant, u64)>,
-}
-
-impl RateLimit {
-    /// `Some(suppressed_since_last)` when the message may go out now.
-    fn allow(&mut self, key: &str) -> Option<u64> {
-        let now = Instant::now();
-        match self.last.get_mut(key) {
-            Some((t, held)) if now.duration_since(*t) < Duration::from_secs(1) => {
-                *held += 1;
-                None
-            }
-            Some((t, held)) => {
-                let n = *held;
-                *t = now;
-                *held = 0;
-                Some(n)
-            }
-            None => {
-                self.last.insert(key.into(), (now, 0));
-                Some(0)
-            }
-        }
-    }
-}
-
-/// Counters of the inputs (written on the DDS side, read by diagnostics).
-#[derive(Default)]
-pub struct InputStats {
-    pub activation_received: AtomicU64,
-    pub activation_rejected: AtomicU64,
-    pub load_received: AtomicU64,
-    pub load_rejected: AtomicU64,
-    /// Commands with at least one excitation clamped to [0, 1].
-    pub clamped_commands: AtomicU64,
-    /// Excitation values clamped.
-    pub clamped_values: AtomicU64,
-    pub rejected_unknown_name: AtomicU64,
-    pub rejected_length_mismatch: AtomicU64,
-    pub rejected_non_finite: AtomicU64,
-    pub rejected_duplicate_name: AtomicU64,
-    pub rejected_empty: AtomicU64,
-    pub malformed: AtomicU64,
-    pub last_problem: Mutex<String>,
-}
-
-impl InputStats {
-    fn count_rejection(&self, r: &Rejection) {
-        let c = match r {
-            Rejection::UnknownName { .. } => &self.rejected_unknown_name,
-            Rejection::LengthMismatch { .. } => &self.rejected_length_mismatch,
-            Rejection::NonFinite { .. } => &self.rejected_non_finite,
-            Rejection::DuplicateName(_) => &self.rejected_duplicate_name,
-            Rejection::Empty => &self.rejected_empty,
-        };
-        c.fetch_add(1, Ordering::Relaxed);
-    }
-    fn total_rejected(&self) -> u64 {
-        self.activation_rejected.load(Ordering::Relaxed)
-            + self.load_rejected.load(Ordering::Relaxed)
-    }
-}
-
 /// Names that commands are checked against (they change with the `config` parameter).
 #[derive(Clone, Default)]
 struct Names {
@@ -208,50 +83,6 @@ impl Shared {
     fn send(&self, c: Command) {
         // Never waits for the tick loop; a full queue drops (and counts) the command.
         let _ = self.commands.send(c);
-    }
-}
-
-/// A tick later than this many periods is warned about on its own (rate-limited); later than
-/// one period, it is counted in the summary logged every [`LATENESS_SUMMARY_PERIOD`].
-const LATE_WARN_PERIODS: f64 = 5.0;
-const LATENESS_SUMMARY_PERIOD: Duration = Duration::from_secs(10);
-
-/// Ticks that started more than one period late since the last summary.
-struct LateTicks {
-    count: u64,
-    worst_us: f64,
-    since: Instant,
-}
-
-impl LateTicks {
-    fn new() -> Self {
-        Self {
-            count: 0,
-            worst_us: 0.0,
-            since: Instant::now(),
-        }
-    }
-    /// Counts a late tick; true if it deserves a warning of its own.
-    fn add(&mut self, lateness_us: f64, period_us: f64) -> bool {
-        self.count += 1;
-        self.worst_us = self.worst_us.max(lateness_us);
-        lateness_us > LATE_WARN_PERIODS * period_us
-    }
-    /// The summary line, once a period is over and there was a late tick in it.
-    fn summary_due(&mut self) -> Option<String> {
-        if self.since.elapsed() < LATENESS_SUMMARY_PERIOD {
-            return None;
-        }
-        let line = (self.count > 0).then(|| {
-            format!(
-                "{} ticks started more than one period late in the last {} s (worst {:.0} us)",
-                self.count,
-                LATENESS_SUMMARY_PERIOD.as_secs(),
-                self.worst_us
-            )
-        });
-        *self = Self::new();
-        line
     }
 }
 
@@ -388,159 +219,6 @@ fn publish_loop(
         if joint_pub.publish(js).is_err() {
             errors.fetch_add(1, Ordering::Relaxed);
         }
-    }
-}
-
-fn kv(key: &str, value: impl ToString) -> KeyValue {
-    KeyValue {
-        key: key.into(),
-        value: value.to_string(),
-    }
-}
-
-/// Figures of the last diagnostics period, to report rates of change.
-#[derive(Default)]
-struct DiagPrev {
-    overruns: u64,
-    rejected: u64,
-    step_failures: u64,
-    ticks: u64,
-}
-
-fn diagnostics(
-    fqn: &str,
-    stats: &TickStats,
-    inputs: &InputStats,
-    params: &NodeParams,
-    publish_errors: u64,
-    prev: &mut DiagPrev,
-    recorder_status: DiagnosticStatus,
-) -> DiagnosticArray {
-    let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
-    let (p50, p99, max) = stats.window();
-    let overruns = ld(&stats.overruns);
-    let step_failures = ld(&stats.step_failures);
-    let rejected = inputs.total_rejected();
-    let new_overruns = overruns - prev.overruns.min(overruns);
-    let new_rejected = rejected - prev.rejected.min(rejected);
-    let new_failures = step_failures - prev.step_failures.min(step_failures);
-    let ticks = ld(&stats.ticks);
-    let stalled = ticks == prev.ticks;
-    *prev = DiagPrev {
-        overruns,
-        rejected,
-        step_failures,
-        ticks,
-    };
-    let rate = stats.rate_hz();
-    let (level, message) = if stalled {
-        (
-            DiagnosticStatus::ERROR,
-            format!(
-                "tick loop stalled: no tick in the last period (at tick {})",
-                ld(&stats.current_tick)
-            ),
-        )
-    } else if new_failures > 0 {
-        (
-            DiagnosticStatus::ERROR,
-            format!("a step failed: actuator reset ({new_failures} in the last period)"),
-        )
-    } else if new_overruns > 0 {
-        (
-            DiagnosticStatus::WARN,
-            format!("{new_overruns} ticks later than one period in the last period"),
-        )
-    } else {
-        (DiagnosticStatus::OK, format!("holding {rate} Hz"))
-    };
-    let tick_status = DiagnosticStatus {
-        level,
-        name: format!("{fqn}: tick loop"),
-        message,
-        hardware_id: fqn.into(),
-        values: vec![
-            kv("model", params.model.name()),
-            kv("rate_hz", rate),
-            kv(
-                "realtime_priority",
-                stats.realtime.load(Ordering::Relaxed).to_string(),
-            ),
-            kv("tick", ld(&stats.current_tick)),
-            kv("ticks_total", ld(&stats.ticks)),
-            kv("overruns", overruns),
-            kv("skipped_ticks", ld(&stats.skipped)),
-            kv("lateness_p50_us", format!("{:.1}", p50 / 1e3)),
-            kv("lateness_p99_us", format!("{:.1}", p99 / 1e3)),
-            kv("lateness_max_us", format!("{:.1}", max / 1e3)),
-            kv(
-                "lateness_max_total_us",
-                format!("{:.1}", ld(&stats.max_lateness_ns) as f64 / 1e3),
-            ),
-            kv(
-                "step_mean_us",
-                format!(
-                    "{:.2}",
-                    f64::from_bits(stats.window_step_ns.load(Ordering::Relaxed)) / 1e3
-                ),
-            ),
-            kv("states_dropped", ld(&stats.samples_dropped)),
-            kv("applied_inputs_dropped", ld(&stats.applied_dropped)),
-            kv("commands_dropped", ld(&stats.commands_dropped)),
-            kv("commands_deferred", ld(&stats.commands_deferred)),
-            kv("events_dropped", ld(&stats.events_dropped)),
-            kv("publish_errors", publish_errors),
-            kv("step_failures", step_failures),
-            kv("resets", ld(&stats.resets)),
-        ],
-    };
-    let last = inputs
-        .last_problem
-        .lock()
-        .map(|s| s.clone())
-        .unwrap_or_default();
-    let input_status = DiagnosticStatus {
-        level: if new_rejected > 0 {
-            DiagnosticStatus::WARN
-        } else {
-            DiagnosticStatus::OK
-        },
-        name: format!("{fqn}: inputs"),
-        message: if new_rejected > 0 {
-            format!("{new_rejected} commands rejected in the last period")
-        } else {
-            "ok".into()
-        },
-        hardware_id: fqn.into(),
-        values: vec![
-            kv("activation_received", ld(&inputs.activation_received)),
-            kv("activation_rejected", ld(&inputs.activation_rejected)),
-            kv("load_received", ld(&inputs.load_received)),
-            kv("load_rejected", ld(&inputs.load_rejected)),
-            kv("rejected_total", rejected),
-            kv("rejected_unknown_name", ld(&inputs.rejected_unknown_name)),
-            kv(
-                "rejected_length_mismatch",
-                ld(&inputs.rejected_length_mismatch),
-            ),
-            kv("rejected_non_finite", ld(&inputs.rejected_non_finite)),
-            kv(
-                "rejected_duplicate_name",
-                ld(&inputs.rejected_duplicate_name),
-            ),
-            kv("rejected_empty", ld(&inputs.rejected_empty)),
-            kv("clamped_commands", ld(&inputs.clamped_commands)),
-            kv("clamped_values", ld(&inputs.clamped_values)),
-            kv("malformed", ld(&inputs.malformed)),
-            kv("last_problem", last),
-        ],
-    };
-    DiagnosticArray {
-        header: Header {
-            stamp: Time::now(),
-            frame_id: String::new(),
-        },
-        status: vec![tick_status, input_status, recorder_status],
     }
 }
 
@@ -1266,33 +944,6 @@ pub fn run(argv: &[String]) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Late ticks are counted for the 10 s summary; only those later than five periods are
-    /// warned about on their own.
-    #[test]
-    fn late_ticks_are_summarised() {
-        let mut late = LateTicks::new();
-        assert!(!late.add(1500.0, 1000.0));
-        assert!(late.add(6000.0, 1000.0));
-        assert_eq!(late.summary_due(), None, "not before 10 s");
-        late.since = Instant::now() - Duration::from_secs(11);
-        let line = late.summary_due().unwrap();
-        assert!(
-            line.starts_with("2 ticks started") && line.ends_with("(worst 6000 us)"),
-            "{line}"
-        );
-        late.since = Instant::now() - Duration::from_secs(11);
-        assert_eq!(late.summary_due(), None, "nothing late: nothing said");
-    }
-
-    #[test]
-    fn rate_limit_holds_back_repeats() {
-        let mut r = RateLimit::default();
-        assert_eq!(r.allow("a"), Some(0));
-        assert_eq!(r.allow("a"), None);
-        assert_eq!(r.allow("a"), None);
-        assert_eq!(r.allow("b"), Some(0));
-    }
 
     #[test]
     fn setup_applies_arguments_in_order() {

@@ -1,0 +1,199 @@
+//! The node's `/diagnostics`: the tick loop's and the inputs' figures, once a second.
+
+use super::input::Rejection;
+use super::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
+use super::params::NodeParams;
+use super::tick::TickStats;
+use ros2_client::builtin_interfaces::Time;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
+
+/// Counters of the inputs (written on the DDS side, read by diagnostics).
+#[derive(Default)]
+pub struct InputStats {
+    pub activation_received: AtomicU64,
+    pub activation_rejected: AtomicU64,
+    pub load_received: AtomicU64,
+    pub load_rejected: AtomicU64,
+    /// Commands with at least one excitation clamped to [0, 1].
+    pub clamped_commands: AtomicU64,
+    /// Excitation values clamped.
+    pub clamped_values: AtomicU64,
+    pub rejected_unknown_name: AtomicU64,
+    pub rejected_length_mismatch: AtomicU64,
+    pub rejected_non_finite: AtomicU64,
+    pub rejected_duplicate_name: AtomicU64,
+    pub rejected_empty: AtomicU64,
+    pub malformed: AtomicU64,
+    pub last_problem: Mutex<String>,
+}
+
+impl InputStats {
+    pub(crate) fn count_rejection(&self, r: &Rejection) {
+        let c = match r {
+            Rejection::UnknownName { .. } => &self.rejected_unknown_name,
+            Rejection::LengthMismatch { .. } => &self.rejected_length_mismatch,
+            Rejection::NonFinite { .. } => &self.rejected_non_finite,
+            Rejection::DuplicateName(_) => &self.rejected_duplicate_name,
+            Rejection::Empty => &self.rejected_empty,
+        };
+        c.fetch_add(1, Ordering::Relaxed);
+    }
+    pub(crate) fn total_rejected(&self) -> u64 {
+        self.activation_rejected.load(Ordering::Relaxed)
+            + self.load_rejected.load(Ordering::Relaxed)
+    }
+}
+
+pub(crate) fn kv(key: &str, value: impl ToString) -> KeyValue {
+    KeyValue {
+        key: key.into(),
+        value: value.to_string(),
+    }
+}
+
+/// Figures of the last diagnostics period, to report rates of change.
+#[derive(Default)]
+pub(crate) struct DiagPrev {
+    overruns: u64,
+    rejected: u64,
+    step_failures: u64,
+    ticks: u64,
+}
+
+pub(crate) fn diagnostics(
+    fqn: &str,
+    stats: &TickStats,
+    inputs: &InputStats,
+    params: &NodeParams,
+    publish_errors: u64,
+    prev: &mut DiagPrev,
+    recorder_status: DiagnosticStatus,
+) -> DiagnosticArray {
+    let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
+    let (p50, p99, max) = stats.window();
+    let overruns = ld(&stats.overruns);
+    let step_failures = ld(&stats.step_failures);
+    let rejected = inputs.total_rejected();
+    let new_overruns = overruns - prev.overruns.min(overruns);
+    let new_rejected = rejected - prev.rejected.min(rejected);
+    let new_failures = step_failures - prev.step_failures.min(step_failures);
+    let ticks = ld(&stats.ticks);
+    let stalled = ticks == prev.ticks;
+    *prev = DiagPrev {
+        overruns,
+        rejected,
+        step_failures,
+        ticks,
+    };
+    let rate = stats.rate_hz();
+    let (level, message) = if stalled {
+        (
+            DiagnosticStatus::ERROR,
+            format!(
+                "tick loop stalled: no tick in the last period (at tick {})",
+                ld(&stats.current_tick)
+            ),
+        )
+    } else if new_failures > 0 {
+        (
+            DiagnosticStatus::ERROR,
+            format!("a step failed: actuator reset ({new_failures} in the last period)"),
+        )
+    } else if new_overruns > 0 {
+        (
+            DiagnosticStatus::WARN,
+            format!("{new_overruns} ticks later than one period in the last period"),
+        )
+    } else {
+        (DiagnosticStatus::OK, format!("holding {rate} Hz"))
+    };
+    let tick_status = DiagnosticStatus {
+        level,
+        name: format!("{fqn}: tick loop"),
+        message,
+        hardware_id: fqn.into(),
+        values: vec![
+            kv("model", params.model.name()),
+            kv("rate_hz", rate),
+            kv(
+                "realtime_priority",
+                stats.realtime.load(Ordering::Relaxed).to_string(),
+            ),
+            kv("tick", ld(&stats.current_tick)),
+            kv("ticks_total", ld(&stats.ticks)),
+            kv("overruns", overruns),
+            kv("skipped_ticks", ld(&stats.skipped)),
+            kv("lateness_p50_us", format!("{:.1}", p50 / 1e3)),
+            kv("lateness_p99_us", format!("{:.1}", p99 / 1e3)),
+            kv("lateness_max_us", format!("{:.1}", max / 1e3)),
+            kv(
+                "lateness_max_total_us",
+                format!("{:.1}", ld(&stats.max_lateness_ns) as f64 / 1e3),
+            ),
+            kv(
+                "step_mean_us",
+                format!(
+                    "{:.2}",
+                    f64::from_bits(stats.window_step_ns.load(Ordering::Relaxed)) / 1e3
+                ),
+            ),
+            kv("states_dropped", ld(&stats.samples_dropped)),
+            kv("applied_inputs_dropped", ld(&stats.applied_dropped)),
+            kv("commands_dropped", ld(&stats.commands_dropped)),
+            kv("commands_deferred", ld(&stats.commands_deferred)),
+            kv("events_dropped", ld(&stats.events_dropped)),
+            kv("publish_errors", publish_errors),
+            kv("step_failures", step_failures),
+            kv("resets", ld(&stats.resets)),
+        ],
+    };
+    let last = inputs
+        .last_problem
+        .lock()
+        .map(|s| s.clone())
+        .unwrap_or_default();
+    let input_status = DiagnosticStatus {
+        level: if new_rejected > 0 {
+            DiagnosticStatus::WARN
+        } else {
+            DiagnosticStatus::OK
+        },
+        name: format!("{fqn}: inputs"),
+        message: if new_rejected > 0 {
+            format!("{new_rejected} commands rejected in the last period")
+        } else {
+            "ok".into()
+        },
+        hardware_id: fqn.into(),
+        values: vec![
+            kv("activation_received", ld(&inputs.activation_received)),
+            kv("activation_rejected", ld(&inputs.activation_rejected)),
+            kv("load_received", ld(&inputs.load_received)),
+            kv("load_rejected", ld(&inputs.load_rejected)),
+            kv("rejected_total", rejected),
+            kv("rejected_unknown_name", ld(&inputs.rejected_unknown_name)),
+            kv(
+                "rejected_length_mismatch",
+                ld(&inputs.rejected_length_mismatch),
+            ),
+            kv("rejected_non_finite", ld(&inputs.rejected_non_finite)),
+            kv(
+                "rejected_duplicate_name",
+                ld(&inputs.rejected_duplicate_name),
+            ),
+            kv("rejected_empty", ld(&inputs.rejected_empty)),
+            kv("clamped_commands", ld(&inputs.clamped_commands)),
+            kv("clamped_values", ld(&inputs.clamped_values)),
+            kv("malformed", ld(&inputs.malformed)),
+            kv("last_problem", last),
+        ],
+    };
+    DiagnosticArray {
+        header: Header {
+            stamp: Time::now(),
+            frame_id: String::new(),
+        },
+        status: vec![tick_status, input_status, recorder_status],
+    }
+}

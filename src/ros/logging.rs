@@ -1,0 +1,173 @@
+//! The node's log: lines to stderr and `/rosout` above a level, each at most 1000 characters;
+//! repeats held back (at most one a second per kind); late ticks summarised every 10 s.
+
+use super::args::Severity;
+use ros2_client::builtin_interfaces::Time;
+use ros2_client::log::LogLevel;
+use ros2_client::{NodeLoggingHandle, RosoutRaw};
+use std::collections::HashMap;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Logging to stderr and `/rosout`, with a level threshold.
+#[derive(Clone)]
+pub struct Logger {
+    pub(crate) rosout: Option<Arc<NodeLoggingHandle>>,
+    pub(crate) level: Severity,
+    pub(crate) stdout: bool,
+    pub(crate) name: String,
+}
+
+/// Longest log line, characters: what a user sends is quoted as an excerpt already; this is
+/// the last guard (a line goes to stderr and `/rosout`).
+const MAX_LOG_CHARS: usize = 1000;
+
+impl Logger {
+    pub(crate) fn log(&self, sev: Severity, msg: &str) {
+        if sev < self.level {
+            return;
+        }
+        let cut;
+        let msg = match msg.char_indices().nth(MAX_LOG_CHARS) {
+            Some((at, _)) => {
+                cut = format!("{}... ({} bytes)", &msg[..at], msg.len());
+                cut.as_str()
+            }
+            None => msg,
+        };
+        if self.stdout {
+            let t = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map(|d| d.as_secs_f64())
+                .unwrap_or(0.0);
+            eprintln!("[{}] [{t:.6}] [{}]: {msg}", sev.label(), self.name);
+        }
+        if let Some(h) = &self.rosout {
+            let level = match sev {
+                Severity::Debug => LogLevel::Debug,
+                Severity::Info => LogLevel::Info,
+                Severity::Warn => LogLevel::Warn,
+                Severity::Error => LogLevel::Error,
+                Severity::Fatal => LogLevel::Fatal,
+            };
+            h.rosout_raw(Time::now(), level, &self.name, msg, file!(), "", line!());
+        }
+    }
+    pub fn info(&self, msg: &str) {
+        self.log(Severity::Info, msg)
+    }
+    pub fn warn(&self, msg: &str) {
+        self.log(Severity::Warn, msg)
+    }
+    pub fn error(&self, msg: &str) {
+        self.log(Severity::Error, msg)
+    }
+    pub fn debug(&self, msg: &str) {
+        self.log(Severity::Debug, msg)
+    }
+}
+
+/// Says a repeated thing at most once a second per key, with the count of what it held back.
+#[derive(Default)]
+pub(crate) struct RateLimit {
+    last: HashMap<String, (Instant, u64)>,
+}
+
+impl RateLimit {
+    /// `Some(suppressed_since_last)` when the message may go out now.
+    pub(crate) fn allow(&mut self, key: &str) -> Option<u64> {
+        let now = Instant::now();
+        match self.last.get_mut(key) {
+            Some((t, held)) if now.duration_since(*t) < Duration::from_secs(1) => {
+                *held += 1;
+                None
+            }
+            Some((t, held)) => {
+                let n = *held;
+                *t = now;
+                *held = 0;
+                Some(n)
+            }
+            None => {
+                self.last.insert(key.into(), (now, 0));
+                Some(0)
+            }
+        }
+    }
+}
+
+/// A tick later than this many periods is warned about on its own (rate-limited); later than
+/// one period, it is counted in the summary logged every [`LATENESS_SUMMARY_PERIOD`].
+pub(crate) const LATE_WARN_PERIODS: f64 = 5.0;
+const LATENESS_SUMMARY_PERIOD: Duration = Duration::from_secs(10);
+
+/// Ticks that started more than one period late since the last summary.
+pub(crate) struct LateTicks {
+    count: u64,
+    worst_us: f64,
+    since: Instant,
+}
+
+impl LateTicks {
+    pub(crate) fn new() -> Self {
+        Self {
+            count: 0,
+            worst_us: 0.0,
+            since: Instant::now(),
+        }
+    }
+    /// Counts a late tick; true if it deserves a warning of its own.
+    pub(crate) fn add(&mut self, lateness_us: f64, period_us: f64) -> bool {
+        self.count += 1;
+        self.worst_us = self.worst_us.max(lateness_us);
+        lateness_us > LATE_WARN_PERIODS * period_us
+    }
+    /// The summary line, once a period is over and there was a late tick in it.
+    pub(crate) fn summary_due(&mut self) -> Option<String> {
+        if self.since.elapsed() < LATENESS_SUMMARY_PERIOD {
+            return None;
+        }
+        let line = (self.count > 0).then(|| {
+            format!(
+                "{} ticks started more than one period late in the last {} s (worst {:.0} us)",
+                self.count,
+                LATENESS_SUMMARY_PERIOD.as_secs(),
+                self.worst_us
+            )
+        });
+        *self = Self::new();
+        line
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Late ticks are counted for the 10 s summary; only those later than five periods are
+    /// warned about on their own.
+    #[test]
+    fn late_ticks_are_summarised() {
+        let mut late = LateTicks::new();
+        assert!(!late.add(1500.0, 1000.0));
+        assert!(late.add(6000.0, 1000.0));
+        assert_eq!(late.summary_due(), None, "not before 10 s");
+        late.since = Instant::now() - Duration::from_secs(11);
+        let line = late.summary_due().unwrap();
+        assert!(
+            line.starts_with("2 ticks started") && line.ends_with("(worst 6000 us)"),
+            "{line}"
+        );
+        late.since = Instant::now() - Duration::from_secs(11);
+        assert_eq!(late.summary_due(), None, "nothing late: nothing said");
+    }
+
+    #[test]
+    fn rate_limit_holds_back_repeats() {
+        let mut r = RateLimit::default();
+        assert_eq!(r.allow("a"), Some(0));
+        assert_eq!(r.allow("a"), None);
+        assert_eq!(r.allow("a"), None);
+        assert_eq!(r.allow("b"), Some(0));
+    }
+}
