@@ -8,6 +8,7 @@
 use crate::sim::scenario::Run;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use std::io::Write;
+use std::path::Path;
 
 /// The header line's columns for a run with these joints.
 pub fn header(joint_names: &[String]) -> Vec<String> {
@@ -42,4 +43,21 @@ pub fn write_csv(run: &Run, out: &mut impl Write) -> std::io::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Writes the run as CSV to the file `path` (`-`: standard output).
+pub fn write_csv_to(run: &Run, path: &Path) -> Result<(), String> {
+    let write = |out: &mut dyn Write| {
+        let mut buf = std::io::BufWriter::new(out);
+        write_csv(run, &mut buf)?;
+        buf.flush()
+    };
+    if path.as_os_str() == "-" {
+        write(&mut std::io::stdout().lock())
+    } else {
+        let mut f = std::fs::File::create(path)
+            .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+        write(&mut f)
+    }
+    .map_err(|e| format!("cannot write CSV {}: {e}", path.display()))
 }

@@ -76,6 +76,15 @@ enum Command {
         /// The recovered recording (.mcap; not the input).
         output: PathBuf,
     },
+    /// Write a recording's states as CSV: the columns of `simulate --csv`, one row per recorded
+    /// state per muscle.
+    Export {
+        /// The recording (.mcap).
+        input: PathBuf,
+        /// CSV output file ('-' for standard output).
+        #[arg(long)]
+        csv: PathBuf,
+    },
     /// Run the ROS 2 node; everything after `node` goes to it (`--ros-args ...`, see `node --help`).
     #[command(disable_help_flag = true)]
     Node {
@@ -216,6 +225,16 @@ fn run(cli: Cli) -> Result<(), String> {
                 );
             }
             eprintln!("{}", r.line(&input, &output));
+            Ok(())
+        }
+        Command::Export { input, csv } => {
+            let s = muscle_actuator::runs::export::export_csv(&input, &csv)?;
+            eprintln!(
+                "exported {} states of {} muscles from {}",
+                s.states,
+                s.muscles,
+                input.display()
+            );
             Ok(())
         }
         Command::Figures { out } => muscle_actuator::figures::write_all(&out),

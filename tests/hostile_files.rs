@@ -44,9 +44,9 @@ const MAGIC: &[u8; 8] = b"\x89MCAP0\r\n";
 /// What a file may end in.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Expect {
-    /// A control: both commands succeed.
+    /// A control: every command succeeds.
     Accept,
-    /// An `error:` line and a non-zero exit from both commands.
+    /// An `error:` line and a non-zero exit from every command.
     Refuse,
     /// Damage that may land where nothing is read: refused, or accepted with finite figures.
     Either,
@@ -844,12 +844,23 @@ fn not_recordings(c: &mut Corpus, rng: &mut Rng) {
 
 /// Whether an accepted run's output is sound: finite figures from `compare --json`, a summary
 /// line from `replay`.
-fn accepted_soundly(e: &Ended, compare: bool) -> Result<(), String> {
-    if !compare {
-        return if e.stderr.contains("replayed ") {
+/// The commands each hostile file goes through (`compare` against the sound run).
+const COMMANDS: [&str; 3] = ["replay", "compare", "export"];
+
+fn accepted_soundly(e: &Ended, command: &str) -> Result<(), String> {
+    if command != "compare" {
+        let summary = if command == "replay" {
+            "replayed "
+        } else {
+            "exported "
+        };
+        return if e.stderr.contains(summary) {
             Ok(())
         } else {
-            Err(format!("replay accepted without its summary: {}", e.stderr))
+            Err(format!(
+                "{command} accepted without its summary: {}",
+                e.stderr
+            ))
         };
     }
     let v: serde_json::Value =
@@ -916,6 +927,7 @@ fn hostile_recordings_are_refused_cleanly() {
     let mut runs: Vec<Vec<OsString>> = Vec::new();
     for (i, case) in c.cases.iter().enumerate() {
         let out = dir.join("out").join(format!("{i:03}.mcap"));
+        let csv = out.with_extension("csv");
         runs.push(vec![
             "replay".into(),
             case.path.clone().into(),
@@ -928,14 +940,20 @@ fn hostile_recordings_are_refused_cleanly() {
             case.path.clone().into(),
             "--json".into(),
         ]);
+        runs.push(vec![
+            "export".into(),
+            case.path.clone().into(),
+            "--csv".into(),
+            csv.into(),
+        ]);
     }
     let ended = child::run_all(&runs, TIME_LIMIT, WORKERS);
     let mut problems = Vec::new();
     let (mut refused, mut accepted) = (0, 0);
     let mut by_expect: BTreeMap<String, (usize, usize)> = BTreeMap::new();
     for (k, e) in ended.iter().enumerate() {
-        let case = &c.cases[k / 2];
-        let compare = k % 2 == 1;
+        let case = &c.cases[k / COMMANDS.len()];
+        let command = COMMANDS[k % COMMANDS.len()];
         let tally = by_expect.entry(format!("{:?}", case.expect)).or_default();
         if let Some(p) = e.problem() {
             problems.push(format!("{}: {p}", case.name));
@@ -947,11 +965,9 @@ fn hostile_recordings_are_refused_cleanly() {
             if case.expect == Expect::Refuse {
                 problems.push(format!(
                     "{}: {} accepted a file it must refuse; stderr: {}",
-                    case.name,
-                    if compare { "compare" } else { "replay" },
-                    e.stderr
+                    case.name, command, e.stderr
                 ));
-            } else if let Err(why) = accepted_soundly(e, compare) {
+            } else if let Err(why) = accepted_soundly(e, command) {
                 problems.push(format!("{}: {why}", case.name));
             } else if case.expect == Expect::Truncated {
                 let warnings: Vec<&str> = e
@@ -982,14 +998,14 @@ fn hostile_recordings_are_refused_cleanly() {
             };
             println!(
                 "{} {}: {verdict}",
-                c.cases[k / 2].name,
-                ["replay", "compare"][k % 2]
+                c.cases[k / COMMANDS.len()].name,
+                COMMANDS[k % COMMANDS.len()]
             );
         }
     }
     let slowest = ended.iter().map(|e| e.elapsed).max().unwrap_or_default();
     println!(
-        "hostile MCAP corpus: {} files, {} runs (replay + compare): {refused} refused with an \
+        "hostile MCAP corpus: {} files, {} runs (replay + compare + export): {refused} refused with an \
          `error:` line, {accepted} accepted, {} with problems; by expectation (refused, accepted): \
          {by_expect:?}; slowest run {slowest:?}",
         c.cases.len(),

@@ -1,5 +1,5 @@
 //! Runs as recordings: the topics and the `muscle_actuator` metadata record of a run file,
-//! `simulate --out` ([`simulate_to_mcap`]), [`replay`] and [`compare`].
+//! `simulate --out` ([`simulate_to_mcap`]), [`replay`], [`compare`] and [`export`].
 //!
 //! Inputs are recorded stamped with the tick at which they take effect: header stamp = that
 //! tick's simulated time (tick / rate), so tick = round(stamp · rate). Offline runs carry them on
@@ -8,6 +8,7 @@
 
 pub mod checks;
 pub mod compare;
+pub mod export;
 pub mod limits;
 
 use crate::config::{excerpt, ActuatorConfig};
