@@ -43,7 +43,16 @@ def watch(peer, node):
 
 
 def values(peer, client, names):
-    resp = peer.await_future(client.get_parameters(names))
+    # A get is idempotent: asked again if the first answer is lost (a request sent to a node that
+    # has just started can reach it before its reply writer has matched this client).
+    for attempt in range(3):
+        fut = client.get_parameters(names)
+        try:
+            resp = peer.await_future(fut, timeout=5.0 if attempt < 2 else 15.0)
+            break
+        except AssertionError:
+            if attempt == 2:
+                raise
     return {n: parameter_value_to_python(v) for n, v in zip(names, resp.values)}
 
 
