@@ -686,6 +686,9 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                 Err(e) => unreadable("cmd_activation", format!("{e:?}")),
             }
         }
+        // No muscle topic at all (no muscle name is a valid topic name): nothing to do, but the
+        // node goes on (the main loop ends when any of its tasks does).
+        futures::future::pending::<()>().await;
     };
     let load_task = async {
         let mut stream = std::pin::pin!(load_sub.async_stream());

@@ -98,3 +98,22 @@ def test_recorded_and_replayed_bit_for_bit(peer, node, watch, rec_dir, tmp_path)
     r = subprocess.run([NodeProcess.binary(), "replay", str(path), "--out", str(out)],
                        capture_output=True, text=True)
     assert r.returncode == 0 and "reproduced bit for bit" in r.stderr, r.stdout + r.stderr
+
+
+def test_muscles_whose_names_make_no_topic(peer, tmp_path):
+    """Muscle names that are not ROS name tokens get no `cmd_activation` topic (said at start-up);
+    the node runs on and the other activation topics serve them."""
+    cfg = tmp_path / "dashed.toml"
+    cfg.write_text('[[muscle]]\nname = "flex-or"\n[[muscle]]\nname = "ext-ensor"\n')
+    node = NodeProcess("/t_cmd_dashed", ["-p", f"config:={cfg}", "-p", "record:=false"])
+    node.start()
+    try:
+        w = Watch(peer, node, diagnostics=False)
+        arr = peer.publisher(Float64MultiArray, node.topic("~/activation_array"))
+        send_until(w, lambda: arr.publish(Float64MultiArray(data=[0.6, 0.2])),
+                   {"flex-or": 0.6, "ext-ensor": 0.2}, "array on dashed names")
+        time.sleep(1.0)
+        assert node.alive(), node.output()
+        assert node.output().count("no ~/<muscle>/cmd_activation topic for muscle") == 2, node.output()
+    finally:
+        assert node.stop() == 0, node.output()
