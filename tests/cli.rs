@@ -2,11 +2,11 @@
 //! panic (exit code 101). And the CSV it writes: header and rows as documented.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_muscle_actuator"))
-}
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{bin, stderr};
 
 fn tmp(name: &str, text: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("muscle_actuator_cli_{}", std::process::id()));
@@ -14,10 +14,6 @@ fn tmp(name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 fn assert_clean_failure(o: &Output, needles: &[&str]) {

@@ -2,27 +2,13 @@
 //! `error:` line for input that is not a sound recording.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{bin, run_ok};
 
 fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("muscle_actuator_export_{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_muscle_actuator"))
-}
-
-fn run_ok(cmd: &mut Command) -> Output {
-    let o = cmd.output().unwrap();
-    assert!(
-        o.status.success(),
-        "{:?} failed: {}",
-        cmd,
-        String::from_utf8_lossy(&o.stderr)
-    );
-    o
+    cli::temp_dir("export")
 }
 
 /// `simulate ARGS --csv A --out R`, then `export R --csv B`: (A, B) as text.

@@ -19,6 +19,8 @@
 
 #[path = "common/child.rs"]
 mod child;
+#[path = "common/cli.rs"]
+mod cli;
 
 use child::{Ended, Rng};
 use muscle_actuator::recording::{decode_cdr, encode_cdr, read_recording};
@@ -29,7 +31,6 @@ use std::collections::BTreeMap;
 use std::ffi::OsString;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Duration;
 
 const TIME_LIMIT: Duration = Duration::from_secs(10);
@@ -190,43 +191,17 @@ fn main_dir() -> PathBuf {
 
 /// `simulate` of a 0.1 s elbow run (excitation pulse, torque step) recorded to MCAP.
 fn base_recording(dir: &Path) -> PathBuf {
-    let scenario = dir.join("base.toml");
-    std::fs::write(
-        &scenario,
+    cli::record_scenario(
+        dir,
+        "base",
         "name = \"hostile-base\"\nduration = 0.1\nattachment = \"joint\"\n\
          [[input]]\nsignal = \"excitation\"\nmuscle = \"flexor\"\nkind = \"pulse\"\n\
          start = 0.02\nend = 0.06\nvalue = 0.5\n\
          [[input]]\nsignal = \"external_torque\"\nkind = \"step\"\nat = 0.05\nto = -1.0\n",
     )
-    .unwrap();
-    let out = dir.join("base.mcap");
-    let o = Command::new(env!("CARGO_BIN_EXE_muscle_actuator"))
-        .arg("simulate")
-        .arg(&scenario)
-        .args(["--model", "hill", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    out
 }
 
-/// Top-level records of an MCAP file: (offset of the opcode, opcode, declared body length).
-/// Written out here (nine bytes a record: opcode, u64 LE length) to damage them precisely.
-fn records(buf: &[u8]) -> Vec<(usize, u8, u64)> {
-    let mut out = Vec::new();
-    let mut at = MAGIC.len();
-    while at + 9 <= buf.len() {
-        let op = buf[at];
-        let len = u64::from_le_bytes(buf[at + 1..at + 9].try_into().unwrap());
-        out.push((at, op, len));
-        if op == 0x02 {
-            break; // the footer
-        }
-        at += 9 + len as usize;
-    }
-    out
-}
+use cli::mcap_records as records;
 
 fn put_u64(buf: &mut [u8], at: usize, v: u64) {
     buf[at..at + 8].copy_from_slice(&v.to_le_bytes());

@@ -5,28 +5,14 @@ use muscle_actuator::recording::{self, decode_cdr, read_recording, schema::SEPAR
 use muscle_actuator::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState};
 use muscle_actuator::runs::{self, compare, load_run};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use std::sync::OnceLock;
 
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{bin, run_ok};
+
 fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("muscle_actuator_rec_{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_muscle_actuator"))
-}
-
-fn run_ok(cmd: &mut Command) -> Output {
-    let o = cmd.output().unwrap();
-    assert!(
-        o.status.success(),
-        "{:?} failed: {}",
-        cmd,
-        String::from_utf8_lossy(&o.stderr)
-    );
-    o
+    cli::temp_dir("rec")
 }
 
 /// `simulate pulse --model M --out` (once per model per test binary).

@@ -5,20 +5,14 @@
 
 use mcap::read::Options;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{bin, stderr};
 
 fn dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("muscle_actuator_recover_{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_muscle_actuator"))
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    cli::temp_dir("recover")
 }
 
 /// A recording of several chunks: 8 s of a 1 kHz elbow run (about 1.2 MB, six chunks).
@@ -28,37 +22,21 @@ fn long_recording() -> PathBuf {
 }
 
 fn make_long_recording() -> PathBuf {
-    let d = dir();
-    let scenario = d.join("long.toml");
-    std::fs::write(
-        &scenario,
+    cli::record_scenario(
+        &dir(),
+        "long",
         "name = \"long\"\nduration = 8.0\nattachment = \"joint\"\n[[input]]\n\
          signal = \"excitation\"\nmuscle = \"flexor\"\nkind = \"pulse\"\nstart = 0.05\n\
          end = 4.0\nvalue = 0.5\n",
     )
-    .unwrap();
-    let out = d.join("long.mcap");
-    let o = bin()
-        .arg("simulate")
-        .arg(&scenario)
-        .args(["--model", "hill", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
-    out
 }
 
 /// Top-level records: (offset, opcode, end).
 fn records(buf: &[u8]) -> Vec<(usize, u8, usize)> {
-    let mut v = Vec::new();
-    let mut at = 8;
-    while at + 9 <= buf.len() {
-        let len = u64::from_le_bytes(buf[at + 1..at + 9].try_into().unwrap()) as usize;
-        v.push((at, buf[at], at + 9 + len));
-        at += 9 + len;
-    }
-    v
+    cli::mcap_records(buf)
+        .into_iter()
+        .map(|(at, op, len)| (at, op, at + 9 + len as usize))
+        .collect()
 }
 
 /// (topic, sequence, log time, publish time, data) of a message.
