@@ -176,6 +176,7 @@ class Peer:
         self.executor = SingleThreadedExecutor()
         self.executor.add_node(self.node)
         self._stop = False
+        self.errors = []
         self.thread = threading.Thread(target=self._spin, daemon=True)
         self.thread.start()
         self.subs = []
@@ -183,13 +184,20 @@ class Peer:
         self.clients = {}
 
     def _spin(self):
+        # An exception in one spin (a callback's, or rclpy's own) must not end the thread: every
+        # later answer of the module would then time out far from the cause. It is kept, spinning
+        # goes on, and `await_future` and `call` name it when an answer does not come.
         while not self._stop and rclpy.ok():
             try:
                 self.executor.spin_once(timeout_sec=0.05)
-            except Exception:  # shutting down
+            except Exception as e:
                 if self._stop:
                     return
-                raise
+                if len(self.errors) < 20:
+                    self.errors.append(repr(e)[:300])
+
+    def _what(self, what):
+        return f"{what} (peer spin errors: {self.errors})" if self.errors else what
 
     def close(self):
         self._stop = True
@@ -261,7 +269,7 @@ class Peer:
         client = self.clients[key]
         assert client.wait_for_service(timeout_sec=DISCOVERY_TIMEOUT), f"service {name} not found"
         fut = client.call_async(request)
-        wait_until(fut.done, timeout, what=f"the answer of {name}")
+        wait_until(fut.done, timeout, what=self._what(f"the answer of {name}"))
         return fut.result()
 
     def reset(self, node):
@@ -276,7 +284,7 @@ class Peer:
         return self.clients[key]
 
     def await_future(self, fut, timeout=SERVICE_TIMEOUT, what="a service answer"):
-        wait_until(fut.done, timeout, what=what)
+        wait_until(fut.done, timeout, what=self._what(what))
         return fut.result()
 
 

@@ -7,7 +7,7 @@ import pytest
 from rcl_interfaces.msg import ParameterEvent, ParameterType
 from rclpy.parameter import Parameter, parameter_value_to_python
 
-from helpers import NodeProcess, Watch, SERVICE_TIMEOUT, wait_until
+from helpers import NodeProcess, Watch, SERVICE_TIMEOUT, reliable, wait_until
 
 NS = "/t_params"
 SIX = {"model", "rate_hz", "publish_rate_hz", "config", "record", "record_dir"}
@@ -98,25 +98,20 @@ def test_invalid_values_are_refused_with_a_reason(peer, client, name, value, rea
 
 
 def test_model_changes_at_run_time(peer, client, watch):
-    seen = []
-    sub = peer.node.create_subscription(
-        ParameterEvent, "/parameter_events", lambda m: seen.append(m), 10
-    )
+    # The subscription stays for the module: destroying it while the peer's executor waits on
+    # it in another thread is a race inside rclpy.
+    events = peer.subscribe(ParameterEvent, "/parameter_events", reliable(10))
     try:
         resp = peer.await_future(client.set_parameters([Parameter("model", value="huxley")]))
         assert resp.results[0].successful, resp.results[0].reason
         watch.next_state(lambda s: s.model == "huxley", what="~/state with model huxley")
-        wait_until(
-            lambda: any(
-                e.node == f"{NS}/muscle_actuator"
-                and any(p.name == "model" and p.value.string_value == "huxley" for p in e.changed_parameters)
-                for e in seen
-            ),
+        events.wait(
+            lambda e: e.node == f"{NS}/muscle_actuator"
+            and any(p.name == "model" and p.value.string_value == "huxley" for p in e.changed_parameters),
             SERVICE_TIMEOUT,
             what="the change on /parameter_events",
         )
     finally:
-        peer.node.destroy_subscription(sub)
         peer.await_future(client.set_parameters([Parameter("model", value="hill")]))
     watch.next_state(lambda s: s.model == "hill", what="~/state back to hill")
 
