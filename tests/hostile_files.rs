@@ -23,10 +23,8 @@ mod child;
 mod cli;
 
 use child::{Ended, Rng};
+use muscle_actuator::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use muscle_actuator::recording::{decode_cdr, encode_cdr, read_recording};
-use muscle_actuator::ros::msgs::muscle_actuator_msgs::{
-    ActivationCommand, ActuatorState, ExternalLoad,
-};
 use std::collections::BTreeMap;
 use std::ffi::OsString;
 use std::io::Cursor;

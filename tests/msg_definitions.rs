@@ -3,10 +3,10 @@
 //! nested messages. The Rust side is read through serde (what actually goes on the wire), with
 //! a serializer that records the field names and primitive types.
 
-use muscle_actuator::ros::msgs::muscle_actuator_msgs::{
+use muscle_actuator::msgs::muscle_actuator_msgs::{
     ActivationCommand, ActuatorState, ExternalLoad, MuscleState,
 };
-use muscle_actuator::ros::msgs::{
+use muscle_actuator::msgs::{
     DiagnosticArray, DiagnosticStatus, Header, JointState, KeyValue, TriggerRequest,
     TriggerResponse,
 };

@@ -1,8 +1,8 @@
 //! Recordings: the MCAP file as rosbag2 readers expect it (read back with the `mcap` crate),
 //! replay bit for bit, compare Hill vs Huxley, and clean errors on damaged files.
 
+use muscle_actuator::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState};
 use muscle_actuator::recording::{self, decode_cdr, read_recording, schema::SEPARATOR};
-use muscle_actuator::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState};
 use muscle_actuator::runs::{self, compare, load_run};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;

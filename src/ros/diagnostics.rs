@@ -1,12 +1,21 @@
-//! The node's `/diagnostics`: the tick loop's and the inputs' figures, once a second.
+//! The node's `/diagnostics`: the tick loop's, the inputs' and the recorder's figures, once a
+//! second, published and recorded.
 
+use super::args::Severity;
 use super::input::Rejection;
-use super::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
+use super::logging::Reporter;
+use super::param_callbacks::Shared;
 use super::params::NodeParams;
+use super::record::{self, RecordTx};
 use super::tick::TickStats;
+use crate::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
+use crate::recording::{Recorder, RecorderState};
+use crate::runs::Channel;
 use ros2_client::builtin_interfaces::Time;
+use ros2_client::Publisher;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
+use std::time::Duration;
 
 /// Counters of the inputs (written on the DDS side, read by diagnostics).
 #[derive(Default)]
@@ -195,5 +204,73 @@ pub(crate) fn diagnostics(
             frame_id: String::new(),
         },
         status: vec![tick_status, input_status, recorder_status],
+    }
+}
+
+/// What the `/diagnostics` task reads.
+pub(crate) struct DiagSources<'a> {
+    pub(crate) fqn: &'a str,
+    pub(crate) ticks: &'a TickStats,
+    pub(crate) inputs: &'a InputStats,
+    pub(crate) shared: &'a Shared,
+    pub(crate) publish_errors: &'a AtomicU64,
+    /// The recording as configured at start-up, and how its start went.
+    pub(crate) startup_params: &'a NodeParams,
+    pub(crate) recorder: Option<&'a Recorder>,
+    pub(crate) recorder_error: &'a str,
+}
+
+/// How often `/diagnostics` is published.
+const DIAGNOSTICS_PERIOD: Duration = Duration::from_secs(1);
+
+/// Publishes (and records) `/diagnostics` once a second; a failed recording and a stalled tick
+/// loop are also logged.
+pub(crate) async fn publish_task(
+    src: DiagSources<'_>,
+    publisher: &Publisher<DiagnosticArray>,
+    log: &Reporter,
+    rec: Option<RecordTx>,
+) {
+    let mut prev = DiagPrev::default();
+    let mut failure_reported = false;
+    loop {
+        smol::Timer::after(DIAGNOSTICS_PERIOD).await;
+        let rec_status = match src.recorder {
+            Some(r) => {
+                if let RecorderState::Failed(e) = r.stats().state() {
+                    if !failure_reported {
+                        failure_reported = true;
+                        log.logger
+                            .error(&format!("{e}; the simulation goes on without it"));
+                    }
+                }
+                record::Status::Running(r)
+            }
+            None if !src.recorder_error.is_empty() => {
+                record::Status::StartFailed(src.recorder_error)
+            }
+            None => record::Status::Disabled,
+        };
+        let msg = diagnostics(
+            src.fqn,
+            src.ticks,
+            src.inputs,
+            &src.shared.params(),
+            src.publish_errors.load(Ordering::Relaxed),
+            &mut prev,
+            record::diagnostic(src.fqn, src.startup_params, &rec_status),
+        );
+        if let Some(st) = msg.status.first() {
+            if st.level == DiagnosticStatus::ERROR && st.message.starts_with("tick loop stalled") {
+                log.report("stalled", Severity::Error, st.message.clone());
+            }
+        }
+        if let Some(r) = &rec {
+            r.put(Channel::Diagnostics, msg.header.stamp.to_nanos(), &msg);
+        }
+        if let Err(e) = publisher.async_publish(msg).await {
+            log.logger
+                .debug(&format!("diagnostics: publish failed: {e:?}"));
+        }
     }
 }

@@ -1,12 +1,16 @@
-//! The node's log: lines to stderr and `/rosout` above a level, each at most 1000 characters;
-//! repeats held back (at most one a second per kind); late ticks summarised every 10 s.
+//! The node's log: lines to stderr and `/rosout` above a level, each at most 1000 characters,
+//! and into the recording as published on `/rosout`; repeats held back (at most one a second
+//! per kind); late ticks summarised every 10 s.
 
 use super::args::Severity;
+use super::record::RecordTx;
+use crate::msgs::Log;
+use crate::runs::Channel;
 use ros2_client::builtin_interfaces::Time;
 use ros2_client::log::LogLevel;
 use ros2_client::{NodeLoggingHandle, RosoutRaw};
 use std::collections::HashMap;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// Logging to stderr and `/rosout`, with a level threshold.
@@ -16,6 +20,8 @@ pub struct Logger {
     pub(crate) level: Severity,
     pub(crate) stdout: bool,
     pub(crate) name: String,
+    /// The recording, once it has started: the `/rosout` lines go into it too.
+    pub(crate) recording: Arc<OnceLock<RecordTx>>,
 }
 
 /// Longest log line, characters: what a user sends is quoted as an excerpt already; this is
@@ -50,7 +56,20 @@ impl Logger {
                 Severity::Error => LogLevel::Error,
                 Severity::Fatal => LogLevel::Fatal,
             };
-            h.rosout_raw(Time::now(), level, &self.name, msg, file!(), "", line!());
+            let stamp = Time::now();
+            h.rosout_raw(stamp, level, &self.name, msg, file!(), "", line!());
+            if let Some(r) = self.recording.get() {
+                let line = Log {
+                    stamp,
+                    level: level as u8,
+                    name: self.name.clone(),
+                    msg: msg.to_string(),
+                    file: file!().into(),
+                    function: String::new(),
+                    line: line!(),
+                };
+                r.put(Channel::Rosout, stamp.to_nanos(), &line);
+            }
         }
     }
     pub fn info(&self, msg: &str) {
@@ -64,6 +83,33 @@ impl Logger {
     }
     pub fn debug(&self, msg: &str) {
         self.log(Severity::Debug, msg)
+    }
+}
+
+/// The log with repeats held back ([`RateLimit`]), shared by the node's tasks.
+pub(crate) struct Reporter {
+    pub(crate) logger: Logger,
+    limits: Mutex<RateLimit>,
+}
+
+impl Reporter {
+    pub(crate) fn new(logger: Logger) -> Self {
+        Self {
+            logger,
+            limits: Mutex::new(RateLimit::default()),
+        }
+    }
+    /// Logs `msg` unless one of kind `key` went out less than a second ago; the next one says
+    /// how many were held back.
+    pub(crate) fn report(&self, key: &str, sev: Severity, msg: String) {
+        let allowed = self.limits.lock().ok().and_then(|mut l| l.allow(key));
+        match allowed {
+            Some(0) => self.logger.log(sev, &msg),
+            Some(held) => self
+                .logger
+                .log(sev, &format!("{msg} ({held} more like this held back)")),
+            None => {}
+        }
     }
 }
 

@@ -6,18 +6,22 @@
 //! - [`input`]: validation of incoming commands;
 //! - [`record`]: the node's MCAP recording (off the tick thread);
 //! - [`tick`]: the fixed-rate loop on its own thread (channels in and out, never waits on DDS);
-//! - [`msgs`]: the message types, field for field as in `msg/*.msg`;
 //! - [`node`]: the DDS side (ros2-client on RustDDS): topics, services, parameters, diagnostics,
 //!   logging, signals.
 
 pub mod args;
+pub mod dds;
 pub mod diagnostics;
 pub mod input;
 pub mod logging;
-pub mod msgs;
 pub mod node;
+mod param_callbacks;
 pub mod params;
 pub mod record;
+mod setup;
+mod signals;
+mod tasks;
+mod threads;
 pub mod tick;
 
 /// The node's name unless remapped with `-r __node:=...`.

@@ -1,31 +1,26 @@
 //! The node's recording (parameters `record`, `record_dir`): every input as received, every
-//! state as published, and the inputs as the tick loop applied them (stamped with the tick they
-//! took effect at: header stamp = tick / rate), which is what `replay` feeds back.
+//! state as published, the inputs as the tick loop applied them (stamped with the tick they took
+//! effect at: stamp = tick origin + tick / rate), which is what `replay` feeds back, and the
+//! node's `/diagnostics` and `/rosout` lines. One time base: wall-clock time
+//! ([`crate::runs::TimeBase::Wall`]) for every log time and stamp.
 
-use super::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
-use super::msgs::{DiagnosticStatus, Header, KeyValue};
 use super::params::NodeParams;
 use super::tick::Applied;
+use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use crate::msgs::{DiagnosticStatus, Header, KeyValue};
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
 use crate::runs::{
-    self, channel, AttachmentMeta, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
-    APPLIED_LOAD_SUFFIX, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, STATE_TYPE,
+    self, AttachmentMeta, Channel, Layout, RunMeta, TimeBase, ACTIVATION_TYPE,
+    APPLIED_ACTIVATION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE,
+    FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
+    STATE_TYPE,
 };
 use crate::sim::Actuator;
 use ros2_client::builtin_interfaces::Time;
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::Receiver;
-
-pub const CH_STATE: usize = 0;
-pub const CH_JOINT_STATES: usize = 1;
-pub const CH_ACTIVATION: usize = 2;
-pub const CH_LOAD: usize = 3;
-pub const CH_APPLIED_ACTIVATION: usize = 4;
-pub const CH_APPLIED_LOAD: usize = 5;
-pub const CH_ACTIVATION_ARRAY: usize = 6;
-/// The first of the `~/<muscle>/cmd_activation` channels, one per muscle topic in order.
-pub const CH_MUSCLE_COMMANDS: usize = 7;
+use std::sync::Arc;
 
 /// The resolved topic names the node uses.
 pub struct Topics<'a> {
@@ -35,6 +30,47 @@ pub struct Topics<'a> {
     pub load: &'a str,
     pub activation_array: &'a str,
     pub muscle_commands: &'a [String],
+}
+
+/// Where the node's threads hand messages for the recording: the recorder's sender and the
+/// channel layout (cheap to clone).
+#[derive(Clone)]
+pub struct RecordTx {
+    pub sender: RecordSender,
+    layout: Arc<Layout>,
+}
+
+impl RecordTx {
+    /// Serializes `msg` and hands it to the recorder on channel `ch` (log time: now).
+    pub fn put<T: serde::Serialize>(&self, ch: Channel, publish_ns: i64, msg: &T) {
+        let Some(id) = self.layout.id(ch) else {
+            return;
+        };
+        match encode_cdr(msg) {
+            Ok(data) => {
+                let now = runs::now_ns().max(0) as u64;
+                self.sender.record(id, now, publish_ns.max(0) as u64, data);
+            }
+            Err(_) => {
+                self.sender.stats().dropped.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+    }
+}
+
+/// A running recording.
+pub struct NodeRecorder {
+    pub recorder: Recorder,
+    layout: Arc<Layout>,
+}
+
+impl NodeRecorder {
+    pub fn tx(&self) -> RecordTx {
+        RecordTx {
+            sender: self.recorder.sender(),
+            layout: self.layout.clone(),
+        }
+    }
 }
 
 /// Whether these parameters ask for a recording.
@@ -51,13 +87,14 @@ pub fn file_path(p: &NodeParams, fqn: &str, start_ns: i64) -> PathBuf {
     PathBuf::from(&p.record_dir).join(format!("{name}_{t}.mcap"))
 }
 
-/// Starts the recording of a node run.
+/// Starts the recording of a node run whose tick 0 is stamped `tick_origin_ns` (wall clock).
 pub fn start(
     p: &NodeParams,
     fqn: &str,
     topics: &Topics,
     actuator: &Actuator,
-) -> Result<Recorder, String> {
+    tick_origin_ns: i64,
+) -> Result<NodeRecorder, String> {
     let start_ns = runs::now_ns();
     let params_json = {
         let mut m = serde_json::Map::new();
@@ -78,51 +115,52 @@ pub fn start(
         config: actuator.config().clone(),
         parameters_json: Some(params_json),
         start_time_ns: start_ns,
+        time_base: TimeBase::Wall { tick_origin_ns },
         muscles: actuator.muscle_names().to_vec(),
         joints: actuator.joint_names().to_vec(),
     };
-    let mut channels = vec![
-        channel(topics.state, STATE_TYPE)?,
-        channel(topics.joint_states, JOINT_STATE_TYPE)?,
-        channel(topics.activation, ACTIVATION_TYPE)?,
-        channel(topics.load, LOAD_TYPE)?,
-        channel(
-            &format!("{fqn}{APPLIED_ACTIVATION_SUFFIX}"),
-            ACTIVATION_TYPE,
-        )?,
-        channel(&format!("{fqn}{APPLIED_LOAD_SUFFIX}"), LOAD_TYPE)?,
-        channel(topics.activation_array, FLOAT64_ARRAY_TYPE)?,
-    ];
-    for t in topics.muscle_commands {
-        channels.push(channel(t, FLOAT64_TYPE)?);
+    let mut layout = Layout::new();
+    layout.add(Channel::State, topics.state, STATE_TYPE)?;
+    layout.add(Channel::JointStates, topics.joint_states, JOINT_STATE_TYPE)?;
+    layout.add(Channel::Activation, topics.activation, ACTIVATION_TYPE)?;
+    layout.add(Channel::Load, topics.load, LOAD_TYPE)?;
+    layout.add(
+        Channel::AppliedActivation,
+        &format!("{fqn}{APPLIED_ACTIVATION_SUFFIX}"),
+        ACTIVATION_TYPE,
+    )?;
+    layout.add(
+        Channel::AppliedLoad,
+        &format!("{fqn}{APPLIED_LOAD_SUFFIX}"),
+        LOAD_TYPE,
+    )?;
+    layout.add(Channel::Diagnostics, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE)?;
+    layout.add(Channel::Rosout, ROSOUT_TOPIC, LOG_TYPE)?;
+    layout.add(
+        Channel::ActivationArray,
+        topics.activation_array,
+        FLOAT64_ARRAY_TYPE,
+    )?;
+    for (k, t) in topics.muscle_commands.iter().enumerate() {
+        layout.add(Channel::MuscleCommand(k), t, FLOAT64_TYPE)?;
     }
-    Recorder::start(
+    let recorder = Recorder::start(
         &file_path(p, fqn, start_ns),
-        channels,
+        layout.specs(),
         vec![(runs::METADATA_NAME.into(), meta.to_map()?)],
         RecorderOptions::default(),
-    )
-}
-
-/// Serializes `msg` and hands it to the recorder (log time: now).
-pub fn put<T: serde::Serialize>(tx: &RecordSender, ch: usize, publish_ns: i64, msg: &T) {
-    match encode_cdr(msg) {
-        Ok(data) => {
-            let now = runs::now_ns().max(0) as u64;
-            tx.record(ch, now, publish_ns.max(0) as u64, data);
-        }
-        Err(_) => {
-            tx.stats().dropped.fetch_add(1, Ordering::Relaxed);
-        }
-    }
+    )?;
+    Ok(NodeRecorder {
+        recorder,
+        layout: Arc::new(layout),
+    })
 }
 
 /// The thread that turns applied inputs into messages for the recorder.
-pub fn applied_loop(rx: Receiver<Applied>, tx: RecordSender) {
+pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
     while let Ok(a) = rx.recv() {
-        let ns = runs::tick_ns(a.tick, a.rate_hz) as i64;
         let header = Header {
-            stamp: Time::from_nanos(ns),
+            stamp: Time::from_nanos(a.stamp_ns),
             frame_id: String::new(),
         };
         let names: Vec<String> = a
@@ -137,14 +175,14 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordSender) {
                 muscle: names,
                 excitation: values,
             };
-            put(&tx, CH_APPLIED_ACTIVATION, ns, &m);
+            tx.put(Channel::AppliedActivation, a.stamp_ns, &m);
         } else {
             let m = ExternalLoad {
                 header,
                 joint: names,
                 torque: values,
             };
-            put(&tx, CH_APPLIED_LOAD, ns, &m);
+            tx.put(Channel::AppliedLoad, a.stamp_ns, &m);
         }
     }
 }

@@ -10,6 +10,7 @@
 //! writing it), which under a flood of commands stalled the loop for 30-350 ms at a time.
 
 use crate::physics::model::ModelKind;
+use crate::runs::TimeBase;
 use crate::sim::{Actuator, StateSnapshot};
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -37,7 +38,9 @@ pub enum Command {
 pub struct Sample {
     /// Tick count after the step (1 for the first tick after start or reset).
     pub tick: u64,
-    /// Wall-clock time of the tick's deadline, ns since the Unix epoch.
+    /// The tick's stamp: the loop's tick origin + tick / rate, ns since the Unix epoch (the
+    /// wall-clock deadline at which the tick was computed, unless a stall made the loop skip
+    /// ticks: stamps then lag the wall clock by the time skipped).
     pub stamp_ns: i64,
     pub model: ModelKind,
     pub muscle_names: Arc<[String]>,
@@ -52,8 +55,8 @@ pub struct Sample {
 pub struct Applied {
     /// The actuator's tick when they took effect.
     pub tick: u64,
-    /// The tick rate then, Hz.
-    pub rate_hz: f64,
+    /// That tick's stamp (tick origin + tick / rate), ns since the Unix epoch.
+    pub stamp_ns: i64,
     /// Excitations (true: values are (muscle index, u)) or external torques (joint index, N m).
     pub excitation: bool,
     pub names: Arc<[String]>,
@@ -212,6 +215,10 @@ pub struct LoopIo {
     pub stop: Arc<AtomicBool>,
     /// Where applied inputs go for the recording (never waited on: dropped when full).
     pub applied: Option<SyncSender<Applied>>,
+    /// The stamp of tick 0, ns since the Unix epoch (the recording's tick origin). After a reset
+    /// or a rebuild, tick 0 is re-anchored one period before the wall-clock time of the next
+    /// step.
+    pub tick_origin_ns: i64,
 }
 
 /// After this many periods behind, the loop stops catching up and restarts its schedule.
@@ -257,6 +264,7 @@ fn wall_ns() -> i64 {
 fn hand_applied(
     io: &LoopIo,
     actuator: &Actuator,
+    clock: TimeBase,
     excitation: bool,
     names: &Arc<[String]>,
     values: Vec<(usize, f64)>,
@@ -264,7 +272,7 @@ fn hand_applied(
     if let Some(tx) = &io.applied {
         if let Err(TrySendError::Full(_)) = tx.try_send(Applied {
             tick: actuator.tick(),
-            rate_hz: actuator.rate_hz(),
+            stamp_ns: clock.stamp_ns(actuator.tick(), actuator.rate_hz()),
             excitation,
             names: names.clone(),
             values,
@@ -299,8 +307,14 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
     let mut summary = RunSummary::default();
 
     let mut origin = Instant::now();
-    let mut origin_wall = wall_ns();
     let mut n: u64 = 0; // ticks since `origin`
+                        // Stamps: tick k is stamped `tick_origin_ns + k / rate`.
+    let mut clock = TimeBase::Wall {
+        tick_origin_ns: io.tick_origin_ns,
+    };
+    let reanchored = |period: Duration| TimeBase::Wall {
+        tick_origin_ns: wall_ns() - period.as_nanos() as i64,
+    };
     let send_event = |e: Event| {
         if let Err(TrySendError::Full(_)) = io.events.try_send(e) {
             io.stats.events_dropped.fetch_add(1, Ordering::Relaxed);
@@ -330,7 +344,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         }
                         actuator.set_excitation(i, u);
                     }
-                    hand_applied(&io, &actuator, true, &muscle_names, v);
+                    hand_applied(&io, &actuator, clock, true, &muscle_names, v);
                 }
                 Command::Load(v) => {
                     for &(i, t) in &v {
@@ -339,11 +353,12 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         }
                         actuator.set_external_torque(i, t);
                     }
-                    hand_applied(&io, &actuator, false, &joint_names, v);
+                    hand_applied(&io, &actuator, clock, false, &joint_names, v);
                 }
                 Command::Reset(reply) => {
                     let before = actuator.tick();
                     actuator.reset();
+                    clock = reanchored(period);
                     excitation.iter_mut().for_each(|u| *u = 0.0);
                     load.iter_mut().for_each(|t| *t = 0.0);
                     io.stats.resets.fetch_add(1, Ordering::Relaxed);
@@ -368,9 +383,9 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     if new_period != period {
                         period = new_period;
                         origin = Instant::now();
-                        origin_wall = wall_ns();
                         n = 0;
                     }
+                    clock = reanchored(period);
                     io.stats
                         .rate_hz_bits
                         .store(actuator.rate_hz().to_bits(), Ordering::Relaxed);
@@ -390,6 +405,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             // of range is not applied again); the next valid command applies as usual.
             let tick = e.tick;
             actuator.reset();
+            clock = reanchored(period);
             excitation.iter_mut().for_each(|u| *u = 0.0);
             load.iter_mut().for_each(|t| *t = 0.0);
             io.stats.step_failures.fetch_add(1, Ordering::Relaxed);
@@ -412,7 +428,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         if actuator.tick().is_multiple_of(publish_every) || publish_every == 1 {
             let sample = Sample {
                 tick: actuator.tick(),
-                stamp_ns: origin_wall + (period.as_nanos() as i64) * n as i64,
+                stamp_ns: clock.stamp_ns(actuator.tick(), actuator.rate_hz()),
                 model: actuator.model(),
                 muscle_names: muscle_names.clone(),
                 joint_names: joint_names.clone(),
@@ -453,7 +469,6 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             summary.skipped += skipped;
             send_event(Event::Resync { skipped });
             origin = woke;
-            origin_wall = wall_ns();
             n = 0;
         }
         io.stats
@@ -759,6 +774,7 @@ mod tests {
                 stats: stats.clone(),
                 stop: stop.clone(),
                 applied: None,
+                tick_origin_ns: 0,
             },
         )
         .unwrap();
@@ -791,5 +807,64 @@ mod tests {
         stop.store(true, Ordering::Relaxed);
         let summary = handle.join().unwrap();
         assert!(summary.ticks >= 6);
+    }
+
+    /// States and applied inputs carry one clock: tick k is stamped origin + k / rate, which
+    /// maps back to k (what replay does with a node recording); a reset re-anchors tick 0 at
+    /// the wall clock.
+    #[test]
+    fn states_and_applied_inputs_share_the_tick_clock() {
+        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
+        let rate = actuator.rate_hz();
+        let origin: i64 = 1_700_000_000_123_456_789;
+        let (tx, rx) = command_channel();
+        let (sample_tx, sample_rx) = std::sync::mpsc::sync_channel(64);
+        let (event_tx, _event_rx) = std::sync::mpsc::sync_channel(64);
+        let (applied_tx, applied_rx) = std::sync::mpsc::sync_channel(64);
+        let stop = Arc::new(AtomicBool::new(false));
+        let handle = spawn(
+            actuator,
+            1,
+            LoopIo {
+                commands: rx,
+                samples: sample_tx,
+                events: event_tx,
+                stats: Arc::new(TickStats::default()),
+                stop: stop.clone(),
+                applied: Some(applied_tx),
+                tick_origin_ns: origin,
+            },
+        )
+        .unwrap();
+        let clock = TimeBase::Wall {
+            tick_origin_ns: origin,
+        };
+        let first = sample_rx.recv_timeout(Duration::from_secs(30)).unwrap();
+        assert_eq!(first.stamp_ns, clock.stamp_ns(first.tick, rate));
+        tx.send(Command::Excitation(vec![(0, 0.5)])).ok();
+        let a = applied_rx.recv_timeout(Duration::from_secs(30)).unwrap();
+        assert!(a.tick >= first.tick);
+        assert_eq!(a.stamp_ns, clock.stamp_ns(a.tick, rate));
+        assert_eq!(clock.tick_of(a.stamp_ns, rate), Ok(a.tick));
+        // The state after the tick the input took effect at carries the next stamp.
+        let after = std::iter::from_fn(|| sample_rx.recv_timeout(Duration::from_secs(30)).ok())
+            .find(|s| s.tick == a.tick + 1)
+            .unwrap();
+        assert_eq!(after.stamp_ns - a.stamp_ns, tick_ns_i64(1, rate));
+        // After a reset tick 0 is re-anchored near now (not at the old origin).
+        let (reply_tx, _reply_rx) = futures::channel::oneshot::channel();
+        tx.send(Command::Reset(Some(reply_tx))).ok();
+        let now = wall_ns();
+        let s = std::iter::from_fn(|| sample_rx.recv_timeout(Duration::from_secs(30)).ok())
+            .find(|s| s.tick == 1)
+            .unwrap();
+        assert!((s.stamp_ns - now).abs() < 5_000_000_000, "{} vs {now}", s.stamp_ns);
+        stop.store(true, Ordering::Relaxed);
+        drop(sample_rx);
+        handle.join().unwrap();
+    }
+
+    fn tick_ns_i64(ticks: u64, rate: f64) -> i64 {
+        crate::runs::tick_ns(ticks, rate) as i64
     }
 }

@@ -6,7 +6,7 @@
 use super::limits::MAX_RECORDED_TICKS;
 use super::{LoadedRun, RunMeta};
 use crate::config::excerpt;
-use crate::ros::msgs::muscle_actuator_msgs::ActuatorState;
+use crate::msgs::muscle_actuator_msgs::ActuatorState;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 
 /// Slack of the simulated span over the recorded one: a node's tick loop keeps to the wall

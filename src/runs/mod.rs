@@ -1,17 +1,24 @@
-//! Runs as recordings: the topics and the `muscle_actuator` metadata record of a run file,
-//! `simulate --out` ([`simulate_to_mcap`]), [`replay`], [`compare`] and [`export`].
+//! Runs as recordings: the channels ([`channels`]) and the `muscle_actuator` metadata record of
+//! a run file, `simulate --out` ([`simulate_to_mcap`]), [`replay`], [`compare`] and [`export`].
 //!
-//! Inputs are recorded stamped with the tick at which they take effect: header stamp = that
-//! tick's simulated time (tick / rate), so tick = round(stamp · rate). Offline runs carry them on
-//! the input topics themselves; the node records inputs as received on the input topics and, as
-//! applied by the tick loop, on `<node>/applied/activation` and `<node>/applied/external_load`.
+//! One time base per recording, named in the metadata ([`TimeBase`]): every log time and header
+//! stamp of an offline run is simulated time from zero; every one of a node run is wall-clock
+//! time (ns since the Unix epoch). Inputs are recorded stamped with the tick at which they take
+//! effect: stamp = tick origin + tick / rate, so tick = round((stamp − origin) · rate), with origin
+//! 0 offline and the node's tick origin (the wall-clock time of its tick 0) in a node run. Offline
+//! runs carry them on the input topics themselves; the node records inputs as received on the
+//! input topics and, as applied by the tick loop, on `<node>/applied/activation` and
+//! `<node>/applied/external_load`.
 
+pub mod channels;
 pub mod checks;
 pub mod compare;
 pub mod export;
 pub mod limits;
 
 use crate::config::{excerpt, ActuatorConfig};
+use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
+use crate::msgs::{definition, state_messages, type_hash, Header, JointState};
 use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;
@@ -19,29 +26,18 @@ use crate::recording::{
     self, qos_yaml, reader::read_run_file, schema::ros2msg_schema, ChannelSpec, Recorder,
     RecorderOptions, RecorderState, Recording,
 };
-use crate::ros::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
-use crate::ros::msgs::{definition, state_messages, type_hash, Header, JointState};
 use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
 use crate::sim::simulation::{default_stepping, Simulation, Stepping};
 use crate::sim::snapshot::StateSnapshot;
+pub use channels::{
+    Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
+    APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE,
+    JOINT_STATES_TOPIC, JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
+    STATE_TOPIC, STATE_TYPE,
+};
 use ros2_client::builtin_interfaces::Time;
 use std::collections::BTreeMap;
 use std::path::Path;
-
-pub const STATE_TOPIC: &str = "/muscle_actuator/state";
-pub const JOINT_STATES_TOPIC: &str = "/joint_states";
-pub const ACTIVATION_TOPIC: &str = "/muscle_actuator/activation";
-pub const LOAD_TOPIC: &str = "/muscle_actuator/external_load";
-/// Suffixes (after the node's name) of the node's applied-input topics.
-pub const APPLIED_ACTIVATION_SUFFIX: &str = "/applied/activation";
-pub const APPLIED_LOAD_SUFFIX: &str = "/applied/external_load";
-
-pub const STATE_TYPE: &str = "muscle_actuator_msgs/msg/ActuatorState";
-pub const JOINT_STATE_TYPE: &str = "sensor_msgs/msg/JointState";
-pub const ACTIVATION_TYPE: &str = "muscle_actuator_msgs/msg/ActivationCommand";
-pub const LOAD_TYPE: &str = "muscle_actuator_msgs/msg/ExternalLoad";
-pub const FLOAT64_TYPE: &str = "std_msgs/msg/Float64";
-pub const FLOAT64_ARRAY_TYPE: &str = "std_msgs/msg/Float64MultiArray";
 
 /// Name of our metadata record.
 pub const METADATA_NAME: &str = "muscle_actuator";
@@ -79,8 +75,45 @@ pub struct RunMeta {
     pub parameters_json: Option<String>,
     /// Wall-clock start, ns since the Unix epoch.
     pub start_time_ns: i64,
+    /// What the log times and header stamps count.
+    pub time_base: TimeBase,
     pub muscles: Vec<String>,
     pub joints: Vec<String>,
+}
+
+/// The clock of a recording's log times and header stamps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TimeBase {
+    /// Simulated time from zero: tick k at k / rate (offline runs).
+    Simulated,
+    /// Wall-clock time, ns since the Unix epoch; tick k of the run is stamped
+    /// `tick_origin_ns + k / rate` (node runs).
+    Wall { tick_origin_ns: i64 },
+}
+
+impl TimeBase {
+    /// The stamp of tick 0, ns.
+    pub fn tick_origin_ns(self) -> i64 {
+        match self {
+            TimeBase::Simulated => 0,
+            TimeBase::Wall { tick_origin_ns } => tick_origin_ns,
+        }
+    }
+
+    /// The stamp of `tick` at `rate_hz`, ns.
+    pub fn stamp_ns(self, tick: u64, rate_hz: f64) -> i64 {
+        self.tick_origin_ns()
+            .saturating_add(i64::try_from(tick_ns(tick, rate_hz)).unwrap_or(i64::MAX))
+    }
+
+    /// The tick stamped `ns` at `rate_hz` (refused before the origin: it names no tick).
+    pub fn tick_of(self, ns: i64, rate_hz: f64) -> Result<u64, String> {
+        let origin = self.tick_origin_ns();
+        let since = ns.checked_sub(origin).filter(|d| *d >= 0).ok_or_else(|| {
+            format!("stamp {ns} ns is before the run's tick origin ({origin} ns)")
+        })?;
+        Ok(ns_tick(since as u64, rate_hz))
+    }
 }
 
 fn stepping_text(s: Stepping) -> String {
@@ -168,6 +201,13 @@ impl RunMeta {
         }
         put("start_time_ns", self.start_time_ns.to_string());
         put("start_time", iso8601(self.start_time_ns));
+        match self.time_base {
+            TimeBase::Simulated => put("time_base", "simulated".into()),
+            TimeBase::Wall { tick_origin_ns } => {
+                put("time_base", "wall".into());
+                put("tick_origin_ns", tick_origin_ns.to_string());
+            }
+        }
         put("muscles", self.muscles.join(","));
         put("joints", self.joints.join(","));
         put("program_version", env!("CARGO_PKG_VERSION").into());
@@ -219,6 +259,17 @@ impl RunMeta {
                 })
                 .unwrap_or_default()
         };
+        // Recordings older than the key stamped inputs from zero, as offline runs do.
+        let time_base = match m.get("time_base").map(String::as_str) {
+            None | Some("simulated") => TimeBase::Simulated,
+            Some("wall") => {
+                let v = get("tick_origin_ns")?;
+                TimeBase::Wall {
+                    tick_origin_ns: v.parse().map_err(|_| bad("tick_origin_ns", v))?,
+                }
+            }
+            Some(other) => return Err(bad("time_base", other)),
+        };
         let meta = RunMeta {
             source: m.get("source").cloned().unwrap_or_default(),
             model,
@@ -231,6 +282,7 @@ impl RunMeta {
                 .get("start_time_ns")
                 .and_then(|s| s.parse().ok())
                 .unwrap_or(0),
+            time_base,
             muscles: list("muscles"),
             joints: list("joints"),
         };
@@ -322,16 +374,11 @@ fn stamp(ns: u64) -> Header {
     }
 }
 
-/// A recorded input's stamp, ns (refused before the epoch: it names no tick).
-fn header_ns(h: &Header) -> Result<u64, String> {
-    u64::try_from(h.stamp.to_nanos())
-        .map_err(|_| format!("stamp {} ns is before the epoch", h.stamp.to_nanos()))
-}
-
 /// Writes a run to MCAP tick by tick: states, joint states (with a joint) and inputs (when they
 /// change), log time = simulated time.
 struct RunWriter {
     rec: Recorder,
+    layout: Layout,
     has_joint: bool,
     rate_hz: f64,
     model: ModelKind,
@@ -340,30 +387,25 @@ struct RunWriter {
     last: Option<Inputs>,
 }
 
-const CH_STATE: usize = 0;
-const CH_ACTIVATION: usize = 1;
-const CH_JOINT: usize = 2;
-const CH_LOAD: usize = 3;
-
 impl RunWriter {
     fn start(path: &Path, meta: &RunMeta) -> Result<Self, String> {
         let has_joint = !meta.joints.is_empty();
-        let mut channels = vec![
-            channel(STATE_TOPIC, STATE_TYPE)?,
-            channel(ACTIVATION_TOPIC, ACTIVATION_TYPE)?,
-        ];
+        let mut layout = Layout::new();
+        layout.add(Channel::State, STATE_TOPIC, STATE_TYPE)?;
+        layout.add(Channel::Activation, ACTIVATION_TOPIC, ACTIVATION_TYPE)?;
         if has_joint {
-            channels.push(channel(JOINT_STATES_TOPIC, JOINT_STATE_TYPE)?);
-            channels.push(channel(LOAD_TOPIC, LOAD_TYPE)?);
+            layout.add(Channel::JointStates, JOINT_STATES_TOPIC, JOINT_STATE_TYPE)?;
+            layout.add(Channel::Load, LOAD_TOPIC, LOAD_TYPE)?;
         }
         let rec = Recorder::start(
             path,
-            channels,
+            layout.specs(),
             vec![(METADATA_NAME.into(), meta.to_map()?)],
             RecorderOptions::default(),
         )?;
         Ok(Self {
             rec,
+            layout,
             has_joint,
             rate_hz: meta.rate_hz,
             model: meta.model,
@@ -377,9 +419,13 @@ impl RunWriter {
         })
     }
 
-    fn put<T: serde::Serialize>(&self, ch: usize, ns: u64, msg: &T) -> Result<(), String> {
+    fn put<T: serde::Serialize>(&self, ch: Channel, ns: u64, msg: &T) -> Result<(), String> {
+        let id = self
+            .layout
+            .id(ch)
+            .ok_or_else(|| format!("internal error: no {ch:?} channel in this recording"))?;
         let data = recording::encode_cdr(msg)?;
-        if self.rec.record_blocking(ch, ns, ns, data) {
+        if self.rec.record_blocking(id, ns, ns, data) {
             Ok(())
         } else {
             Err(match self.rec.stats().state() {
@@ -398,7 +444,7 @@ impl RunWriter {
             |now: &[f64], before: Option<&Vec<f64>>| before.is_none_or(|b| bits(b) != bits(now));
         if changed(&inputs.excitation, prev.as_ref().map(|p| &p.excitation)) {
             self.put(
-                CH_ACTIVATION,
+                Channel::Activation,
                 ns,
                 &ActivationCommand {
                     header: stamp(ns),
@@ -414,7 +460,7 @@ impl RunWriter {
             )
         {
             self.put(
-                CH_LOAD,
+                Channel::Load,
                 ns,
                 &ExternalLoad {
                     header: stamp(ns),
@@ -437,9 +483,9 @@ impl RunWriter {
             &self.joints,
             state,
         );
-        self.put(CH_STATE, ns, &msg)?;
+        self.put(Channel::State, ns, &msg)?;
         if self.has_joint {
-            self.put(CH_JOINT, ns, &js)?;
+            self.put(Channel::JointStates, ns, &js)?;
         }
         Ok(())
     }
@@ -481,6 +527,7 @@ pub fn simulate_to_mcap(
         config: cfg.clone(),
         parameters_json: None,
         start_time_ns: now_ns(),
+        time_base: TimeBase::Simulated,
         muscles: runner.muscle_names().to_vec(),
         joints: runner.joint_names().to_vec(),
     };
@@ -577,14 +624,20 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
             ACTIVATION_TYPE => {
                 let a: ActivationCommand = recording::decode_cdr(&m.data).map_err(on)?;
                 if !applied_act || m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX) {
-                    let tick = ns_tick(header_ns(&a.header).map_err(on)?, meta.rate_hz);
+                    let tick = meta
+                        .time_base
+                        .tick_of(a.header.stamp.to_nanos(), meta.rate_hz)
+                        .map_err(on)?;
                     activations.push((tick, a.muscle, a.excitation));
                 }
             }
             _ => {
                 let l: ExternalLoad = recording::decode_cdr(&m.data).map_err(on)?;
                 if !applied_load || m.topic.ends_with(APPLIED_LOAD_SUFFIX) {
-                    let tick = ns_tick(header_ns(&l.header).map_err(on)?, meta.rate_hz);
+                    let tick = meta
+                        .time_base
+                        .tick_of(l.header.stamp.to_nanos(), meta.rate_hz)
+                        .map_err(on)?;
                     loads.push((tick, l.joint, l.torque));
                 }
             }
@@ -669,6 +722,7 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
     out_meta.stepping = stepping;
     out_meta.source = format!("replay of {} ({})", input.display(), excerpt(&meta.source));
     out_meta.start_time_ns = now_ns();
+    out_meta.time_base = TimeBase::Simulated;
     out_meta.parameters_json = None;
     let mut w = RunWriter::start(out, &out_meta)?;
     let mut by_tick: BTreeMap<u64, &ActuatorState> = BTreeMap::new();

@@ -63,6 +63,10 @@ def decode_rosbags(path):
     return out
 
 
+def ns(stamp):
+    return stamp.sec * 1_000_000_000 + stamp.nanosec
+
+
 def muscle_values(m):
     return [float(getattr(m, f)) for f in MUSCLE_FIELDS]
 
@@ -163,11 +167,22 @@ def test_node_file_holds_what_rclpy_received(recorded_node):
     assert loads == [[0.5]]
     applied = [m for (t, _, m) in msgs if t == "/t_rec/muscle_actuator/applied/activation"]
     assert [list(a.excitation) for a in applied] == received
+    # One clock: tick k is stamped tick_origin + k / rate, states and applied inputs alike.
+    meta_rec = meta["muscle_actuator"]
+    assert meta_rec["time_base"] == "wall"
+    origin = int(meta_rec["tick_origin_ns"])
+    rate = float(meta_rec["rate_hz"])
+    for s in by_tick.values():
+        assert ns(s.header.stamp) == origin + round(s.tick * 1e9 / rate)
+    checked = 0
     for a in applied:
-        tick = round((a.header.stamp.sec * 1e9 + a.header.stamp.nanosec) * 1000 / 1e9)
+        tick = round((ns(a.header.stamp) - origin) * rate / 1e9)
+        assert ns(a.header.stamp) == origin + round(tick * 1e9 / rate)
         after = by_tick.get(tick + 1)
         if after is not None:
             assert [m.excitation for m in after.muscles] == list(a.excitation)
+            checked += 1
+    assert checked >= 1
 
     # rosbags agrees on every message.
     rb = decode_rosbags(path)
@@ -175,6 +190,34 @@ def test_node_file_holds_what_rclpy_received(recorded_node):
     for (t, _, a), (_, _, b) in zip(msgs, rb):
         if t.endswith("/state"):
             same_state(a, b)
+
+
+def test_node_file_has_one_clock_with_diagnostics_and_rosout(recorded_node):
+    """Every log time and header stamp of a node recording is wall-clock time of the run; the
+    node's /diagnostics and /rosout lines are in it."""
+    path, _, _, _ = recorded_node
+    msgs, meta = decode_mcap(path)
+    start = int(meta["muscle_actuator"]["start_time_ns"])
+    end = max(lt for (_, lt, _) in msgs)
+    assert end - start < 60e9
+    topics = {t for (t, _, _) in msgs}
+    assert {"/diagnostics", "/rosout"} <= topics, topics
+    for t, lt, m in msgs:
+        assert start - 1e9 <= lt <= end, (t, lt, start)
+        stamp = getattr(m, "header", None)
+        stamp = stamp.stamp if stamp is not None else getattr(m, "stamp", None)
+        if stamp is not None:
+            assert start - 2e9 <= ns(stamp) <= end + 1e9, (t, ns(stamp), start, end)
+    diag = [m for (t, _, m) in msgs if t == "/diagnostics"]
+    assert len(diag) >= 1
+    assert any(st.name.endswith("muscle_actuator: recorder") for d in diag for st in d.status)
+    logs = [m for (t, _, m) in msgs if t == "/rosout"]
+    assert all(l.name == "t_rec.muscle_actuator" for l in logs)
+    assert any(" up: model " in l.msg for l in logs), [l.msg for l in logs]
+    assert any(l.msg.startswith("stopped after ") for l in logs), [l.msg for l in logs]
+    # rosbags reads them with the schemas embedded in the file only.
+    rb = [(t, m) for (t, _, m) in decode_rosbags(path) if t in ("/diagnostics", "/rosout")]
+    assert len(rb) == len(diag) + len(logs)
 
 
 def test_node_file_replays_bit_for_bit(recorded_node, workdir):

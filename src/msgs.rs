@@ -359,6 +359,20 @@ pub struct DiagnosticArray {
 }
 impl Message for DiagnosticArray {}
 
+/// `rcl_interfaces/msg/Log`: a `/rosout` line.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Log {
+    pub stamp: Time,
+    /// DEBUG = 10, INFO = 20, WARN = 30, ERROR = 40, FATAL = 50.
+    pub level: u8,
+    pub name: String,
+    pub msg: String,
+    pub file: String,
+    pub function: String,
+    pub line: u32,
+}
+impl Message for Log {}
+
 /// `std_srvs/srv/Trigger` request: an empty structure, which the ROS 2 IDL carries as one
 /// placeholder byte.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -381,19 +395,19 @@ impl Message for TriggerResponse {}
 pub const DEFINITIONS: &[(&str, &str)] = &[
     (
         "muscle_actuator_msgs/msg/ActivationCommand",
-        include_str!("../../msg/msg/ActivationCommand.msg"),
+        include_str!("../msg/msg/ActivationCommand.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/ExternalLoad",
-        include_str!("../../msg/msg/ExternalLoad.msg"),
+        include_str!("../msg/msg/ExternalLoad.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/MuscleState",
-        include_str!("../../msg/msg/MuscleState.msg"),
+        include_str!("../msg/msg/MuscleState.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/ActuatorState",
-        include_str!("../../msg/msg/ActuatorState.msg"),
+        include_str!("../msg/msg/ActuatorState.msg"),
     ),
     (
         "std_msgs/msg/Header",
@@ -419,6 +433,25 @@ pub const DEFINITIONS: &[(&str, &str)] = &[
     (
         "std_msgs/msg/MultiArrayDimension",
         "string label\nuint32 size\nuint32 stride\n",
+    ),
+    (
+        "diagnostic_msgs/msg/DiagnosticArray",
+        "std_msgs/Header header\nDiagnosticStatus[] status\n",
+    ),
+    (
+        "diagnostic_msgs/msg/DiagnosticStatus",
+        "byte OK=0\nbyte WARN=1\nbyte ERROR=2\nbyte STALE=3\n\nbyte level\nstring name\n\
+         string message\nstring hardware_id\nKeyValue[] values\n",
+    ),
+    (
+        "diagnostic_msgs/msg/KeyValue",
+        "string key\nstring value\n",
+    ),
+    (
+        "rcl_interfaces/msg/Log",
+        "uint8 DEBUG=10\nuint8 INFO=20\nuint8 WARN=30\nuint8 ERROR=40\nuint8 FATAL=50\n\n\
+         builtin_interfaces/Time stamp\nuint8 level\nstring name\nstring msg\nstring file\n\
+         string function\nuint32 line\n",
     ),
 ];
 
@@ -458,6 +491,14 @@ pub const TYPE_HASHES: &[(&str, &str)] = &[
     (
         "std_msgs/msg/Float64MultiArray",
         "RIHS01_1025ddc6b9552d191f89ef1a8d2f60f3d373e28b283d8891ddcc974e8c55397f",
+    ),
+    (
+        "diagnostic_msgs/msg/DiagnosticArray",
+        "RIHS01_5a8a36efb05fb25070fa0fb3810290c0e6cd4862b54a8fb975a1ee8dc55a333e",
+    ),
+    (
+        "rcl_interfaces/msg/Log",
+        "RIHS01_e28ce254ca8abc06abf92773b74602cdbf116ed34fbaf294fb9f81da9f318eac",
     ),
 ];
 

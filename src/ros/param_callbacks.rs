@@ -1,0 +1,186 @@
+//! The parameter callbacks (run on the node's executor): a change is validated against the
+//! current set, building the actuator it would give, before it is accepted; once accepted it
+//! is applied by sending the tick loop the rebuilt actuator.
+
+use super::logging::Logger;
+use super::params::{self, NodeParams};
+use super::tick::{self, Command};
+use crate::sim::Actuator;
+use ros2_client::NodeOptions;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex, OnceLock, RwLock};
+use std::time::Duration;
+
+/// Names that commands are checked against (they change with the `config` parameter).
+#[derive(Clone, Default)]
+struct Names {
+    muscles: Vec<String>,
+    joints: Vec<String>,
+}
+
+impl Names {
+    fn of(a: &Actuator) -> Self {
+        Self {
+            muscles: a.muscle_names().to_vec(),
+            joints: a.joint_names().to_vec(),
+        }
+    }
+}
+
+/// State shared between the parameter callbacks (on the spinner) and the rest.
+pub(crate) struct Shared {
+    params: Mutex<NodeParams>,
+    names: RwLock<Names>,
+    commands: tick::CommandSender,
+    /// Parameter changes act only once the node is up (the store also runs the action for the
+    /// initial values).
+    armed: AtomicBool,
+    logger: OnceLock<Logger>,
+}
+
+impl Shared {
+    pub(crate) fn new(
+        params: &NodeParams,
+        actuator: &Actuator,
+        commands: tick::CommandSender,
+    ) -> Self {
+        Self {
+            params: Mutex::new(params.clone()),
+            names: RwLock::new(Names::of(actuator)),
+            commands,
+            armed: AtomicBool::new(false),
+            logger: OnceLock::new(),
+        }
+    }
+    /// The declared parameters with their start-up values, the validator and the action, on
+    /// `options`.
+    pub(crate) fn attach(
+        self: &Arc<Self>,
+        mut options: NodeOptions,
+        initial: &NodeParams,
+    ) -> NodeOptions {
+        for (n, v) in initial.values() {
+            options = options.declare_parameter(n, v);
+        }
+        let sv = self.clone();
+        let sa = self.clone();
+        options
+            .parameter_validator(Box::new(move |n, v| validate_param(&sv, n, v)))
+            .parameter_set_action(Box::new(move |n, v| apply_param(&sa, n, v)))
+    }
+    /// From now on accepted changes act (and are logged to `logger`).
+    pub(crate) fn arm(&self, logger: &Logger) {
+        let _ = self.logger.set(logger.clone());
+        self.armed.store(true, Ordering::SeqCst);
+    }
+    fn log(&self) -> Option<&Logger> {
+        self.logger.get()
+    }
+    pub(crate) fn send(&self, c: Command) {
+        // Never waits for the tick loop; a full queue drops (and counts) the command.
+        let _ = self.commands.send(c);
+    }
+    /// The parameters in force.
+    pub(crate) fn params(&self) -> NodeParams {
+        self.params.lock().map(|p| p.clone()).unwrap_or_default()
+    }
+    /// The muscles commands name now.
+    pub(crate) fn muscles(&self) -> Vec<String> {
+        self.names
+            .read()
+            .map(|n| n.muscles.clone())
+            .unwrap_or_default()
+    }
+    /// The joints loads name now.
+    pub(crate) fn joints(&self) -> Vec<String> {
+        self.names
+            .read()
+            .map(|n| n.joints.clone())
+            .unwrap_or_default()
+    }
+}
+
+/// Longest a parameter change may take to build its actuator (configuration file read and
+/// calibration) before it is refused.
+const BUILD_TIMEOUT: Duration = Duration::from_secs(5);
+
+/// Builds the actuator `params` describe on a thread of its own: the parameter callbacks run on
+/// the node's executor, which must not wait on a slow file system for longer than
+/// [`BUILD_TIMEOUT`] (a configuration is read only from a regular file of at most 1 MiB, but that
+/// file may sit on a stalled network mount).
+fn build_off_executor(params: &NodeParams) -> Result<Actuator, String> {
+    let (tx, rx) = mpsc::sync_channel(1);
+    let p = params.clone();
+    std::thread::Builder::new()
+        .name("build".into())
+        .spawn(move || {
+            let _ = tx.send(p.build());
+        })
+        .map_err(|e| format!("cannot start a thread to build the actuator: {e}"))?;
+    rx.recv_timeout(BUILD_TIMEOUT).map_err(|_| {
+        format!(
+            "building the actuator took longer than {} s (is the configuration file on a \
+             stalled file system?)",
+            BUILD_TIMEOUT.as_secs()
+        )
+    })?
+}
+
+/// Checks one parameter change against the current set (and builds the actuator it would give
+/// when it affects the simulation), without applying it.
+fn validate_param(
+    shared: &Shared,
+    name: &str,
+    value: &ros2_client::ParameterValue,
+) -> Result<(), String> {
+    let mut candidate = shared
+        .params
+        .lock()
+        .map_err(|_| "internal error: parameter lock poisoned".to_string())?
+        .clone();
+    candidate.set(name, value, false)?;
+    if matches!(name, params::MODEL | params::RATE_HZ | params::CONFIG) {
+        build_off_executor(&candidate)?;
+    }
+    Ok(())
+}
+
+/// Applies an accepted parameter change.
+fn apply_param(
+    shared: &Shared,
+    name: &str,
+    value: &ros2_client::ParameterValue,
+) -> Result<(), String> {
+    if !shared.armed.load(Ordering::SeqCst) {
+        return Ok(());
+    }
+    let mut p = shared
+        .params
+        .lock()
+        .map_err(|_| "internal error: parameter lock poisoned".to_string())?;
+    let mut candidate = p.clone();
+    candidate.set(name, value, false)?;
+    match name {
+        params::MODEL | params::RATE_HZ | params::CONFIG => {
+            let act = build_off_executor(&candidate)?;
+            if let Ok(mut n) = shared.names.write() {
+                *n = Names::of(&act);
+            }
+            shared.send(Command::Replace(Box::new(act)));
+            shared.send(Command::PublishEvery(candidate.publish_every()));
+        }
+        params::PUBLISH_RATE_HZ => shared.send(Command::PublishEvery(candidate.publish_every())),
+        _ => {}
+    }
+    *p = candidate;
+    drop(p);
+    if let Some(l) = shared.log() {
+        let shown = match value {
+            ros2_client::ParameterValue::String(s) => format!("{:?}", crate::config::excerpt(s)),
+            other => crate::config::excerpt(&format!("{other:?}")),
+        };
+        l.info(&format!("parameter {name} set to {shown}"));
+    }
+    Ok(())
+}

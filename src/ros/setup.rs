@@ -1,0 +1,102 @@
+//! What the command line asks of the node, resolved before DDS starts: name, namespace, the
+//! parameters (defaults, then `--params-file`, then `-p`, as rcl applies them) and the other ROS
+//! arguments.
+
+use super::args::{self, RosArgs};
+use super::params::{self, NodeParams};
+use super::DEFAULT_NODE_NAME;
+
+/// Everything the node needs, resolved from the command line before DDS starts.
+#[derive(Debug)]
+pub(crate) struct Setup {
+    pub(crate) namespace: String,
+    pub(crate) name: String,
+    pub(crate) fqn: String,
+    pub(crate) params: NodeParams,
+    pub(crate) ros_args: RosArgs,
+    /// Notes on the undeclared parameters ignored, logged at debug level once the logger
+    /// exists.
+    pub(crate) ignored: Vec<String>,
+}
+
+/// The set-up `argv` asks for; `None` after printing the usage for `--help`.
+pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
+    let ros_args = RosArgs::parse(argv)?;
+    if ros_args.help {
+        println!("{}", args::USAGE);
+        return Ok(None);
+    }
+    let namespace = ros_args.namespace.clone().unwrap_or_else(|| "/".into());
+    let name = ros_args
+        .node_name
+        .clone()
+        .unwrap_or_else(|| DEFAULT_NODE_NAME.into());
+    let fqn = args::expand("~", &namespace, &name);
+    let mut p = NodeParams::default();
+    let mut ignored = Vec::new();
+    for a in ros_args.resolved_params(&fqn)? {
+        // As rclcpp and rclpy do (without `allow_undeclared_parameters`), a parameter this
+        // node does not declare is ignored: a shared file holds other nodes' parameters.
+        if a.name != "use_sim_time" && !params::ALL.contains(&a.name.as_str()) {
+            ignored.push(format!(
+                "ignoring undeclared parameter {:?} (from {})",
+                crate::config::excerpt(&a.name),
+                a.source
+            ));
+            continue;
+        }
+        if a.name == "use_sim_time" {
+            if !matches!(a.value, ros2_client::ParameterValue::Boolean(_)) {
+                return Err(format!("{}: use_sim_time must be a bool", a.source));
+            }
+            continue;
+        }
+        p.set(&a.name, &a.value, true)
+            .map_err(|e| format!("{}: {e}", a.source))?;
+    }
+    Ok(Some(Setup {
+        namespace,
+        name,
+        fqn,
+        params: p,
+        ros_args,
+        ignored,
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn setup_applies_arguments_in_order() {
+        let argv: Vec<String> =
+            "--ros-args -r __ns:=/lab -p model:=hill -p rate_hz:=250 -p model:=huxley"
+                .split_whitespace()
+                .map(String::from)
+                .collect();
+        let s = setup(&argv).unwrap().unwrap();
+        assert_eq!(s.fqn, "/lab/muscle_actuator");
+        assert_eq!(s.params.model.name(), "huxley");
+        assert_eq!(s.params.rate_hz, 250.0);
+        let bad: Vec<String> = "--ros-args -p rate_hz:=-1"
+            .split_whitespace()
+            .map(String::from)
+            .collect();
+        assert!(setup(&bad).unwrap_err().contains("rate_hz"));
+        // An undeclared parameter is ignored with a note; a declared one keeps its checks.
+        let unknown: Vec<String> = "--ros-args -p colour:=red -p model:=hill"
+            .split_whitespace()
+            .map(String::from)
+            .collect();
+        let s = setup(&unknown).unwrap().unwrap();
+        assert_eq!(s.params.model.name(), "hill");
+        assert_eq!(s.ignored.len(), 1);
+        assert!(s.ignored[0].contains("colour"), "{:?}", s.ignored);
+        let bad: Vec<String> = "--ros-args -p colour:=red -p record:=maybe"
+            .split_whitespace()
+            .map(String::from)
+            .collect();
+        assert!(setup(&bad).unwrap_err().contains("record"));
+    }
+}

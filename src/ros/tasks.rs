@@ -1,0 +1,282 @@
+//! The node's tasks on the DDS executor, one function each: the four input topics (validated,
+//! recorded as received, forwarded to the tick loop), the reset service, and the tick loop's
+//! events turned into log lines. None of them waits on the tick loop.
+
+use super::args::Severity;
+use super::diagnostics::InputStats;
+use super::input::{self, Rejection};
+use super::logging::{LateTicks, Reporter, LATE_WARN_PERIODS};
+use super::param_callbacks::Shared;
+use super::record::RecordTx;
+use super::tick::{Command, Event, TickStats};
+use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use crate::msgs::{Float64, Float64MultiArray, TriggerRequest, TriggerResponse};
+use crate::runs::{self, Channel};
+use futures::{FutureExt, StreamExt};
+use ros2_client::{Server, Subscription};
+use serde::de::DeserializeOwned;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::Receiver;
+use std::time::Duration;
+
+/// What the input tasks share: the commands' destination and names, the counters, the log and
+/// the recording.
+pub(crate) struct InputContext<'a> {
+    pub(crate) shared: &'a Shared,
+    pub(crate) stats: &'a InputStats,
+    pub(crate) log: &'a Reporter,
+    pub(crate) rec: Option<RecordTx>,
+}
+
+impl InputContext<'_> {
+    /// An input problem: kept as the last one for `/diagnostics`, and logged (rate-limited).
+    fn problem(&self, key: &str, msg: String) {
+        if let Ok(mut l) = self.stats.last_problem.lock() {
+            *l = msg.clone();
+        }
+        self.log.report(key, Severity::Warn, msg);
+    }
+
+    fn rejected(&self, counter: &AtomicU64, rej: &Rejection, msg: String) {
+        counter.fetch_add(1, Ordering::Relaxed);
+        self.stats.count_rejection(rej);
+        self.problem(rej.kind(), msg);
+    }
+
+    fn record<T: serde::Serialize>(&self, ch: Channel, publish_ns: i64, msg: &T) {
+        if let Some(r) = &self.rec {
+            r.put(ch, publish_ns, msg);
+        }
+    }
+
+    /// Excitations by name, from any of the three activation topics: validated the same way
+    /// and applied at the next tick boundary.
+    fn excite(&self, names: &[String], values: &[f64], known: &[String]) {
+        match input::validate_activation(names, values, known) {
+            Ok(acc) => {
+                if !acc.clamped.is_empty() {
+                    self.stats.clamped_commands.fetch_add(1, Ordering::Relaxed);
+                    self.stats
+                        .clamped_values
+                        .fetch_add(acc.clamped.len() as u64, Ordering::Relaxed);
+                    let what: Vec<String> = acc
+                        .clamped
+                        .iter()
+                        .map(|(n, u)| format!("{n}={u}"))
+                        .collect();
+                    self.problem(
+                        "clamped",
+                        format!(
+                            "activation: excitation outside [0, 1] clamped: {}",
+                            what.join(", ")
+                        ),
+                    );
+                }
+                self.shared.send(Command::Excitation(acc.values));
+            }
+            Err(rej) => self.rejected(
+                &self.stats.activation_rejected,
+                &rej,
+                format!("activation command rejected: {rej}"),
+            ),
+        }
+    }
+
+    /// Every message of `sub`, counted in `received`; an unreadable one is counted and logged.
+    async fn each<M: 'static + DeserializeOwned>(
+        &self,
+        sub: &Subscription<M>,
+        what: &str,
+        received: &AtomicU64,
+        mut handle: impl FnMut(M),
+    ) {
+        let mut stream = std::pin::pin!(sub.async_stream());
+        while let Some(r) = stream.next().await {
+            received.fetch_add(1, Ordering::Relaxed);
+            match r {
+                Ok((msg, _info)) => handle(msg),
+                Err(e) => self.unreadable(what, format!("{e:?}")),
+            }
+        }
+    }
+
+    fn unreadable(&self, what: &str, e: String) {
+        self.stats.malformed.fetch_add(1, Ordering::Relaxed);
+        self.log.report(
+            "malformed",
+            Severity::Warn,
+            format!("unreadable {what} message: {e}"),
+        );
+    }
+}
+
+/// `~/activation`: excitations by muscle name.
+pub(crate) async fn activation(sub: &Subscription<ActivationCommand>, cx: &InputContext<'_>) {
+    cx.each(sub, "activation", &cx.stats.activation_received, |msg| {
+        cx.record(Channel::Activation, msg.header.stamp.to_nanos(), &msg);
+        cx.excite(&msg.muscle, &msg.excitation, &cx.shared.muscles());
+    })
+    .await
+}
+
+/// `~/activation_array`: every muscle's excitation, in the configuration's order.
+pub(crate) async fn activation_array(sub: &Subscription<Float64MultiArray>, cx: &InputContext<'_>) {
+    cx.each(
+        sub,
+        "activation_array",
+        &cx.stats.activation_received,
+        |msg| {
+            cx.record(Channel::ActivationArray, runs::now_ns(), &msg);
+            let known = cx.shared.muscles();
+            if msg.data.len() != known.len() {
+                let rej = Rejection::LengthMismatch {
+                    names: known.len(),
+                    values: msg.data.len(),
+                };
+                let m = format!(
+                    "activation_array rejected: {} values for {} muscles (in order: {})",
+                    msg.data.len(),
+                    known.len(),
+                    crate::config::excerpt(&known.join(", "))
+                );
+                cx.rejected(&cx.stats.activation_rejected, &rej, m);
+                return;
+            }
+            // All of them, in order: the names are the configuration's own.
+            cx.excite(&known, &msg.data, &known);
+        },
+    )
+    .await
+}
+
+/// `~/<muscle>/cmd_activation`: one muscle's excitation, on one topic per muscle.
+pub(crate) async fn muscle_commands(
+    subs: &[(String, Subscription<Float64>)],
+    cx: &InputContext<'_>,
+) {
+    let streams = subs
+        .iter()
+        .enumerate()
+        .map(|(k, (name, sub))| sub.async_stream().map(move |r| (k, name, r)));
+    let mut all = futures::stream::select_all(streams.map(Box::pin));
+    while let Some((k, name, r)) = all.next().await {
+        cx.stats.activation_received.fetch_add(1, Ordering::Relaxed);
+        match r {
+            Ok((msg, _info)) => {
+                cx.record(Channel::MuscleCommand(k), runs::now_ns(), &msg);
+                cx.excite(std::slice::from_ref(name), &[msg.data], &cx.shared.muscles());
+            }
+            Err(e) => cx.unreadable("cmd_activation", format!("{e:?}")),
+        }
+    }
+    // No muscle topic at all (no muscle name is a valid topic name): nothing to do, but the
+    // node goes on (it stops when any of its tasks ends).
+    futures::future::pending::<()>().await;
+}
+
+/// `~/external_load`: torques by joint name.
+pub(crate) async fn load(sub: &Subscription<ExternalLoad>, cx: &InputContext<'_>) {
+    cx.each(sub, "external load", &cx.stats.load_received, |msg| {
+        cx.record(Channel::Load, msg.header.stamp.to_nanos(), &msg);
+        match input::validate_load(&msg.joint, &msg.torque, &cx.shared.joints()) {
+            Ok(acc) => cx.shared.send(Command::Load(acc.values)),
+            Err(rej) => cx.rejected(
+                &cx.stats.load_rejected,
+                &rej,
+                format!("external load rejected: {rej}"),
+            ),
+        }
+    })
+    .await
+}
+
+/// Longest the reset service waits for the tick loop's answer.
+const RESET_ANSWER_TIMEOUT: Duration = Duration::from_secs(2);
+
+/// `~/reset` (`std_srvs/Trigger`): back to the initial state, answered with the ticks run.
+pub(crate) async fn reset(
+    server: &Server<TriggerRequest, TriggerResponse>,
+    shared: &Shared,
+    log: &Reporter,
+) {
+    let mut stream = server.receive_request_stream();
+    while let Some(r) = stream.next().await {
+        let Ok((id, _req)) = r else {
+            continue;
+        };
+        let (tx, rx) = futures::channel::oneshot::channel();
+        shared.send(Command::Reset(Some(tx)));
+        let timeout = smol::Timer::after(RESET_ANSWER_TIMEOUT);
+        let resp = futures::select! {
+            r = rx.fuse() => match r {
+                Ok(before) => TriggerResponse {
+                    success: true,
+                    message: format!("reset to the initial state after {before} ticks"),
+                },
+                Err(_) => TriggerResponse {
+                    success: false,
+                    message: "the tick loop is not running".into(),
+                },
+            },
+            _ = FutureExt::fuse(timeout) => TriggerResponse {
+                success: false,
+                message: format!(
+                    "the tick loop did not answer within {} s",
+                    RESET_ANSWER_TIMEOUT.as_secs()
+                ),
+            },
+        };
+        if let Err(e) = server.async_send_response(id, resp).await {
+            log.logger
+                .warn(&format!("reset: cannot send the response: {e:?}"));
+        }
+    }
+}
+
+/// How often the tick loop's events are read.
+const EVENT_POLL: Duration = Duration::from_millis(50);
+
+/// The tick loop's events as log lines (the loop itself never logs); late ticks summarised.
+pub(crate) async fn events(rx: &Receiver<Event>, stats: &TickStats, log: &Reporter) {
+    let mut late = LateTicks::new();
+    loop {
+        smol::Timer::after(EVENT_POLL).await;
+        if let Some(summary) = late.summary_due() {
+            log.logger.info(&summary);
+        }
+        while let Ok(e) = rx.try_recv() {
+            match e {
+                Event::StepFailed { tick, reason } => log.report(
+                    "step_failed",
+                    Severity::Error,
+                    format!(
+                        "tick {tick} failed ({reason}): actuator reset to its initial state, \
+                         inputs cleared until the next command"
+                    ),
+                ),
+                Event::Overrun { tick, lateness_us } => {
+                    let period_us = 1e6 / stats.rate_hz();
+                    if late.add(lateness_us, period_us) {
+                        log.report(
+                            "overrun",
+                            Severity::Warn,
+                            format!(
+                                "tick {tick} started {lateness_us:.0} us late (more than \
+                                 {LATE_WARN_PERIODS} periods)"
+                            ),
+                        );
+                    }
+                }
+                Event::Resync { skipped } => log.logger.warn(&format!(
+                    "the tick loop stalled: {skipped} ticks skipped, schedule restarted"
+                )),
+                Event::Replaced { model, rate_hz } => log.logger.info(&format!(
+                    "actuator rebuilt: model {model}, {rate_hz} Hz (from the initial state)"
+                )),
+                Event::Reset { at_tick } => log
+                    .logger
+                    .info(&format!("reset to the initial state after {at_tick} ticks")),
+            }
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! The channels of a recording, in one place: what each one carries (topic, type) and the id the
+//! recorder gave it. Offline runs record a few of them, the node all; a writer asks a
+//! [`Layout`] for the id of a [`Channel`] instead of counting positions.
+
+use super::channel;
+use crate::recording::ChannelSpec;
+
+/// Topics of an offline run (`simulate --out`, `replay --out`): the node's names under its
+/// default name.
+pub const STATE_TOPIC: &str = "/muscle_actuator/state";
+pub const JOINT_STATES_TOPIC: &str = "/joint_states";
+pub const ACTIVATION_TOPIC: &str = "/muscle_actuator/activation";
+pub const LOAD_TOPIC: &str = "/muscle_actuator/external_load";
+/// Suffixes (after the node's name) of the node's applied-input topics.
+pub const APPLIED_ACTIVATION_SUFFIX: &str = "/applied/activation";
+pub const APPLIED_LOAD_SUFFIX: &str = "/applied/external_load";
+pub const DIAGNOSTICS_TOPIC: &str = "/diagnostics";
+pub const ROSOUT_TOPIC: &str = "/rosout";
+
+pub const STATE_TYPE: &str = "muscle_actuator_msgs/msg/ActuatorState";
+pub const JOINT_STATE_TYPE: &str = "sensor_msgs/msg/JointState";
+pub const ACTIVATION_TYPE: &str = "muscle_actuator_msgs/msg/ActivationCommand";
+pub const LOAD_TYPE: &str = "muscle_actuator_msgs/msg/ExternalLoad";
+pub const FLOAT64_TYPE: &str = "std_msgs/msg/Float64";
+pub const FLOAT64_ARRAY_TYPE: &str = "std_msgs/msg/Float64MultiArray";
+pub const DIAGNOSTICS_TYPE: &str = "diagnostic_msgs/msg/DiagnosticArray";
+pub const LOG_TYPE: &str = "rcl_interfaces/msg/Log";
+
+/// What a channel carries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Channel {
+    /// `~/state` (`ActuatorState`).
+    State,
+    /// `joint_states` (`sensor_msgs/JointState`).
+    JointStates,
+    /// `~/activation` as received (offline: the inputs as applied).
+    Activation,
+    /// `~/external_load` as received (offline: the inputs as applied).
+    Load,
+    /// The node's `~/applied/activation`: excitations as the tick loop applied them.
+    AppliedActivation,
+    /// The node's `~/applied/external_load`.
+    AppliedLoad,
+    /// The node's `/diagnostics` arrays.
+    Diagnostics,
+    /// The node's own `/rosout` lines.
+    Rosout,
+    /// `~/activation_array` as received.
+    ActivationArray,
+    /// `~/<muscle>/cmd_activation` as received: the k-th muscle topic the node opened.
+    MuscleCommand(usize),
+}
+
+/// The channels of one recording with their ids (the recorder numbers them in order).
+#[derive(Debug, Default)]
+pub struct Layout {
+    specs: Vec<ChannelSpec>,
+    kinds: Vec<Channel>,
+}
+
+impl Layout {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds `kind` on `topic` with type `type_name` (reliable, volatile, depth 10).
+    pub fn add(&mut self, kind: Channel, topic: &str, type_name: &str) -> Result<(), String> {
+        self.specs.push(channel(topic, type_name)?);
+        self.kinds.push(kind);
+        Ok(())
+    }
+
+    /// The id of `kind`, if this recording has it.
+    pub fn id(&self, kind: Channel) -> Option<usize> {
+        self.kinds.iter().position(|k| *k == kind)
+    }
+
+    /// The specifications, in id order (for [`crate::recording::Recorder::start`]).
+    pub fn specs(&self) -> Vec<ChannelSpec> {
+        self.specs.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_follow_the_order_of_addition() {
+        let mut l = Layout::new();
+        l.add(Channel::State, STATE_TOPIC, STATE_TYPE).unwrap();
+        l.add(Channel::Activation, ACTIVATION_TOPIC, ACTIVATION_TYPE)
+            .unwrap();
+        l.add(
+            Channel::MuscleCommand(1),
+            "/m/b/cmd_activation",
+            FLOAT64_TYPE,
+        )
+        .unwrap();
+        assert_eq!(l.id(Channel::State), Some(0));
+        assert_eq!(l.id(Channel::Activation), Some(1));
+        assert_eq!(l.id(Channel::MuscleCommand(1)), Some(2));
+        assert_eq!(l.id(Channel::MuscleCommand(0)), None);
+        assert_eq!(l.id(Channel::JointStates), None);
+        assert_eq!(l.specs().len(), 3);
+        assert_eq!(l.specs()[2].topic, "/m/b/cmd_activation");
+    }
+}
