@@ -63,6 +63,9 @@ fn file_is_rosbag2_mcap() {
     assert_eq!(ours["model"], "hill");
     assert_eq!(ours["rate_hz"], "1000.0");
     assert!(ours.contains_key("config_toml") && ours.contains_key("program_version"));
+    // Offline: log times and stamps are simulated time from zero, and the metadata says so.
+    assert_eq!(ours["time_base"], "simulated");
+    assert!(!ours.contains_key("tick_origin_ns"));
     // Values: the 1 s excitation step takes effect at tick 1000 (stamp 1.0 s).
     let acts: Vec<ActivationCommand> = rec
         .on("/muscle_actuator/activation")
@@ -144,6 +147,7 @@ fn replay_is_bit_identical() {
     );
     let a = load_run(&src).unwrap();
     let b = load_run(&out).unwrap();
+    assert_eq!(b.meta.time_base, runs::TimeBase::Simulated);
     assert_eq!(a.states, b.states);
     assert_eq!(a.activations, b.activations);
 

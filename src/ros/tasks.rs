@@ -164,7 +164,11 @@ pub(crate) async fn muscle_commands(
         match r {
             Ok((msg, _info)) => {
                 cx.record(Channel::MuscleCommand(k), runs::now_ns(), &msg);
-                cx.excite(std::slice::from_ref(name), &[msg.data], &cx.shared.muscles());
+                cx.excite(
+                    std::slice::from_ref(name),
+                    &[msg.data],
+                    &cx.shared.muscles(),
+                );
             }
             Err(e) => cx.unreadable("cmd_activation", format!("{e:?}")),
         }

@@ -858,7 +858,11 @@ mod tests {
         let s = std::iter::from_fn(|| sample_rx.recv_timeout(Duration::from_secs(30)).ok())
             .find(|s| s.tick == 1)
             .unwrap();
-        assert!((s.stamp_ns - now).abs() < 5_000_000_000, "{} vs {now}", s.stamp_ns);
+        assert!(
+            (s.stamp_ns - now).abs() < 5_000_000_000,
+            "{} vs {now}",
+            s.stamp_ns
+        );
         stop.store(true, Ordering::Relaxed);
         drop(sample_rx);
         handle.join().unwrap();

@@ -790,3 +790,59 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
     w.finish()?;
     Ok(summary)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Stamps and ticks map both ways on either clock; a stamp before the origin names no tick;
+    /// the time base survives the metadata record, and a record without one (older files) is
+    /// simulated time.
+    #[test]
+    fn time_base_maps_stamps_to_ticks_and_round_trips() {
+        let wall = TimeBase::Wall {
+            tick_origin_ns: 1_763_800_000_000_000_123,
+        };
+        for rate in [1000.0, 333.0, 2500.0] {
+            for tick in [0, 1, 7, 123_456, 86_400_000] {
+                for tb in [TimeBase::Simulated, wall] {
+                    assert_eq!(tb.tick_of(tb.stamp_ns(tick, rate), rate), Ok(tick));
+                }
+            }
+        }
+        assert_eq!(wall.stamp_ns(2, 1000.0), 1_763_800_000_002_000_123);
+        assert!(wall
+            .tick_of(1_763_800_000_000_000_000, 1000.0)
+            .unwrap_err()
+            .contains("before the run's tick origin"));
+        assert!(TimeBase::Simulated.tick_of(-1, 1000.0).is_err());
+
+        let cfg = ActuatorConfig::default();
+        let mut meta = RunMeta {
+            source: "test".into(),
+            model: "hill".parse().unwrap(),
+            rate_hz: 1000.0,
+            stepping: default_stepping("hill".parse().unwrap()),
+            attachment: AttachmentMeta::Joint,
+            config: cfg.clone(),
+            parameters_json: None,
+            start_time_ns: 5,
+            time_base: wall,
+            muscles: cfg.topology().muscle_names(),
+            joints: cfg.topology().joint_names(),
+        };
+        let mut map = meta.to_map().unwrap();
+        assert_eq!(map["time_base"], "wall");
+        assert_eq!(RunMeta::from_map(&map).unwrap(), meta);
+        map.remove("time_base");
+        map.remove("tick_origin_ns");
+        meta.time_base = TimeBase::Simulated;
+        assert_eq!(RunMeta::from_map(&map).unwrap(), meta);
+        map.insert("time_base".into(), "sundial".into());
+        assert!(RunMeta::from_map(&map).unwrap_err().contains("time_base"));
+        map.insert("time_base".into(), "wall".into());
+        assert!(RunMeta::from_map(&map)
+            .unwrap_err()
+            .contains("tick_origin_ns"));
+    }
+}
