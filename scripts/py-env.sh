@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Creates (or brings up to date) the Python environment for the ROS 2 tests, in .venv at the
 # repository root: rclpy and the message packages of ROS 2 kilted from PyPI, the tools to build
-# msg/ (muscle_actuator_msgs) for rclpy with plain cmake, pytest, and the MCAP readers.
+# msg/ (muscle_actuator_msgs) for rclpy with plain cmake, pytest, the MCAP readers, and colcon
+# with colcon-ros-cargo (tests/python/test_colcon.py builds a colcon workspace).
 #
 # Idempotent: each step leaves a stamp in .venv and is skipped when its inputs did not change.
 # Usage: scripts/py-env.sh            (prints the venv path on its last line)
@@ -15,8 +16,14 @@ say() { echo "[py-env] $*" >&2; }
 
 # Keep the list sorted; any change re-runs pip.
 PACKAGES=(
+  cargo-ament-build  # the cargo subcommand colcon-ros-cargo runs (a dependency of it)
   catkin-pkg
   cmake
+  colcon-bash
+  colcon-core
+  colcon-package-information
+  colcon-package-selection
+  colcon-ros-cargo
   mcap
   mcap-ros2-support
   pymcap-cli  # GPL: a test tool only (`doctor`), never a dependency of the product
@@ -25,6 +32,7 @@ PACKAGES=(
   ros-kilted-ament-cmake
   ros-kilted-ament-cmake-include-directories
   ros-kilted-ament-cmake-ros-core
+  ros-kilted-ament-index-python
   ros-kilted-ament-package
   ros-kilted-builtin-interfaces
   ros-kilted-diagnostic-msgs
