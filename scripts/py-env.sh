@@ -87,7 +87,7 @@ if [ ! -f "$VENV/.stamp-cmake-paths" ]; then
 fi
 
 # 4. muscle_actuator_msgs, built with plain cmake and installed into the venv
-msg_hash="$(cat "$ROOT"/msg/package.xml "$ROOT"/msg/CMakeLists.txt "$ROOT"/msg/msg/*.msg | hash_of)"
+msg_hash="$(cat "$ROOT"/msg/package.xml "$ROOT"/msg/CMakeLists.txt "$ROOT"/msg/msg/*.msg "$ROOT"/msg/srv/*.srv | hash_of)"
 if [ "$(cat "$VENV/.stamp-msgs" 2>/dev/null || true)" != "$msg_hash" ] \
   || ! "$VPY" -c 'import muscle_actuator_msgs.msg' 2>/dev/null; then
   say "building muscle_actuator_msgs"

@@ -302,6 +302,40 @@ pub struct Float64 {
 }
 impl Message for Float64 {}
 
+/// `std_msgs/msg/Int64`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Int64 {
+    pub data: i64,
+}
+impl Message for Int64 {}
+
+/// `rosgraph_msgs/msg/Clock`: the time of a graph that runs on simulated time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Clock {
+    pub clock: Time,
+}
+impl Message for Clock {}
+
+/// `muscle_actuator_msgs/srv/Step` request (`msg/srv/Step.srv`).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct StepRequest {
+    /// Ticks to advance, >= 1.
+    pub ticks: i64,
+}
+impl Message for StepRequest {}
+
+/// `muscle_actuator_msgs/srv/Step` response.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StepResponse {
+    pub success: bool,
+    pub message: String,
+    /// The tick reached.
+    pub tick: u64,
+    /// The state after the last tick.
+    pub state: muscle_actuator_msgs::ActuatorState,
+}
+impl Message for StepResponse {}
+
 /// `std_msgs/msg/MultiArrayDimension`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct MultiArrayDimension {

@@ -8,9 +8,10 @@ use super::setup::Setup;
 use super::DEFAULT_NODE_NAME;
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::msgs::{
-    DiagnosticArray, Float64, Float64MultiArray, JointState, TriggerRequest, TriggerResponse,
+    Clock, DiagnosticArray, Float64, Float64MultiArray, Int64, JointState, StepRequest,
+    StepResponse, TriggerRequest, TriggerResponse,
 };
-use ros2_client::qos::{Durability, History, WhenFull};
+use ros2_client::qos::{Durability, History, Reliability, WhenFull};
 use ros2_client::service::Server;
 use ros2_client::{
     Context, MessageTypeName, Name, Node, Publisher, QosProfile, ServiceMapping, ServiceTypeName,
@@ -91,6 +92,14 @@ pub(crate) fn qos_reliable(depth: usize) -> QosProfile {
         .history(History::KeepLast { depth })
 }
 
+/// `/clock` as rclpy's time source subscribes to it: best effort, keep last 1.
+fn qos_clock() -> QosProfile {
+    QosProfile::publisher_default()
+        .reliability(Reliability::BestEffort)
+        .durability(Durability::Volatile)
+        .history(History::KeepLast { depth: 1 })
+}
+
 fn dds_name(resolved: &str) -> Result<Name, String> {
     Name::parse(resolved).map_err(|e| format!("invalid name {resolved:?}: {e:?}"))
 }
@@ -106,6 +115,7 @@ pub(crate) struct EndpointNames {
     pub(crate) state: String,
     pub(crate) joint_states: String,
     pub(crate) reset: String,
+    pub(crate) step: String,
 }
 
 /// The node's topics and service.
@@ -119,6 +129,11 @@ pub(crate) struct Endpoints {
     pub(crate) joint_states: Publisher<JointState>,
     pub(crate) diagnostics: Publisher<DiagnosticArray>,
     pub(crate) reset: Server<TriggerRequest, TriggerResponse>,
+    /// `~/step`, the service and the fire-and-forget topic (answered in every clock mode).
+    pub(crate) step: Server<StepRequest, StepResponse>,
+    pub(crate) step_topic: Subscription<Int64>,
+    /// `/clock`, with a simulated clock.
+    pub(crate) clock: Option<Publisher<Clock>>,
     pub(crate) names: EndpointNames,
 }
 
@@ -172,12 +187,44 @@ impl Maker<'_> {
         name: &str,
         ty: (&str, &str),
     ) -> Result<(Publisher<M>, String), String> {
+        self.publish_with(name, ty, self.qos.clone())
+    }
+
+    fn publish_with<M: Serialize>(
+        &mut self,
+        name: &str,
+        ty: (&str, &str),
+        qos: QosProfile,
+    ) -> Result<(Publisher<M>, String), String> {
         let (t, resolved) = self.topic(name, ty)?;
         let p = self
             .node
-            .create_publisher::<M>(&t, Some(self.qos.clone()))
+            .create_publisher::<M>(&t, Some(qos))
             .map_err(|e| format!("cannot publish {resolved}: {e:?}"))?;
         Ok((p, resolved))
+    }
+
+    fn serve<Req, Resp>(
+        &mut self,
+        name: &str,
+        ty: (&str, &str),
+    ) -> Result<(Server<Req, Resp>, String), String>
+    where
+        Req: 'static + ros2_client::Message + Clone,
+        Resp: 'static + ros2_client::Message,
+    {
+        let resolved = self.resolve(name);
+        let server = self
+            .node
+            .create_server::<Req, Resp>(
+                ServiceMapping::Enhanced,
+                &dds_name(&resolved)?,
+                &ServiceTypeName::new(ty.0, ty.1),
+                self.qos.clone(),
+                self.qos.clone(),
+            )
+            .map_err(|e| format!("cannot create service {resolved}: {e:?}"))?;
+        Ok((server, resolved))
     }
 }
 
@@ -188,6 +235,7 @@ impl Endpoints {
         node: &mut Node,
         setup: &Setup,
         muscles: &[String],
+        simulated_clock: bool,
         logger: &Logger,
     ) -> Result<Self, String> {
         let mut m = Maker {
@@ -220,17 +268,17 @@ impl Endpoints {
         let (joint_states, joint_states_name) =
             m.publish("joint_states", ("sensor_msgs", "JointState"))?;
         let (diagnostics, _) = m.publish("/diagnostics", ("diagnostic_msgs", "DiagnosticArray"))?;
-        let reset_name = m.resolve("~/reset");
-        let reset = m
-            .node
-            .create_server::<TriggerRequest, TriggerResponse>(
-                ServiceMapping::Enhanced,
-                &dds_name(&reset_name)?,
-                &ServiceTypeName::new("std_srvs", "Trigger"),
-                m.qos.clone(),
-                m.qos.clone(),
+        let (reset, reset_name) = m.serve("~/reset", ("std_srvs", "Trigger"))?;
+        let (step, step_name) = m.serve("~/step", (OURS, "Step"))?;
+        let (step_topic, _) = m.subscribe("~/step", ("std_msgs", "Int64"))?;
+        let clock = if simulated_clock {
+            Some(
+                m.publish_with("/clock", ("rosgraph_msgs", "Clock"), qos_clock())?
+                    .0,
             )
-            .map_err(|e| format!("cannot create service {reset_name}: {e:?}"))?;
+        } else {
+            None
+        };
         Ok(Self {
             activation,
             activation_array,
@@ -240,6 +288,9 @@ impl Endpoints {
             joint_states,
             diagnostics,
             reset,
+            step,
+            step_topic,
+            clock,
             names: EndpointNames {
                 activation: activation_name,
                 activation_array: activation_array_name,
@@ -248,6 +299,7 @@ impl Endpoints {
                 state: state_name,
                 joint_states: joint_states_name,
                 reset: reset_name,
+                step: step_name,
             },
         })
     }

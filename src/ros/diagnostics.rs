@@ -2,6 +2,7 @@
 //! second, published and recorded.
 
 use super::args::Severity;
+use super::clock::{ClockMode, NodeClock};
 use super::input::Rejection;
 use super::logging::Reporter;
 use super::param_callbacks::Shared;
@@ -78,6 +79,7 @@ pub(crate) fn diagnostics(
     publish_errors: u64,
     prev: &mut DiagPrev,
     recorder_status: DiagnosticStatus,
+    clock: ClockMode,
 ) -> DiagnosticArray {
     let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
     let (p50, p99, max) = stats.window();
@@ -88,7 +90,9 @@ pub(crate) fn diagnostics(
     let new_rejected = rejected - prev.rejected.min(rejected);
     let new_failures = step_failures - prev.step_failures.min(step_failures);
     let ticks = ld(&stats.ticks);
-    let stalled = ticks == prev.ticks;
+    // A lockstep loop ticks only when asked: no tick is no stall.
+    let idle = ticks == prev.ticks;
+    let stalled = idle && clock != ClockMode::Lockstep;
     *prev = DiagPrev {
         overruns,
         rejected,
@@ -96,7 +100,15 @@ pub(crate) fn diagnostics(
         ticks,
     };
     let rate = stats.rate_hz();
-    let (level, message) = if stalled {
+    let (level, message) = if idle && !stalled {
+        (
+            DiagnosticStatus::OK,
+            format!(
+                "lockstep: waiting for ~/step (at tick {})",
+                ld(&stats.current_tick)
+            ),
+        )
+    } else if stalled {
         (
             DiagnosticStatus::ERROR,
             format!(
@@ -125,6 +137,7 @@ pub(crate) fn diagnostics(
         values: vec![
             kv("model", params.model.name()),
             kv("rate_hz", rate),
+            kv("clock", clock.name()),
             kv(
                 "realtime_priority",
                 stats.realtime.load(Ordering::Relaxed).to_string(),
@@ -218,6 +231,8 @@ pub(crate) struct DiagSources<'a> {
     pub(crate) startup_params: &'a NodeParams,
     pub(crate) recorder: Option<&'a Recorder>,
     pub(crate) recorder_error: &'a str,
+    /// Stamps, and what a tick-less second means.
+    pub(crate) clock: &'a NodeClock,
 }
 
 /// How often `/diagnostics` is published.
@@ -251,7 +266,7 @@ pub(crate) async fn publish_task(
             }
             None => record::Status::Disabled,
         };
-        let msg = diagnostics(
+        let mut msg = diagnostics(
             src.fqn,
             src.ticks,
             src.inputs,
@@ -259,7 +274,9 @@ pub(crate) async fn publish_task(
             src.publish_errors.load(Ordering::Relaxed),
             &mut prev,
             record::diagnostic(src.fqn, src.startup_params, &rec_status),
+            src.clock.mode(),
         );
+        msg.header.stamp = Time::from_nanos(src.clock.now_ns());
         if let Some(st) = msg.status.first() {
             if st.level == DiagnosticStatus::ERROR && st.message.starts_with("tick loop stalled") {
                 log.report("stalled", Severity::Error, st.message.clone());

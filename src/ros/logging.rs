@@ -3,6 +3,7 @@
 //! per kind); late ticks summarised every 10 s.
 
 use super::args::Severity;
+use super::clock::NodeClock;
 use super::record::RecordTx;
 use crate::msgs::Log;
 use crate::runs::Channel;
@@ -22,6 +23,8 @@ pub struct Logger {
     pub(crate) name: String,
     /// The recording, once it has started: the `/rosout` lines go into it too.
     pub(crate) recording: Arc<OnceLock<RecordTx>>,
+    /// Stamps of the `/rosout` lines.
+    pub(crate) clock: Arc<NodeClock>,
 }
 
 /// Longest log line, characters: what a user sends is quoted as an excerpt already; this is
@@ -56,7 +59,7 @@ impl Logger {
                 Severity::Error => LogLevel::Error,
                 Severity::Fatal => LogLevel::Fatal,
             };
-            let stamp = Time::now();
+            let stamp = Time::from_nanos(self.clock.now_ns());
             h.rosout_raw(stamp, level, &self.name, msg, file!(), "", line!());
             if let Some(r) = self.recording.get() {
                 let line = Log {

@@ -2,7 +2,7 @@
 //!
 //! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS:
 //! - [`args`]: the standard ROS 2 command-line arguments, name expansion and remapping;
-//! - [`params`]: the six parameters and their rules;
+//! - [`params`]: the parameters and their rules; [`clock`]: wall, sim or lockstep time;
 //! - [`input`]: validation of incoming commands;
 //! - [`record`]: the node's MCAP recording (off the tick thread);
 //! - [`tick`]: the fixed-rate loop on its own thread (channels in and out, never waits on DDS);
@@ -10,6 +10,7 @@
 //!   logging, signals.
 
 pub mod args;
+pub mod clock;
 pub mod dds;
 pub mod diagnostics;
 pub mod input;

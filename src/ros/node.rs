@@ -2,6 +2,7 @@
 //! executor, and the stop. Each piece lives in its own module; this one only wires them.
 
 use super::args::Severity;
+use super::clock::NodeClock;
 use super::dds::{Dds, EndpointNames, Endpoints};
 use super::diagnostics::{self, DiagSources, InputStats};
 use super::logging::{Logger, Reporter};
@@ -11,9 +12,8 @@ use super::setup::{setup, Setup};
 use super::signals::StopSignals;
 use super::tasks::{self, InputContext};
 use super::threads::{self, ThreadInputs, Threads};
-use super::tick;
+use super::tick::{self, Pacing};
 use crate::recording::RecorderState;
-use crate::runs;
 use futures::FutureExt;
 use ros2_client::{NodeName, NodeOptions};
 use std::sync::atomic::Ordering;
@@ -38,19 +38,32 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         .context
         .new_node(node_name, shared.attach(options, &setup.params))
         .map_err(|e| format!("cannot create node {}: {e:?}", setup.fqn))?;
-    let logger = logger(&setup, &node);
+    let clock = Arc::new(NodeClock::new(setup.params.clock));
+    let logger = logger(&setup, &node, &clock);
     for note in &setup.ignored {
         logger.debug(note);
     }
-    let endpoints = Endpoints::create(&mut node, &setup, actuator.muscle_names(), &logger)?;
+    let endpoints = Endpoints::create(
+        &mut node,
+        &setup,
+        actuator.muscle_names(),
+        clock.mode().is_simulated(),
+        &logger,
+    )?;
     let spinner = node
         .spinner()
         .map_err(|e| format!("cannot start the node's spinner: {e:?}"))?;
 
     // Tick 0's stamp, the recording's tick origin: the loop starts right after.
-    let tick_origin_ns = runs::now_ns();
-    let (recorder, recorder_error) =
-        start_recording(&setup, &endpoints.names, &actuator, tick_origin_ns, &logger);
+    let tick_origin_ns = clock.start_origin_ns();
+    let (recorder, recorder_error) = start_recording(
+        &setup,
+        &endpoints.names,
+        &actuator,
+        &clock,
+        tick_origin_ns,
+        &logger,
+    );
     let rec = recorder.as_ref().map(NodeRecorder::tx);
     signals.guard_recording(rec.as_ref().map(|r| r.sender.clone()));
     if let Some(r) = &rec {
@@ -63,22 +76,30 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         commands: cmd_rx,
         state: endpoints.state,
         joint_states: endpoints.joint_states,
+        clock: endpoints.clock,
         rec: rec.clone(),
         tick_origin_ns,
+        pacing: Pacing {
+            clock: clock.clone(),
+            real_time_factor: setup.params.real_time_factor,
+            clock_every: setup.params.clock_every(),
+        },
     })?;
     shared.arm(&logger);
     let n = &endpoints.names;
     logger.info(&format!(
-        "{} up: model {model}, {rate} Hz, domain {}, discovery {}; topics {}, {} -> {}, {}, \
-         /diagnostics; service {}",
+        "{} up: model {model}, {rate} Hz, clock {}, domain {}, discovery {}; topics {}, {} -> {}, \
+         {}, /diagnostics; services {}, {}",
         setup.fqn,
+        clock.mode().name(),
         dds.domain,
         if dds.local { "localhost" } else { "subnet" },
         n.activation,
         n.load,
         n.state,
         n.joint_states,
-        n.reset
+        n.reset,
+        n.step
     ));
 
     // The executor: spinner, inputs, service, diagnostics and events, until a stop signal.
@@ -99,20 +120,26 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         startup_params: &setup.params,
         recorder: recorder.as_ref().map(|r| &r.recorder),
         recorder_error: &recorder_error,
+        clock: &clock,
     };
+    // Biased: each wake polls the inputs before the step service, so that inputs received
+    // before a step request take effect at its first tick.
+    let mode = clock.mode();
     smol::block_on(async {
-        futures::select! {
+        futures::select_biased! {
             _ = signals.requested.recv().fuse() => {},
+            _ = tasks::activation(&endpoints.activation, &cx).fuse() => {},
+            _ = tasks::activation_array(&endpoints.activation_array, &cx).fuse() => {},
+            _ = tasks::muscle_commands(&endpoints.muscle_commands, &cx).fuse() => {},
+            _ = tasks::load(&endpoints.load, &cx).fuse() => {},
+            _ = tasks::step_topic(&endpoints.step_topic, &cx, mode).fuse() => {},
+            _ = tasks::step(&endpoints.step, &shared, mode, &log).fuse() => {},
+            _ = tasks::reset(&endpoints.reset, &shared, &log).fuse() => {},
             res = spinner.spin().fuse() => {
                 if let Err(e) = res {
                     logger.error(&format!("the node's spinner failed: {e:?}"));
                 }
             },
-            _ = tasks::activation(&endpoints.activation, &cx).fuse() => {},
-            _ = tasks::activation_array(&endpoints.activation_array, &cx).fuse() => {},
-            _ = tasks::muscle_commands(&endpoints.muscle_commands, &cx).fuse() => {},
-            _ = tasks::load(&endpoints.load, &cx).fuse() => {},
-            _ = tasks::reset(&endpoints.reset, &shared, &log).fuse() => {},
             _ = diagnostics::publish_task(diag, &endpoints.diagnostics, &log, rec.clone()).fuse() => {},
             _ = tasks::events(&events, &threads.stats, &log).fuse() => {},
         }
@@ -131,7 +158,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
 }
 
 /// The node's logger: stderr and `/rosout` as the ROS arguments say.
-fn logger(setup: &Setup, node: &ros2_client::Node) -> Logger {
+fn logger(setup: &Setup, node: &ros2_client::Node, clock: &Arc<NodeClock>) -> Logger {
     let a = &setup.ros_args;
     Logger {
         rosout: (!a.disable_rosout).then(|| Arc::new(node.logging_handle())),
@@ -139,6 +166,7 @@ fn logger(setup: &Setup, node: &ros2_client::Node) -> Logger {
         stdout: !a.disable_stdout,
         name: setup.fqn.trim_start_matches('/').replace('/', "."),
         recording: Arc::new(OnceLock::new()),
+        clock: clock.clone(),
     }
 }
 
@@ -147,6 +175,7 @@ fn start_recording(
     setup: &Setup,
     names: &EndpointNames,
     actuator: &crate::sim::Actuator,
+    clock: &Arc<NodeClock>,
     tick_origin_ns: i64,
     logger: &Logger,
 ) -> (Option<NodeRecorder>, String) {
@@ -161,7 +190,14 @@ fn start_recording(
         activation_array: &names.activation_array,
         muscle_commands: &names.muscle_commands,
     };
-    match record::start(&setup.params, &setup.fqn, &topics, actuator, tick_origin_ns) {
+    match record::start(
+        &setup.params,
+        &setup.fqn,
+        &topics,
+        actuator,
+        clock,
+        tick_origin_ns,
+    ) {
         Ok(r) => {
             logger.info(&format!(
                 "recording to {}",

@@ -139,7 +139,16 @@ fn validate_param(
         .lock()
         .map_err(|_| "internal error: parameter lock poisoned".to_string())?
         .clone();
+    let before = candidate.clock;
     candidate.set(name, value, false)?;
+    if candidate.clock != before {
+        return Err(format!(
+            "clock is chosen at start-up (this node runs clock:={}); restart the node with \
+             -p clock:={}",
+            before.name(),
+            candidate.clock.name()
+        ));
+    }
     if matches!(name, params::MODEL | params::RATE_HZ | params::CONFIG) {
         build_off_executor(&candidate)?;
     }
@@ -169,8 +178,13 @@ fn apply_param(
             }
             shared.send(Command::Replace(Box::new(act)));
             shared.send(Command::PublishEvery(candidate.publish_every()));
+            shared.send(Command::ClockEvery(candidate.clock_every()));
         }
         params::PUBLISH_RATE_HZ => shared.send(Command::PublishEvery(candidate.publish_every())),
+        params::REAL_TIME_FACTOR => {
+            shared.send(Command::RealTimeFactor(candidate.real_time_factor))
+        }
+        params::CLOCK_RATE_HZ => shared.send(Command::ClockEvery(candidate.clock_every())),
         _ => {}
     }
     *p = candidate;

@@ -1,5 +1,6 @@
-//! The node's six parameters (README, "The ROS interface"): their defaults, types and validation.
+//! The node's parameters (README, "The ROS interface"): their defaults, types and validation.
 
+use super::clock::ClockMode;
 use crate::config::{excerpt, ActuatorConfig};
 use crate::physics::model::ModelKind;
 use crate::sim::Actuator;
@@ -12,8 +13,23 @@ pub const PUBLISH_RATE_HZ: &str = "publish_rate_hz";
 pub const CONFIG: &str = "config";
 pub const RECORD: &str = "record";
 pub const RECORD_DIR: &str = "record_dir";
+pub const CLOCK: &str = "clock";
+pub const REAL_TIME_FACTOR: &str = "real_time_factor";
+pub const CLOCK_RATE_HZ: &str = "clock_rate_hz";
 /// All of them, in the order they are declared.
-pub const ALL: [&str; 6] = [MODEL, RATE_HZ, PUBLISH_RATE_HZ, CONFIG, RECORD, RECORD_DIR];
+pub const ALL: [&str; 9] = [
+    MODEL,
+    RATE_HZ,
+    PUBLISH_RATE_HZ,
+    CONFIG,
+    RECORD,
+    RECORD_DIR,
+    CLOCK,
+    REAL_TIME_FACTOR,
+    CLOCK_RATE_HZ,
+];
+/// Highest `real_time_factor` (beyond it, 0 = as fast as possible is the honest value).
+pub const MAX_REAL_TIME_FACTOR: f64 = 1e6;
 
 /// Upper bound on the tick rate (the simulation's).
 pub use crate::sim::simulation::MAX_RATE_HZ;
@@ -37,6 +53,12 @@ pub struct NodeParams {
     pub record: bool,
     /// Directory for recordings ("" = no recording).
     pub record_dir: String,
+    /// How ticks are paced and stamped (fixed at start-up).
+    pub clock: ClockMode,
+    /// `sim`: simulated seconds per wall-clock second; 0 = as fast as the steps go.
+    pub real_time_factor: f64,
+    /// `sim`, `lockstep`: `/clock` messages per simulated second; 0 = every tick.
+    pub clock_rate_hz: f64,
 }
 
 impl Default for NodeParams {
@@ -48,6 +70,9 @@ impl Default for NodeParams {
             config: String::new(),
             record: true,
             record_dir: "runs".into(),
+            clock: ClockMode::Wall,
+            real_time_factor: 0.0,
+            clock_rate_hz: 100.0,
         }
     }
 }
@@ -62,6 +87,9 @@ impl NodeParams {
             CONFIG => ParameterValue::String(self.config.clone()),
             RECORD => ParameterValue::Boolean(self.record),
             RECORD_DIR => ParameterValue::String(self.record_dir.clone()),
+            CLOCK => ParameterValue::String(self.clock.name().into()),
+            REAL_TIME_FACTOR => ParameterValue::Double(self.real_time_factor),
+            CLOCK_RATE_HZ => ParameterValue::Double(self.clock_rate_hz),
             _ => return None,
         })
     }
@@ -90,7 +118,7 @@ impl NodeParams {
         let as_string = |v: &ParameterValue| -> Result<String, String> {
             match v {
                 ParameterValue::String(s) => {
-                    let (limit, too_long) = if name == MODEL {
+                    let (limit, too_long) = if name == MODEL || name == CLOCK {
                         ("64 characters", s.chars().count() > MAX_NAME_CHARS)
                     } else {
                         ("4096 bytes", s.len() > MAX_PATH_BYTES)
@@ -146,6 +174,26 @@ impl NodeParams {
             },
             // Empty disables recording, as `record: false` does.
             RECORD_DIR => self.record_dir = as_string(value)?,
+            CLOCK => self.clock = as_string(value)?.parse()?,
+            REAL_TIME_FACTOR => {
+                let f = as_f64(value)?;
+                if !(f.is_finite() && (0.0..=MAX_REAL_TIME_FACTOR).contains(&f)) {
+                    return Err(format!(
+                        "real_time_factor = {f} is invalid: must be from 0 (as fast as possible) \
+                         to {MAX_REAL_TIME_FACTOR}"
+                    ));
+                }
+                self.real_time_factor = f;
+            }
+            CLOCK_RATE_HZ => {
+                let r = as_f64(value)?;
+                if !(r.is_finite() && r >= 0.0) {
+                    return Err(format!(
+                        "clock_rate_hz = {r} is invalid: must be finite and >= 0 (0 = every tick)"
+                    ));
+                }
+                self.clock_rate_hz = r;
+            }
             other => {
                 return Err(format!(
                     "unknown parameter {:?} (known: {})",
@@ -175,6 +223,11 @@ impl NodeParams {
     /// Publish every `n`th tick.
     pub fn publish_every(&self) -> u64 {
         publish_every(self.rate_hz, self.publish_rate_hz)
+    }
+
+    /// Publish `/clock` every `n`th tick.
+    pub fn clock_every(&self) -> u64 {
+        publish_every(self.rate_hz, self.clock_rate_hz)
     }
 }
 
@@ -237,7 +290,29 @@ mod tests {
         assert_eq!(publish_every(1000.0, 0.0), 1);
         assert_eq!(publish_every(1000.0, 100.0), 10);
         assert_eq!(publish_every(1000.0, 2000.0), 1);
-        assert_eq!(p.values().len(), 6);
+        assert_eq!(p.values().len(), 9);
+        assert!(p
+            .set(CLOCK, &ParameterValue::String("lockstep".into()), false)
+            .is_ok());
+        assert_eq!(p.clock, ClockMode::Lockstep);
+        let e = p
+            .set(CLOCK, &ParameterValue::String("sundial".into()), false)
+            .unwrap_err();
+        assert!(
+            e.contains("sundial") && e.contains("wall, sim, lockstep"),
+            "{e}"
+        );
+        for bad in [-1.0, f64::NAN, 1e7] {
+            assert!(p
+                .set(REAL_TIME_FACTOR, &ParameterValue::Double(bad), false)
+                .is_err());
+        }
+        assert!(p
+            .set(REAL_TIME_FACTOR, &ParameterValue::Double(10.0), false)
+            .is_ok());
+        assert!(p
+            .set(CLOCK_RATE_HZ, &ParameterValue::Double(-1.0), false)
+            .is_err());
     }
 
     /// Oversized strings are refused with an excerpt, never echoed whole (a parameter reply of

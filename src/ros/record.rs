@@ -1,19 +1,19 @@
 //! The node's recording (parameters `record`, `record_dir`): every input as received, every
 //! state as published, the inputs as the tick loop applied them (stamped with the tick they took
 //! effect at: stamp = tick origin + tick / rate), which is what `replay` feeds back, and the
-//! node's `/diagnostics` and `/rosout` lines. One time base: wall-clock time
-//! ([`crate::runs::TimeBase::Wall`]) for every log time and stamp.
+//! node's `/diagnostics` and `/rosout` lines. One time base, the node's clock
+//! ([`super::clock`]): wall-clock time, or simulated time with `clock` sim or lockstep.
 
+use super::clock::NodeClock;
 use super::params::NodeParams;
 use super::tick::Applied;
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
 use crate::msgs::{DiagnosticStatus, Header, KeyValue};
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
 use crate::runs::{
-    self, AttachmentMeta, Channel, Layout, RunMeta, TimeBase, ACTIVATION_TYPE,
-    APPLIED_ACTIVATION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE,
-    FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
-    STATE_TYPE,
+    self, AttachmentMeta, Channel, Layout, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
+    APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE,
+    JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC, STATE_TYPE,
 };
 use crate::sim::Actuator;
 use ros2_client::builtin_interfaces::Time;
@@ -38,17 +38,19 @@ pub struct Topics<'a> {
 pub struct RecordTx {
     pub sender: RecordSender,
     layout: Arc<Layout>,
+    clock: Arc<NodeClock>,
 }
 
 impl RecordTx {
-    /// Serializes `msg` and hands it to the recorder on channel `ch` (log time: now).
+    /// Serializes `msg` and hands it to the recorder on channel `ch` (log time: the node's
+    /// clock now).
     pub fn put<T: serde::Serialize>(&self, ch: Channel, publish_ns: i64, msg: &T) {
         let Some(id) = self.layout.id(ch) else {
             return;
         };
         match encode_cdr(msg) {
             Ok(data) => {
-                let now = runs::now_ns().max(0) as u64;
+                let now = self.clock.now_ns().max(0) as u64;
                 self.sender.record(id, now, publish_ns.max(0) as u64, data);
             }
             Err(_) => {
@@ -62,6 +64,7 @@ impl RecordTx {
 pub struct NodeRecorder {
     pub recorder: Recorder,
     layout: Arc<Layout>,
+    clock: Arc<NodeClock>,
 }
 
 impl NodeRecorder {
@@ -69,6 +72,7 @@ impl NodeRecorder {
         RecordTx {
             sender: self.recorder.sender(),
             layout: self.layout.clone(),
+            clock: self.clock.clone(),
         }
     }
 }
@@ -87,12 +91,13 @@ pub fn file_path(p: &NodeParams, fqn: &str, start_ns: i64) -> PathBuf {
     PathBuf::from(&p.record_dir).join(format!("{name}_{t}.mcap"))
 }
 
-/// Starts the recording of a node run whose tick 0 is stamped `tick_origin_ns` (wall clock).
+/// Starts the recording of a node run whose tick 0 is stamped `tick_origin_ns` on `clock`.
 pub fn start(
     p: &NodeParams,
     fqn: &str,
     topics: &Topics,
     actuator: &Actuator,
+    clock: &Arc<NodeClock>,
     tick_origin_ns: i64,
 ) -> Result<NodeRecorder, String> {
     let start_ns = runs::now_ns();
@@ -104,6 +109,9 @@ pub fn start(
         m.insert("config".into(), p.config.clone().into());
         m.insert("record".into(), p.record.into());
         m.insert("record_dir".into(), p.record_dir.clone().into());
+        m.insert("clock".into(), p.clock.name().into());
+        m.insert("real_time_factor".into(), p.real_time_factor.into());
+        m.insert("clock_rate_hz".into(), p.clock_rate_hz.into());
         serde_json::Value::Object(m).to_string()
     };
     let meta = RunMeta {
@@ -115,7 +123,7 @@ pub fn start(
         config: actuator.config().clone(),
         parameters_json: Some(params_json),
         start_time_ns: start_ns,
-        time_base: TimeBase::Wall { tick_origin_ns },
+        time_base: clock.time_base(tick_origin_ns),
         muscles: actuator.muscle_names().to_vec(),
         joints: actuator.joint_names().to_vec(),
     };
@@ -153,6 +161,7 @@ pub fn start(
     Ok(NodeRecorder {
         recorder,
         layout: Arc::new(layout),
+        clock: clock.clone(),
     })
 }
 

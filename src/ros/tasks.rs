@@ -3,17 +3,21 @@
 //! events turned into log lines. None of them waits on the tick loop.
 
 use super::args::Severity;
+use super::clock::ClockMode;
 use super::diagnostics::InputStats;
 use super::input::{self, Rejection};
 use super::logging::{LateTicks, Reporter, LATE_WARN_PERIODS};
 use super::param_callbacks::Shared;
 use super::record::RecordTx;
-use super::tick::{Command, Event, TickStats};
-use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
-use crate::msgs::{Float64, Float64MultiArray, TriggerRequest, TriggerResponse};
+use super::threads::sample_to_msgs;
+use super::tick::{Command, Event, Sample, TickStats};
+use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
+use crate::msgs::{
+    Float64, Float64MultiArray, Int64, StepRequest, StepResponse, TriggerRequest, TriggerResponse,
+};
 use crate::runs::{self, Channel};
 use futures::{FutureExt, StreamExt};
-use ros2_client::{Server, Subscription};
+use ros2_client::{RmwRequestId, Server, Subscription};
 use serde::de::DeserializeOwned;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::Receiver;
@@ -283,4 +287,120 @@ pub(crate) async fn events(rx: &Receiver<Event>, stats: &TickStats, log: &Report
             }
         }
     }
+}
+
+/// Most ticks one step may ask for (about 2.8 h of simulated time at 1 kHz); more is refused.
+pub(crate) const MAX_STEP_TICKS: i64 = 10_000_000;
+
+/// Why a step of `ticks` cannot be done in `mode`, if it cannot.
+fn step_refusal(mode: ClockMode, ticks: i64) -> Option<String> {
+    if mode != ClockMode::Lockstep {
+        return Some(format!(
+            "~/step needs clock:=lockstep; this node runs clock:={}",
+            mode.name()
+        ));
+    }
+    if !(1..=MAX_STEP_TICKS).contains(&ticks) {
+        return Some(format!(
+            "ticks = {ticks} is invalid: must be from 1 to {MAX_STEP_TICKS}"
+        ));
+    }
+    None
+}
+
+fn step_failed(message: String) -> StepResponse {
+    StepResponse {
+        success: false,
+        message,
+        tick: 0,
+        state: ActuatorState::default(),
+    }
+}
+
+/// `~/step` (`muscle_actuator_msgs/Step`): advances a lockstep node and answers with the state
+/// after the last tick. One step at a time: a request while one is running is refused at once.
+pub(crate) async fn step(
+    server: &Server<StepRequest, StepResponse>,
+    shared: &Shared,
+    mode: ClockMode,
+    log: &Reporter,
+) {
+    let mut requests = server.receive_request_stream().fuse();
+    // The step running: its request id, its ticks, and the loop's answer to come.
+    let mut running: Option<(
+        RmwRequestId,
+        i64,
+        futures::channel::oneshot::Receiver<Sample>,
+    )> = None;
+    loop {
+        let request = match running.take() {
+            None => requests.next().await,
+            Some((id, ticks, mut done)) => futures::select! {
+                r = done => {
+                    let resp = match r {
+                        Ok(s) => StepResponse {
+                            success: true,
+                            message: String::new(),
+                            tick: s.tick,
+                            state: sample_to_msgs(&s).0,
+                        },
+                        Err(_) => step_failed(
+                            "the tick loop stopped before the step was done".into(),
+                        ),
+                    };
+                    if let Err(e) = server.async_send_response(id, resp).await {
+                        log.logger.warn(&format!("step: cannot send the response: {e:?}"));
+                    }
+                    continue;
+                },
+                r = requests.next() => {
+                    running = Some((id, ticks, done));
+                    r
+                },
+            },
+        };
+        let Some(request) = request else {
+            return;
+        };
+        let Ok((id, req)) = request else {
+            continue;
+        };
+        let refusal = match &running {
+            Some((_, ticks, _)) => Some(format!(
+                "a step of {ticks} ticks is running; ask again once it has answered"
+            )),
+            None => step_refusal(mode, req.ticks),
+        };
+        if let Some(why) = refusal {
+            if let Err(e) = server.async_send_response(id, step_failed(why)).await {
+                log.logger
+                    .warn(&format!("step: cannot send the response: {e:?}"));
+            }
+            continue;
+        }
+        let (tx, rx) = futures::channel::oneshot::channel();
+        shared.send(Command::Step {
+            ticks: req.ticks as u64,
+            reply: Some(tx),
+        });
+        running = Some((id, req.ticks, rx));
+    }
+}
+
+/// `~/step` as a topic (`std_msgs/Int64`): the same advance, fire and forget; a refused one is
+/// logged.
+pub(crate) async fn step_topic(sub: &Subscription<Int64>, cx: &InputContext<'_>, mode: ClockMode) {
+    let received = AtomicU64::new(0);
+    cx.each(sub, "step", &received, |msg| {
+        match step_refusal(mode, msg.data) {
+            Some(why) => cx
+                .log
+                .report("step", Severity::Warn, format!("step refused: {why}")),
+            None => cx.shared.send(Command::Step {
+                ticks: msg.data as u64,
+                reply: None,
+            }),
+        }
+    })
+    .await
 }

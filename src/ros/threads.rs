@@ -4,11 +4,14 @@
 
 use super::logging::Logger;
 use super::record::{self, RecordTx};
-use super::tick::{self, Applied, CommandReceiver, Event, LoopIo, RunSummary, Sample, TickStats};
+use super::tick::{
+    self, Applied, CommandReceiver, Event, LoopIo, Output, Pacing, RunSummary, Sample, TickStats,
+};
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
-use crate::msgs::{state_messages, JointState};
+use crate::msgs::{state_messages, Clock, JointState};
 use crate::runs::Channel;
 use crate::sim::Actuator;
+use ros2_client::builtin_interfaces::Time;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver};
@@ -26,7 +29,7 @@ const APPLIED_QUEUE: usize = 1024;
 const TICK_STOP_GRACE: Duration = Duration::from_millis(500);
 
 /// Converts a sample into the two published messages.
-fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {
+pub(crate) fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {
     state_messages(
         s.stamp_ns,
         s.model.name(),
@@ -37,25 +40,45 @@ fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {
     )
 }
 
-/// The publisher thread: takes samples from the tick thread, records and publishes them.
-fn publish_loop(
-    rx: Receiver<Sample>,
-    state_pub: Publisher<ActuatorState>,
-    joint_pub: Publisher<JointState>,
+/// Where the publisher thread sends what the tick loop hands over.
+struct Outlets {
+    state: Publisher<ActuatorState>,
+    joint_states: Publisher<JointState>,
+    /// `/clock`, with a simulated clock.
+    clock: Option<Publisher<Clock>>,
     errors: Arc<AtomicU64>,
     rec: Option<RecordTx>,
-) {
-    while let Ok(s) = rx.recv() {
-        let (state, js) = sample_to_msgs(&s);
-        if let Some(r) = &rec {
-            r.put(Channel::State, s.stamp_ns, &state);
-            r.put(Channel::JointStates, s.stamp_ns, &js);
+}
+
+/// The publisher thread: takes states and times from the tick thread, records and publishes
+/// them.
+fn publish_loop(rx: Receiver<Output>, out: Outlets) {
+    let failed = |ok: bool| {
+        if !ok {
+            out.errors.fetch_add(1, Ordering::Relaxed);
         }
-        if state_pub.publish(state).is_err() {
-            errors.fetch_add(1, Ordering::Relaxed);
-        }
-        if joint_pub.publish(js).is_err() {
-            errors.fetch_add(1, Ordering::Relaxed);
+    };
+    while let Ok(o) = rx.recv() {
+        match o {
+            Output::State(s) => {
+                let (state, js) = sample_to_msgs(&s);
+                if let Some(r) = &out.rec {
+                    r.put(Channel::State, s.stamp_ns, &state);
+                    r.put(Channel::JointStates, s.stamp_ns, &js);
+                }
+                failed(out.state.publish(state).is_ok());
+                failed(out.joint_states.publish(js).is_ok());
+            }
+            Output::Clock(ns) => {
+                if let Some(p) = &out.clock {
+                    failed(
+                        p.publish(Clock {
+                            clock: Time::from_nanos(ns),
+                        })
+                        .is_ok(),
+                    );
+                }
+            }
         }
     }
 }
@@ -67,9 +90,11 @@ pub(crate) struct ThreadInputs {
     pub(crate) commands: CommandReceiver,
     pub(crate) state: Publisher<ActuatorState>,
     pub(crate) joint_states: Publisher<JointState>,
+    pub(crate) clock: Option<Publisher<Clock>>,
     pub(crate) rec: Option<RecordTx>,
-    /// The stamp of tick 0, ns since the Unix epoch.
+    /// The stamp of tick 0, ns (since the Unix epoch for the wall clock).
     pub(crate) tick_origin_ns: i64,
+    pub(crate) pacing: Pacing,
 }
 
 /// The running threads.
@@ -99,15 +124,19 @@ impl Threads {
         };
         let stats = Arc::new(TickStats::default());
         let stop = Arc::new(AtomicBool::new(false));
-        let (sample_tx, sample_rx) = mpsc::sync_channel::<Sample>(SAMPLE_QUEUE);
+        let (sample_tx, sample_rx) = mpsc::sync_channel::<Output>(SAMPLE_QUEUE);
         let (event_tx, event_rx) = mpsc::sync_channel::<Event>(EVENT_QUEUE);
         let publish_errors = Arc::new(AtomicU64::new(0));
-        let pe = publish_errors.clone();
-        let rec = t.rec.clone();
-        let (state_pub, joint_pub) = (t.state, t.joint_states);
+        let outlets = Outlets {
+            state: t.state,
+            joint_states: t.joint_states,
+            clock: t.clock,
+            errors: publish_errors.clone(),
+            rec: t.rec.clone(),
+        };
         let publisher = std::thread::Builder::new()
             .name("publish".into())
-            .spawn(move || publish_loop(sample_rx, state_pub, joint_pub, pe, rec))
+            .spawn(move || publish_loop(sample_rx, outlets))
             .map_err(|e| format!("cannot start the publisher thread: {e}"))?;
         let tick = tick::spawn(
             t.actuator,
@@ -120,6 +149,7 @@ impl Threads {
                 stop: stop.clone(),
                 applied: applied_tx,
                 tick_origin_ns: t.tick_origin_ns,
+                pacing: t.pacing,
             },
         )
         .map_err(|e| format!("cannot start the tick thread: {e}"))?;

@@ -9,13 +9,14 @@
 //! `try_recv` does wait in that case (it spins until a sender that has claimed a slot finishes
 //! writing it), which under a flood of commands stalled the loop for 30-350 ms at a time.
 
+use super::clock::{ClockMode, NodeClock};
 use crate::physics::model::ModelKind;
 use crate::runs::TimeBase;
 use crate::sim::{Actuator, StateSnapshot};
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{SyncSender, TrySendError};
-use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock, TryLockError};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 /// A request for the tick loop, applied at the next tick boundary.
@@ -31,6 +32,25 @@ pub enum Command {
     Replace(Box<Actuator>),
     /// Publish every `n`th tick.
     PublishEvery(u64),
+    /// `sim`: simulated seconds per wall-clock second (0 = as fast as possible).
+    RealTimeFactor(f64),
+    /// `sim`, `lockstep`: publish `/clock` every `n`th tick.
+    ClockEvery(u64),
+    /// `lockstep`: advance `ticks` ticks (after the steps queued before); the reply, if any,
+    /// gets the state after the last of them.
+    Step {
+        ticks: u64,
+        reply: Option<futures::channel::oneshot::Sender<Sample>>,
+    },
+}
+
+/// What the tick loop hands to the publisher thread.
+#[derive(Debug)]
+pub enum Output {
+    /// A state to publish on `~/state` and `joint_states`.
+    State(Sample),
+    /// A time to publish on `/clock`, ns (sim and lockstep).
+    Clock(i64),
 }
 
 /// What the tick loop hands to the publisher after a tick.
@@ -206,10 +226,32 @@ pub struct RunSummary {
     pub mean_step_us: f64,
 }
 
+/// How a loop paces and stamps its ticks.
+#[derive(Debug, Clone)]
+pub struct Pacing {
+    /// Shared with the node: the loop advances it in `sim` and `lockstep`.
+    pub clock: Arc<NodeClock>,
+    /// `sim`: simulated seconds per wall-clock second (0 = as fast as possible).
+    pub real_time_factor: f64,
+    /// Publish `/clock` every `n`th tick (simulated clocks).
+    pub clock_every: u64,
+}
+
+impl Pacing {
+    /// Ticks paced by the wall clock, stamped with it.
+    pub fn wall() -> Self {
+        Self {
+            clock: Arc::new(NodeClock::new(ClockMode::Wall)),
+            real_time_factor: 0.0,
+            clock_every: 1,
+        }
+    }
+}
+
 /// The channels and flags of a running loop.
 pub struct LoopIo {
     pub commands: CommandReceiver,
-    pub samples: SyncSender<Sample>,
+    pub samples: SyncSender<Output>,
     pub events: SyncSender<Event>,
     pub stats: Arc<TickStats>,
     pub stop: Arc<AtomicBool>,
@@ -217,9 +259,13 @@ pub struct LoopIo {
     pub applied: Option<SyncSender<Applied>>,
     /// The stamp of tick 0, ns since the Unix epoch (the recording's tick origin). After a reset
     /// or a rebuild, tick 0 is re-anchored one period before the wall-clock time of the next
-    /// step.
+    /// step (simulated clocks: at the simulated time reached, so that time never goes back).
     pub tick_origin_ns: i64,
+    pub pacing: Pacing,
 }
+
+/// Longest a lockstep loop sleeps between looks at its stop flag when no step is asked for.
+const LOCKSTEP_IDLE: Duration = Duration::from_millis(20);
 
 /// After this many periods behind, the loop stops catching up and restarts its schedule.
 const RESYNC_PERIODS: u32 = 100;
@@ -286,9 +332,22 @@ fn hand_applied(
 /// rate against absolute deadlines; a tick that starts more than one period late is an overrun.
 pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSummary {
     tighten_timer_slack();
-    io.stats
-        .realtime
-        .store(request_realtime_priority(), Ordering::Relaxed);
+    let mode = io.pacing.clock.mode();
+    // Only a loop with deadlines to meet asks to preempt others: a simulated clock running flat
+    // out under SCHED_FIFO would starve the node's other threads.
+    if mode == ClockMode::Wall {
+        io.stats
+            .realtime
+            .store(request_realtime_priority(), Ordering::Relaxed);
+    }
+    if mode == ClockMode::Lockstep {
+        io.commands.wake_me();
+    }
+    let mut real_time_factor = io.pacing.real_time_factor;
+    let mut clock_every = io.pacing.clock_every.max(1);
+    // Lockstep: the steps asked for, in order (ticks left, reply).
+    let mut steps: VecDeque<(u64, Option<futures::channel::oneshot::Sender<Sample>>)> =
+        VecDeque::with_capacity(CONTROL_RESERVE);
     let mut muscle_names: Arc<[String]> = actuator.muscle_names().into();
     let mut joint_names: Arc<[String]> = actuator.joint_names().into();
     let mut excitation = vec![0.0; muscle_names.len()];
@@ -312,8 +371,13 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
     let mut clock = TimeBase::Wall {
         tick_origin_ns: io.tick_origin_ns,
     };
-    let reanchored = |period: Duration| TimeBase::Wall {
-        tick_origin_ns: wall_ns() - period.as_nanos() as i64,
+    // After a reset or a rebuild: tick 0 one period before now (wall), or at the simulated
+    // time reached (simulated clocks, whose time never goes back).
+    let reanchored = |period: Duration, clock: TimeBase, tick: u64, rate_hz: f64| TimeBase::Wall {
+        tick_origin_ns: match mode {
+            ClockMode::Wall => wall_ns() - period.as_nanos() as i64,
+            _ => clock.stamp_ns(tick, rate_hz),
+        },
     };
     let send_event = |e: Event| {
         if let Err(TrySendError::Full(_)) = io.events.try_send(e) {
@@ -357,8 +421,8 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                 }
                 Command::Reset(reply) => {
                     let before = actuator.tick();
+                    clock = reanchored(period, clock, before, actuator.rate_hz());
                     actuator.reset();
-                    clock = reanchored(period);
                     excitation.iter_mut().for_each(|u| *u = 0.0);
                     load.iter_mut().for_each(|t| *t = 0.0);
                     io.stats.resets.fetch_add(1, Ordering::Relaxed);
@@ -368,6 +432,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     }
                 }
                 Command::Replace(new) => {
+                    clock = reanchored(period, clock, actuator.tick(), actuator.rate_hz());
                     actuator = *new;
                     muscle_names = actuator.muscle_names().into();
                     joint_names = actuator.joint_names().into();
@@ -385,7 +450,9 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         origin = Instant::now();
                         n = 0;
                     }
-                    clock = reanchored(period);
+                    if mode == ClockMode::Wall {
+                        clock = reanchored(period, clock, 0, actuator.rate_hz());
+                    }
                     io.stats
                         .rate_hz_bits
                         .store(actuator.rate_hz().to_bits(), Ordering::Relaxed);
@@ -395,7 +462,23 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     });
                 }
                 Command::PublishEvery(k) => publish_every = k.max(1),
+                Command::RealTimeFactor(f) => {
+                    real_time_factor = f;
+                    origin = Instant::now();
+                    n = 0;
+                }
+                Command::ClockEvery(k) => clock_every = k.max(1),
+                Command::Step { ticks, reply } => {
+                    if ticks > 0 {
+                        steps.push_back((ticks, reply));
+                    }
+                }
             }
+        }
+        // Lockstep: nothing to do until a step is asked for (a sender wakes the loop).
+        if mode == ClockMode::Lockstep && steps.is_empty() {
+            std::thread::park_timeout(LOCKSTEP_IDLE);
+            continue;
         }
 
         // 2. One step.
@@ -404,8 +487,8 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             // Back to the initial state with the inputs cleared (whatever drove the state out
             // of range is not applied again); the next valid command applies as usual.
             let tick = e.tick;
+            clock = reanchored(period, clock, tick, actuator.rate_hz());
             actuator.reset();
-            clock = reanchored(period);
             excitation.iter_mut().for_each(|u| *u = 0.0);
             load.iter_mut().for_each(|t| *t = 0.0);
             io.stats.step_failures.fetch_add(1, Ordering::Relaxed);
@@ -424,58 +507,85 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             .store(actuator.tick(), Ordering::Relaxed);
         summary.ticks += 1;
 
-        // 3. Hand the state over (never wait).
-        if actuator.tick().is_multiple_of(publish_every) || publish_every == 1 {
-            let sample = Sample {
-                tick: actuator.tick(),
-                stamp_ns: clock.stamp_ns(actuator.tick(), actuator.rate_hz()),
-                model: actuator.model(),
-                muscle_names: muscle_names.clone(),
-                joint_names: joint_names.clone(),
-                state: actuator.state().clone(),
-            };
-            match io.samples.try_send(sample) {
-                Ok(()) => {}
-                Err(TrySendError::Full(_)) => {
-                    io.stats.samples_dropped.fetch_add(1, Ordering::Relaxed);
-                }
-                Err(TrySendError::Disconnected(_)) => {}
+        // 3. Hand the state (and the time) over, never waiting.
+        let stamp_ns = clock.stamp_ns(actuator.tick(), actuator.rate_hz());
+        let sample = || Sample {
+            tick: actuator.tick(),
+            stamp_ns,
+            model: actuator.model(),
+            muscle_names: muscle_names.clone(),
+            joint_names: joint_names.clone(),
+            state: actuator.state().clone(),
+        };
+        let hand = |o: Output| match io.samples.try_send(o) {
+            Ok(()) => {}
+            Err(TrySendError::Full(_)) => {
+                io.stats.samples_dropped.fetch_add(1, Ordering::Relaxed);
+            }
+            Err(TrySendError::Disconnected(_)) => {}
+        };
+        if mode.is_simulated() {
+            io.pacing.clock.advance_to(stamp_ns);
+            if actuator.tick().is_multiple_of(clock_every) {
+                hand(Output::Clock(stamp_ns));
             }
         }
+        if actuator.tick().is_multiple_of(publish_every) || publish_every == 1 {
+            hand(Output::State(sample()));
+        }
+        if let Some(front) = steps.front_mut() {
+            front.0 -= 1;
+            if front.0 == 0 {
+                if let Some((_, Some(reply))) = steps.pop_front() {
+                    let _ = reply.send(sample());
+                }
+            }
+        }
+        // Lockstep, and sim as fast as possible, have no deadline: the next tick at once.
+        let paced = mode == ClockMode::Wall || (mode == ClockMode::Sim && real_time_factor > 0.0);
 
-        // 4. Wait for the next deadline.
-        n += 1;
-        let deadline = origin + Duration::from_nanos((period.as_nanos() as u64).saturating_mul(n));
-        let now = Instant::now();
-        if deadline > now {
-            std::thread::sleep(deadline - now);
+        if paced {
+            // 4. Wait for the next deadline (wall: one period; sim: a period / real_time_factor).
+            let pace = if mode == ClockMode::Sim {
+                period.div_f64(real_time_factor)
+            } else {
+                period
+            };
+            n += 1;
+            let deadline =
+                origin + Duration::from_nanos((pace.as_nanos() as u64).saturating_mul(n));
+            let now = Instant::now();
+            if deadline > now {
+                std::thread::sleep(deadline - now);
+            }
+            let woke = Instant::now();
+            let late = woke.saturating_duration_since(deadline);
+            let late_ns = late.as_nanos() as u64;
+            window.record(late_ns);
+            whole.record(late_ns);
+            if late > pace {
+                io.stats.overruns.fetch_add(1, Ordering::Relaxed);
+                summary.overruns += 1;
+                send_event(Event::Overrun {
+                    tick: actuator.tick(),
+                    lateness_us: late_ns as f64 / 1e3,
+                });
+            }
+            if late > pace * RESYNC_PERIODS {
+                let skipped = (late.as_nanos() / pace.as_nanos().max(1)) as u64;
+                io.stats.skipped.fetch_add(skipped, Ordering::Relaxed);
+                summary.skipped += skipped;
+                send_event(Event::Resync { skipped });
+                origin = woke;
+                n = 0;
+            }
+            io.stats
+                .max_lateness_ns
+                .fetch_max(late_ns, Ordering::Relaxed);
         }
-        let woke = Instant::now();
-        let late = woke.saturating_duration_since(deadline);
-        let late_ns = late.as_nanos() as u64;
-        window.record(late_ns);
-        whole.record(late_ns);
-        if late > period {
-            io.stats.overruns.fetch_add(1, Ordering::Relaxed);
-            summary.overruns += 1;
-            send_event(Event::Overrun {
-                tick: actuator.tick(),
-                lateness_us: late_ns as f64 / 1e3,
-            });
-        }
-        if late > period * RESYNC_PERIODS {
-            let skipped = (late.as_nanos() / period.as_nanos().max(1)) as u64;
-            io.stats.skipped.fetch_add(skipped, Ordering::Relaxed);
-            summary.skipped += skipped;
-            send_event(Event::Resync { skipped });
-            origin = woke;
-            n = 0;
-        }
-        io.stats
-            .max_lateness_ns
-            .fetch_max(late_ns, Ordering::Relaxed);
 
         // 5. Once a second: the window's figures.
+        let woke = Instant::now();
         if woke.duration_since(window_start) >= Duration::from_secs(1) {
             let st = &io.stats;
             st.window_p50_ns.store(
@@ -527,6 +637,8 @@ pub const CONTROL_RESERVE: usize = 64;
 /// The command queue shared by the senders and the loop.
 struct CommandQueue {
     items: Mutex<VecDeque<Command>>,
+    /// The loop's thread, when it sleeps until a command arrives (lockstep).
+    waiter: OnceLock<std::thread::Thread>,
     /// Live senders; none left (and the queue empty) = disconnected.
     senders: AtomicUsize,
     dropped: AtomicU64,
@@ -564,6 +676,10 @@ impl CommandSender {
             return Err(c);
         }
         items.push_back(c);
+        drop(items);
+        if let Some(t) = q.waiter.get() {
+            t.unpark();
+        }
         Ok(())
     }
 
@@ -630,6 +746,11 @@ impl CommandReceiver {
     pub fn dropped(&self) -> u64 {
         self.queue.dropped.load(Ordering::Relaxed)
     }
+
+    /// From now on every command sent unparks the calling thread.
+    pub fn wake_me(&self) {
+        let _ = self.queue.waiter.set(std::thread::current());
+    }
 }
 
 /// The command queue, bounded: [`COMMAND_CAPACITY`] inputs plus [`CONTROL_RESERVE`] for control
@@ -643,6 +764,7 @@ pub fn command_channel_with(inputs: usize, reserve: usize) -> (CommandSender, Co
     let capacity = inputs + reserve;
     let queue = Arc::new(CommandQueue {
         items: Mutex::new(VecDeque::with_capacity(capacity)),
+        waiter: OnceLock::new(),
         senders: AtomicUsize::new(1),
         dropped: AtomicU64::new(0),
         inputs_capacity: inputs,
@@ -775,6 +897,7 @@ mod tests {
                 stop: stop.clone(),
                 applied: None,
                 tick_origin_ns: 0,
+                pacing: Pacing::wall(),
             },
         )
         .unwrap();
@@ -833,13 +956,19 @@ mod tests {
                 stop: stop.clone(),
                 applied: Some(applied_tx),
                 tick_origin_ns: origin,
+                pacing: Pacing::wall(),
             },
         )
         .unwrap();
         let clock = TimeBase::Wall {
             tick_origin_ns: origin,
         };
-        let first = sample_rx.recv_timeout(Duration::from_secs(30)).unwrap();
+        let next_state = || loop {
+            if let Output::State(s) = sample_rx.recv_timeout(Duration::from_secs(30)).unwrap() {
+                return s;
+            }
+        };
+        let first = next_state();
         assert_eq!(first.stamp_ns, clock.stamp_ns(first.tick, rate));
         tx.send(Command::Excitation(vec![(0, 0.5)])).ok();
         let a = applied_rx.recv_timeout(Duration::from_secs(30)).unwrap();
@@ -847,7 +976,7 @@ mod tests {
         assert_eq!(a.stamp_ns, clock.stamp_ns(a.tick, rate));
         assert_eq!(clock.tick_of(a.stamp_ns, rate), Ok(a.tick));
         // The state after the tick the input took effect at carries the next stamp.
-        let after = std::iter::from_fn(|| sample_rx.recv_timeout(Duration::from_secs(30)).ok())
+        let after = std::iter::from_fn(|| Some(next_state()))
             .find(|s| s.tick == a.tick + 1)
             .unwrap();
         assert_eq!(after.stamp_ns - a.stamp_ns, tick_ns_i64(1, rate));
@@ -855,7 +984,7 @@ mod tests {
         let (reply_tx, _reply_rx) = futures::channel::oneshot::channel();
         tx.send(Command::Reset(Some(reply_tx))).ok();
         let now = wall_ns();
-        let s = std::iter::from_fn(|| sample_rx.recv_timeout(Duration::from_secs(30)).ok())
+        let s = std::iter::from_fn(|| Some(next_state()))
             .find(|s| s.tick == 1)
             .unwrap();
         assert!(
@@ -870,5 +999,97 @@ mod tests {
 
     fn tick_ns_i64(ticks: u64, rate: f64) -> i64 {
         crate::runs::tick_ns(ticks, rate) as i64
+    }
+
+    /// Lockstep: no tick until a step is asked for; steps run in order and each reply carries
+    /// the state after its last tick; the simulated clock advances with the ticks and `/clock`
+    /// goes out every `clock_every` ticks, stamped tick / rate.
+    #[test]
+    fn lockstep_ticks_only_when_stepped() {
+        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
+        let rate = actuator.rate_hz();
+        let (tx, rx) = command_channel();
+        let (out_tx, out_rx) = std::sync::mpsc::sync_channel(4096);
+        let (event_tx, _event_rx) = std::sync::mpsc::sync_channel(64);
+        let stats = Arc::new(TickStats::default());
+        let stop = Arc::new(AtomicBool::new(false));
+        let clock = Arc::new(NodeClock::new(ClockMode::Lockstep));
+        let handle = spawn(
+            actuator,
+            1,
+            LoopIo {
+                commands: rx,
+                samples: out_tx,
+                events: event_tx,
+                stats: stats.clone(),
+                stop: stop.clone(),
+                applied: None,
+                tick_origin_ns: 0,
+                pacing: Pacing {
+                    clock: clock.clone(),
+                    real_time_factor: 0.0,
+                    clock_every: 4,
+                },
+            },
+        )
+        .unwrap();
+        std::thread::sleep(Duration::from_millis(100));
+        assert_eq!(
+            stats.ticks.load(Ordering::Relaxed),
+            0,
+            "no tick before a step"
+        );
+        let (a_tx, a_rx) = futures::channel::oneshot::channel();
+        let (b_tx, b_rx) = futures::channel::oneshot::channel();
+        tx.send(Command::Step {
+            ticks: 10,
+            reply: Some(a_tx),
+        })
+        .ok();
+        tx.send(Command::Step {
+            ticks: 0,
+            reply: None,
+        })
+        .ok();
+        tx.send(Command::Step {
+            ticks: 7,
+            reply: Some(b_tx),
+        })
+        .ok();
+        let wait = |mut rx: futures::channel::oneshot::Receiver<Sample>| {
+            let end = Instant::now() + Duration::from_secs(30);
+            loop {
+                if let Ok(Some(s)) = rx.try_recv() {
+                    return s;
+                }
+                assert!(Instant::now() < end, "no reply");
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        };
+        let a = wait(a_rx);
+        let b = wait(b_rx);
+        assert_eq!((a.tick, b.tick), (10, 17));
+        assert_eq!(b.stamp_ns, crate::runs::tick_ns(17, rate) as i64);
+        assert_eq!(clock.now_ns(), b.stamp_ns);
+        std::thread::sleep(Duration::from_millis(100));
+        assert_eq!(
+            stats.ticks.load(Ordering::Relaxed),
+            17,
+            "no tick after the steps"
+        );
+        stop.store(true, Ordering::Relaxed);
+        handle.join().unwrap();
+        let clocks: Vec<i64> = out_rx
+            .try_iter()
+            .filter_map(|o| match o {
+                Output::Clock(ns) => Some(ns),
+                Output::State(_) => None,
+            })
+            .collect();
+        let expected: Vec<i64> = [4, 8, 12, 16]
+            .iter()
+            .map(|&k| crate::runs::tick_ns(k, rate) as i64)
+            .collect();
+        assert_eq!(clocks, expected);
     }
 }

@@ -1,0 +1,102 @@
+//! The node's clock (parameter `clock`, README "Time"): `wall`, ticks paced by the wall clock
+//! and stamped with it; `sim`, the node is the graph's clock, stepping as fast as it can or at
+//! `real_time_factor` × real time and publishing `/clock`; `lockstep`, the node is the clock and
+//! advances only when asked (`~/step`). Every stamp the node writes (states, `/diagnostics`,
+//! `/rosout`, the recording's log times) reads [`NodeClock::now_ns`].
+
+use crate::runs::{self, TimeBase};
+use std::sync::atomic::{AtomicI64, Ordering};
+
+/// How ticks are paced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ClockMode {
+    Wall,
+    Sim,
+    Lockstep,
+}
+
+impl ClockMode {
+    pub const NAMES: [&'static str; 3] = ["wall", "sim", "lockstep"];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ClockMode::Wall => "wall",
+            ClockMode::Sim => "sim",
+            ClockMode::Lockstep => "lockstep",
+        }
+    }
+
+    /// Whether the node is the graph's clock (publishes `/clock`, stamps simulated time).
+    pub fn is_simulated(self) -> bool {
+        self != ClockMode::Wall
+    }
+}
+
+impl std::str::FromStr for ClockMode {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "wall" => Ok(ClockMode::Wall),
+            "sim" => Ok(ClockMode::Sim),
+            "lockstep" => Ok(ClockMode::Lockstep),
+            other => Err(format!(
+                "clock {:?} is not one of {}",
+                crate::config::excerpt(other),
+                ClockMode::NAMES.join(", ")
+            )),
+        }
+    }
+}
+
+/// The node's time now, shared by its threads: the wall clock, or the simulated time the tick
+/// loop has reached.
+#[derive(Debug)]
+pub struct NodeClock {
+    mode: ClockMode,
+    /// Simulated time of the last tick, ns (sim and lockstep).
+    sim_ns: AtomicI64,
+}
+
+impl NodeClock {
+    pub fn new(mode: ClockMode) -> Self {
+        Self {
+            mode,
+            sim_ns: AtomicI64::new(0),
+        }
+    }
+
+    pub fn mode(&self) -> ClockMode {
+        self.mode
+    }
+
+    /// Now, ns: since the Unix epoch (wall) or since the simulation's start (sim, lockstep).
+    pub fn now_ns(&self) -> i64 {
+        match self.mode {
+            ClockMode::Wall => runs::now_ns(),
+            _ => self.sim_ns.load(Ordering::Acquire),
+        }
+    }
+
+    /// Set by the tick loop after each tick (simulated clocks only).
+    pub fn advance_to(&self, ns: i64) {
+        if self.mode.is_simulated() {
+            self.sim_ns.store(ns, Ordering::Release);
+        }
+    }
+
+    /// The stamp of tick 0 at start: the wall clock's now, or simulated time zero.
+    pub fn start_origin_ns(&self) -> i64 {
+        match self.mode {
+            ClockMode::Wall => runs::now_ns(),
+            _ => 0,
+        }
+    }
+
+    /// The recording's time base for a run whose tick 0 is stamped `tick_origin_ns`.
+    pub fn time_base(&self, tick_origin_ns: i64) -> TimeBase {
+        match self.mode {
+            ClockMode::Wall => TimeBase::Wall { tick_origin_ns },
+            _ => TimeBase::Simulated,
+        }
+    }
+}
