@@ -1,7 +1,7 @@
 //! docs/model.md §10: no allocation per tick. A counting global allocator watches the ticks of
 //! actuators (every adaptive model, the elbow and the arm, steady and after excitation steps,
-//! with the published snapshot refreshed every tick) once they have run a while: not one
-//! allocation.
+//! with the published snapshot refreshed every tick; the arm with its shoulder driven, its motion
+//! set every tick) once they have run a while: not one allocation.
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
@@ -47,9 +47,12 @@ fn allocations(f: impl FnOnce()) -> u64 {
 
 #[test]
 fn ticks_do_not_allocate() {
+    let mut driven_arm = ActuatorConfig::resolve("arm").unwrap();
+    driven_arm.joints[0].driven = true;
     for cfg in [
         ActuatorConfig::default(),
         ActuatorConfig::resolve("arm").unwrap(),
+        driven_arm,
     ] {
         for model in [ModelKind::HILL, ModelKind::HUXLEY] {
             let mut act = Actuator::new(&cfg, model, 1000.0).unwrap();
@@ -70,8 +73,11 @@ fn ticks_do_not_allocate() {
                         }
                         act.set_external_torque(0, (k as f64) * 0.01);
                     }
+                    let t = k as f64 * 1e-3;
+                    act.set_joint_motion(0, 0.3 * (6.0 * t).sin(), 1.8 * (6.0 * t).cos());
                     act.step().unwrap();
                     std::hint::black_box(act.state().muscles[0].force);
+                    std::hint::black_box(act.joint_efforts().sum::<f64>());
                 }
             });
             assert_eq!(

@@ -45,6 +45,19 @@ pub fn angular_acceleration(
         / p.inertia
 }
 
+/// Angular acceleration of a driven joint within a tick, rad/s²: zero, so that the prescribed
+/// motion is `θ(t) = θ0 + ω0 (t - t0)`, `ω(t) = ω0` from the values set at the tick's start
+/// (docs/model.md §8c).
+pub fn driven_angular_acceleration() -> f64 {
+    0.0
+}
+
+/// A driven joint's angle `θ0 + ω0 t` at time t after the tick's start, from the angle θ0 and
+/// velocity ω0 set at the start (linear extrapolation), rad.
+pub fn prescribed_angle(theta0: f64, omega0: f64, t: f64) -> f64 {
+    theta0 + omega0 * t
+}
+
 /// Rotational kinetic energy `½ I ω²`, J.
 pub fn kinetic_energy(p: &JointParams, omega: f64) -> f64 {
     0.5 * p.inertia * omega * omega

@@ -151,8 +151,12 @@ pub struct JointParams {
     pub limit_stiffness: f64,
     /// Damping of the end stops, N m s/rad.
     pub limit_damping: f64,
-    /// Initial joint angle, rad.
+    /// Initial joint angle, rad (a driven joint: the angle it holds until its motion is set).
     pub initial_angle: f64,
+    /// Driven by a robot simulator: its angle and velocity are inputs, not integrated (docs/
+    /// model.md §8c); inertia, damping and end stops are then unused (still validated).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub driven: bool,
 }
 
 impl Default for JointParams {
@@ -166,6 +170,7 @@ impl Default for JointParams {
             limit_stiffness: 500.0,
             limit_damping: 5.0,
             initial_angle: 0.0,
+            driven: false,
         }
     }
 }

@@ -6,6 +6,11 @@
 //! not part of the state: within a tick they are known in closed form (physics::activation), and
 //! the caller passes them in.
 //!
+//! A driven joint (`JointParams::driven`, docs/model.md §8c) keeps its two entries, but its
+//! angle and velocity at each tick's start are inputs ([`Inputs::joint_angle`],
+//! [`Inputs::joint_velocity`]) and its acceleration is zero within the tick: the muscles see the
+//! prescribed motion `θ0 + ω0 t`, and the joint sees none of their force.
+//!
 //! Coupling: muscle i's equations involve only its own state and the angles of the joints it
 //! spans; joint j's acceleration involves the tendon forces of the muscles that span it. The
 //! Jacobian is therefore block-arrowhead (a block per muscle, a joint block), which
@@ -27,6 +32,10 @@ pub struct Inputs {
     pub external_torque: Vec<f64>,
     /// External pull per muscle on a force-driven tendon, N (ignored for other anchors).
     pub tendon_force: Vec<f64>,
+    /// Angle per joint at the tick's start, rad (driven joints only; ignored for the others).
+    pub joint_angle: Vec<f64>,
+    /// Angular velocity per joint over the tick, rad/s (driven joints only).
+    pub joint_velocity: Vec<f64>,
 }
 
 impl Inputs {
@@ -36,6 +45,8 @@ impl Inputs {
             excitation: vec![0.0; muscles],
             external_torque: vec![0.0; joints],
             tendon_force: vec![0.0; muscles],
+            joint_angle: vec![0.0; joints],
+            joint_velocity: vec![0.0; joints],
         }
     }
 
@@ -44,6 +55,8 @@ impl Inputs {
         self.excitation.fill(0.0);
         self.external_torque.fill(0.0);
         self.tendon_force.fill(0.0);
+        self.joint_angle.fill(0.0);
+        self.joint_velocity.fill(0.0);
     }
 }
 
@@ -184,6 +197,10 @@ impl Plant {
             }
         }
         for (j, p) in self.joints.iter().enumerate() {
+            if p.driven {
+                dy[2 * j + 1] = joint::driven_angular_acceleration();
+                continue;
+            }
             let torque = dy[2 * j + 1];
             dy[2 * j + 1] = joint::angular_acceleration(
                 p,
@@ -207,19 +224,59 @@ impl Plant {
         }
     }
 
-    /// The resting state: joints at their initial angles and at rest, each fibre where tendon
-    /// and parallel element balance, no bonds.
+    /// The resting state: joints at their initial angles and at rest (driven joints at their
+    /// input motion), each fibre where tendon and parallel element balance, no bonds.
     pub fn resting_state(&self, inputs: &Inputs, y: &mut [f64]) {
         y.fill(0.0);
         for (j, p) in self.joints.iter().enumerate() {
             y[2 * j] = p.initial_angle;
         }
+        self.set_driven_motion(inputs, y);
         for (i, mtu) in self.mtus.iter().enumerate() {
             let o = self.offsets[i];
             y[o] = match self.path_length(y, i) {
                 Some(path) => mtu.resting_fibre_length(path),
                 None => mtu.parallel.length_at_force(inputs.tendon_force[i]),
             };
+        }
+    }
+
+    /// Whether any joint is driven.
+    pub fn has_driven_joints(&self) -> bool {
+        self.joints.iter().any(|p| p.driven)
+    }
+
+    /// Writes the driven joints' input motion (angle, velocity at the tick's start) into the
+    /// state; free joints are left alone.
+    pub fn set_driven_motion(&self, inputs: &Inputs, y: &mut [f64]) {
+        for (j, p) in self.joints.iter().enumerate() {
+            if p.driven {
+                y[2 * j] = inputs.joint_angle[j];
+                y[2 * j + 1] = inputs.joint_velocity[j];
+            }
+        }
+    }
+
+    /// Writes the driven joints' motion at `dt` after the tick's start (the within-tick rule,
+    /// [`joint::prescribed_angle`]) into the state.
+    pub fn set_driven_motion_after(&self, inputs: &Inputs, dt: f64, y: &mut [f64]) {
+        for (j, p) in self.joints.iter().enumerate() {
+            if p.driven {
+                let (theta0, omega0) = (inputs.joint_angle[j], inputs.joint_velocity[j]);
+                y[2 * j] = joint::prescribed_angle(theta0, omega0, dt);
+                y[2 * j + 1] = omega0;
+            }
+        }
+    }
+
+    /// After a tick: each driven joint's input angle moves on to where the tick's extrapolation
+    /// ended (the state's angle), so that a motion set once carries on linearly until it is set
+    /// again.
+    pub fn carry_driven_motion(&self, y: &[f64], inputs: &mut Inputs) {
+        for (j, p) in self.joints.iter().enumerate() {
+            if p.driven {
+                inputs.joint_angle[j] = y[2 * j];
+            }
         }
     }
 
@@ -268,6 +325,9 @@ impl Plant {
     /// The independent parts of the plant: each a set of joints connected through the muscles
     /// that span them (a biarticular muscle joins its two joints), with those muscles; a muscle
     /// that spans no joint is a part of its own. Returned as (joints, muscles), ascending.
+    ///
+    /// A driven joint joins nothing (its motion is an input): it belongs to every part with a
+    /// muscle that spans it, and a muscle that spans only driven joints is a part of its own.
     pub fn components(&self) -> Vec<(Vec<usize>, Vec<usize>)> {
         // Union–find over joints.
         let n = self.joints.len();
@@ -279,16 +339,19 @@ impl Plant {
             }
             j
         }
+        let free = |s: &&Span| !self.joints[s.joint].driven;
         for i in 0..self.mtus.len() {
-            let spans = self.spans(i);
-            for w in spans.windows(2) {
-                let (a, b) = (root(&mut parent, w[0].joint), root(&mut parent, w[1].joint));
-                parent[a.max(b)] = a.min(b);
+            let mut spans = self.spans(i).iter().filter(free);
+            if let Some(first) = spans.next() {
+                for s in spans {
+                    let (a, b) = (root(&mut parent, first.joint), root(&mut parent, s.joint));
+                    parent[a.max(b)] = a.min(b);
+                }
             }
         }
         let mut parts: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
         let mut part_of_root = vec![usize::MAX; n];
-        for j in 0..n {
+        for j in (0..n).filter(|&j| !self.joints[j].driven) {
             let r = root(&mut parent, j);
             if part_of_root[r] == usize::MAX {
                 part_of_root[r] = parts.len();
@@ -297,13 +360,25 @@ impl Plant {
             parts[part_of_root[r]].0.push(j);
         }
         for i in 0..self.mtus.len() {
-            match self.spans(i).first() {
+            let spans = self.spans(i);
+            let k = match spans.iter().find(free) {
                 Some(s) => {
                     let r = root(&mut parent, s.joint);
                     parts[part_of_root[r]].1.push(i);
+                    part_of_root[r]
                 }
-                None => parts.push((Vec::new(), vec![i])),
+                None => {
+                    parts.push((Vec::new(), vec![i]));
+                    parts.len() - 1
+                }
+            };
+            let joints = &mut parts[k].0;
+            for s in spans.iter().filter(|s| self.joints[s.joint].driven) {
+                if !joints.contains(&s.joint) {
+                    joints.push(s.joint);
+                }
             }
+            joints.sort_unstable();
         }
         parts
     }
@@ -345,14 +420,15 @@ impl Plant {
         }
     }
 
-    /// Kinetic energy of the fibre masses and the joints, J.
+    /// Kinetic energy of the fibre masses and the free joints, J (a driven joint's inertia is
+    /// the robot simulator's).
     pub fn kinetic_energy(&self, y: &[f64]) -> f64 {
         let mut e = 0.0;
         for (i, mtu) in self.mtus.iter().enumerate() {
             let v = y[self.offsets[i] + 1];
             e += 0.5 * mtu.params.mass * v * v;
         }
-        for (j, p) in self.joints.iter().enumerate() {
+        for (j, p) in self.joints.iter().enumerate().filter(|(_, p)| !p.driven) {
             e += joint::kinetic_energy(p, y[2 * j + 1]);
         }
         e

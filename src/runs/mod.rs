@@ -57,8 +57,15 @@ pub fn channel(topic: &str, type_name: &str) -> Result<ChannelSpec, String> {
 #[derive(Debug, Clone, PartialEq)]
 pub enum AttachmentMeta {
     Joint,
-    Clamped { length: f64 },
-    Force { initial_force: f64 },
+    Clamped {
+        length: f64,
+    },
+    Force {
+        initial_force: f64,
+    },
+    /// The configuration's limb with driven joints (those marked in `config`), their motion
+    /// from a scenario's schedules (not recorded: such runs are not replayed).
+    Driven,
 }
 
 /// What the `muscle_actuator` metadata record holds: everything needed to rebuild the run.
@@ -183,6 +190,7 @@ impl RunMeta {
         put("stepping", stepping_text(self.stepping));
         match &self.attachment {
             AttachmentMeta::Joint => put("attachment", "joint".into()),
+            AttachmentMeta::Driven => put("attachment", "driven".into()),
             AttachmentMeta::Clamped { length } => {
                 put("attachment", "clamped".into());
                 put("length", format!("{length:?}"));
@@ -235,6 +243,7 @@ impl RunMeta {
             parse_stepping(get("stepping")?).ok_or_else(|| bad("stepping", &m["stepping"]))?;
         let attachment = match get("attachment")?.as_str() {
             "joint" => AttachmentMeta::Joint,
+            "driven" => AttachmentMeta::Driven,
             "clamped" => AttachmentMeta::Clamped {
                 length: f64_of("length")?,
             },
@@ -335,7 +344,7 @@ impl RunMeta {
     pub fn topology(&self) -> Topology {
         let first = &self.config.muscles[0];
         match &self.attachment {
-            AttachmentMeta::Joint => self.config.topology(),
+            AttachmentMeta::Joint | AttachmentMeta::Driven => self.config.topology(),
             AttachmentMeta::Clamped { length } => {
                 Topology::clamped(&first.name, first.params.clone(), *length)
             }
@@ -511,6 +520,7 @@ pub fn simulate_to_mcap(
     let first = &cfg.muscles[0];
     let attachment = match sc.attachment {
         SetupKind::Joint => AttachmentMeta::Joint,
+        SetupKind::Driven => AttachmentMeta::Driven,
         SetupKind::Clamped => AttachmentMeta::Clamped {
             length: sc.length.unwrap_or(first.params.l_opt + first.params.l_ts),
         },
@@ -524,7 +534,7 @@ pub fn simulate_to_mcap(
         rate_hz,
         stepping,
         attachment,
-        config: cfg.clone(),
+        config: sc.limb_config(cfg),
         parameters_json: None,
         start_time_ns: now_ns(),
         time_base: TimeBase::Simulated,
@@ -702,6 +712,12 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
     if let AttachmentMeta::Force { .. } = meta.attachment {
         return Err(format!(
             "{}: a force-driven run (its tendon-force input is not a recorded topic) cannot be replayed",
+            input.display()
+        ));
+    }
+    if meta.config.joints.iter().any(|j| j.driven) {
+        return Err(format!(
+            "{}: a run with driven joints (their prescribed motion is not a recorded topic) cannot be replayed",
             input.display()
         ));
     }

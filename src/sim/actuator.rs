@@ -3,6 +3,11 @@
 //! Inputs (excitations, external torques) set between ticks take effect at the next tick and are
 //! held constant over it (zero-order hold), so a run is reproducible from its inputs and their
 //! ticks. `step` does not allocate.
+//!
+//! A driven joint (`driven = true` in the configuration) is not integrated: its angle and
+//! velocity are inputs too ([`Actuator::set_joint_motion`]), extrapolated linearly over the tick
+//! (`θ0 + ω0 t`), and [`Actuator::joint_efforts`] is the muscles' net torque on each of them,
+//! what a robot simulator that owns the joint applies.
 
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
@@ -17,6 +22,7 @@ pub struct Actuator {
     sim: Simulation,
     muscle_names: Vec<String>,
     joint_names: Vec<String>,
+    driven: Vec<usize>,
     state: StateSnapshot,
 }
 
@@ -36,13 +42,18 @@ impl Actuator {
     ) -> Result<Self, String> {
         config.validate().map_err(|e| e.to_string())?;
         let plant = Plant::new(&config.topology(), model)?;
-        let inputs = Inputs::zeros(plant.muscle_count(), plant.joint_count());
+        let mut inputs = Inputs::zeros(plant.muscle_count(), plant.joint_count());
+        initial_joint_motion(config, &mut inputs);
         let sim = Simulation::new(plant, rate_hz, stepping, inputs)?;
         let mut actuator = Self {
             config: config.clone(),
             sim,
             muscle_names: config.muscle_names(),
             joint_names: config.joint_names(),
+            driven: (config.joints.iter().enumerate())
+                .filter(|(_, j)| j.driven)
+                .map(|(k, _)| k)
+                .collect(),
             state: StateSnapshot::default(),
         };
         actuator.sim.fill_snapshot(&mut actuator.state);
@@ -98,6 +109,30 @@ impl Actuator {
             }
         }
     }
+    /// Indices of the driven joints, in configuration order.
+    pub fn driven_joints(&self) -> &[usize] {
+        &self.driven
+    }
+    /// Sets driven joint `index`'s motion for the following ticks: its angle (rad) and angular
+    /// velocity (rad/s) at the next tick's start, extrapolated linearly over the tick
+    /// (`θ(t) = angle + velocity · t`). A motion set once carries on: each later tick starts
+    /// where the last one's extrapolation ended, with the same velocity, until it is set again
+    /// (between a simulator's joint-state messages: linear extrapolation). Returns false,
+    /// changing nothing, for a joint that is not driven, an unknown index or a non-finite value.
+    pub fn set_joint_motion(&mut self, index: usize, angle_rad: f64, velocity_rad_s: f64) -> bool {
+        if !self.driven.contains(&index) || !(angle_rad.is_finite() && velocity_rad_s.is_finite()) {
+            return false;
+        }
+        let inputs = self.sim.inputs_mut();
+        inputs.joint_angle[index] = angle_rad;
+        inputs.joint_velocity[index] = velocity_rad_s;
+        true
+    }
+    /// The muscles' net torque `Σ_i r_ij F_SE,i` on each driven joint after the last tick, N m,
+    /// in configuration order of the driven joints (what the robot simulator must apply).
+    pub fn joint_efforts(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.driven.iter().map(|&j| self.state.joints[j].torque)
+    }
     /// Advances one tick. On a failure it returns an error and leaves the state as it was; call
     /// `reset`.
     pub fn step(&mut self) -> Result<(), StepError> {
@@ -105,10 +140,12 @@ impl Actuator {
         self.sim.fill_snapshot(&mut self.state);
         Ok(())
     }
-    /// Back to the initial state (inputs zeroed, tick 0).
+    /// Back to the initial state (inputs zeroed, driven joints at their initial angles and at
+    /// rest, tick 0).
     pub fn reset(&mut self) {
         let mut inputs = self.sim.inputs().clone();
         inputs.clear();
+        initial_joint_motion(&self.config, &mut inputs);
         self.sim.reset_with(&inputs);
         self.sim.fill_snapshot(&mut self.state);
     }
@@ -123,5 +160,13 @@ impl Actuator {
     /// Joint states after the last tick, in configuration order.
     pub fn joints(&self) -> &[JointSnapshot] {
         &self.state.joints
+    }
+}
+
+/// The driven joints' motion before any is set: their initial angles, at rest.
+fn initial_joint_motion(config: &ActuatorConfig, inputs: &mut Inputs) {
+    for (k, j) in config.joints.iter().enumerate() {
+        inputs.joint_angle[k] = j.initial_angle;
+        inputs.joint_velocity[k] = 0.0;
     }
 }

@@ -6,6 +6,8 @@
 //!   and `∂ω_j'/∂l_m,i = r_ij (-k_SE,i) / I_j` (the tendon force falls as the fibre lengthens).
 //! - Muscle rows: only the fibre acceleration sees the joints, through the tendon:
 //!   `∂v_i'/∂θ_k = k_SE,i (-r_ik) / M_i`.
+//! - A driven joint (docs/model.md §8c): `θ_j' = ω_j`, `ω_j' = 0`; its ω row is zero, so the
+//!   muscles still see its angle but do not feed back into it.
 //! - A muscle's own block: forward differences of its equations alone, its path held (so the
 //!   tendon force follows the fibre length), a few evaluations of one muscle each.
 //!
@@ -58,8 +60,11 @@ pub fn eval_jacobian(
     let core = &mut jac.core;
     core.fill(0.0);
     for (j, p) in plant.joints.iter().enumerate() {
-        let (d_theta, d_omega) = joint::limit_torque_slopes(p, y[2 * j], y[2 * j + 1]);
         core[2 * j * nc + 2 * j + 1] = 1.0;
+        if p.driven {
+            continue;
+        }
+        let (d_theta, d_omega) = joint::limit_torque_slopes(p, y[2 * j], y[2 * j + 1]);
         core[(2 * j + 1) * nc + 2 * j + 1] = (-p.damping + d_omega) / p.inertia;
         core[(2 * j + 1) * nc + 2 * j] = d_theta / p.inertia;
     }
@@ -85,13 +90,16 @@ pub fn eval_jacobian(
                 let (j, theta) = (s.joint, y[2 * s.joint]);
                 let inertia = plant.joints[j].inertia;
                 let r = s.moment_arm.at(theta);
+                leaf.from_core.push((1, 2 * j, k_se * -r / mtu.params.mass));
+                if plant.joints[j].driven {
+                    continue;
+                }
                 core[(2 * j + 1) * nc + 2 * j] += s.moment_arm.slope(theta) * f_se / inertia;
                 for s2 in spans {
                     let r2 = s2.moment_arm.at(y[2 * s2.joint]);
                     core[(2 * j + 1) * nc + 2 * s2.joint] += r * k_se * -r2 / inertia;
                 }
                 leaf.to_core.push((2 * j + 1, 0, r * -k_se / inertia));
-                leaf.from_core.push((1, 2 * j, k_se * -r / mtu.params.mass));
             }
         }
         // The muscle's own block by forward differences.

@@ -134,7 +134,8 @@ impl Part {
         }
     }
 
-    /// Takes this part's state, activations and inputs from the whole.
+    /// Takes this part's state, activations and inputs from the whole; its driven joints start
+    /// the tick at their input motion.
     pub fn gather(&mut self, y: &[f64], activation: &[f64], inputs: &Inputs) {
         for (local, &global) in self.y.iter_mut().zip(&self.state_map) {
             *local = y[global];
@@ -146,7 +147,10 @@ impl Part {
         }
         for (k, &j) in self.joints.iter().enumerate() {
             self.inputs.external_torque[k] = inputs.external_torque[j];
+            self.inputs.joint_angle[k] = inputs.joint_angle[j];
+            self.inputs.joint_velocity[k] = inputs.joint_velocity[j];
         }
+        self.plant.set_driven_motion(&self.inputs, &mut self.y);
     }
 
     /// Gives this part's state and its activations at the tick's end back to the whole.

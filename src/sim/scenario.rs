@@ -33,6 +33,9 @@ pub enum SetupKind {
     Clamped,
     /// The first muscle, its tendon pulled by a scheduled force.
     Force,
+    /// The limb of the configuration with some joints driven: each joint named by a
+    /// `joint_angle` input (and each the configuration marks `driven`) follows its schedule.
+    Driven,
 }
 
 /// Which input a schedule drives.
@@ -45,6 +48,8 @@ pub enum Signal {
     TendonForce,
     /// The external torque on a joint, N m.
     ExternalTorque,
+    /// A driven joint's angle, rad; its velocity is the schedule's derivative.
+    JointAngle,
 }
 
 /// One scheduled input; schedules on the same input add up.
@@ -55,7 +60,7 @@ pub struct ScheduledInput {
     /// The muscle, for excitations (default: the first).
     #[serde(default)]
     pub muscle: Option<String>,
-    /// The joint, for external torques (default: the first).
+    /// The joint, for external torques and joint angles (default: the first).
     #[serde(default)]
     pub joint: Option<String>,
     /// The schedule.
@@ -245,9 +250,14 @@ impl Scenario {
                 .check()
                 .map_err(|e| format!("input[{i}]: {e}"))?;
             let allowed = match self.attachment {
-                SetupKind::Joint => input.signal != Signal::TendonForce,
+                SetupKind::Joint => {
+                    !matches!(input.signal, Signal::TendonForce | Signal::JointAngle)
+                }
+                SetupKind::Driven => input.signal != Signal::TendonForce,
                 SetupKind::Clamped => input.signal == Signal::Excitation,
-                SetupKind::Force => input.signal != Signal::ExternalTorque,
+                SetupKind::Force => {
+                    !matches!(input.signal, Signal::ExternalTorque | Signal::JointAngle)
+                }
             };
             if !allowed {
                 return Err(format!(
@@ -316,7 +326,7 @@ impl Scenario {
                 }),
             };
             let idx = match input.signal {
-                Signal::ExternalTorque => {
+                Signal::ExternalTorque | Signal::JointAngle => {
                     if joint_names.is_empty() {
                         return Err(format!("input[{i}]: this scenario has no joint"));
                     }
@@ -326,9 +336,17 @@ impl Scenario {
             };
             muscle_index.push(idx);
         }
+        self.check_driven(&topology, &muscle_index)?;
         let plant = Plant::new(&topology, model)?;
         let mut initial = Inputs::zeros(plant.muscle_count(), plant.joint_count());
         initial.tendon_force.fill(self.initial_force);
+        // Driven joints start at rest where their schedules start.
+        for (input, &k) in self.inputs.iter().zip(&muscle_index) {
+            if input.signal == Signal::JointAngle {
+                initial.joint_angle[k] += input.schedule.value(0.0);
+                initial.joint_velocity[k] += input.schedule.slope(0.0);
+            }
+        }
         let sim = Simulation::new(plant, rate_hz, stepping, initial.clone())?;
         let mut runner = ScenarioRunner {
             scenario: self.clone(),
@@ -372,11 +390,60 @@ impl Scenario {
         Ok(())
     }
 
+    /// Every driven joint has a `joint_angle` schedule and no external torque (the attachment
+    /// `joint` has no driven joint); `index` is each input's muscle or joint.
+    fn check_driven(&self, topology: &Topology, index: &[usize]) -> Result<(), String> {
+        for (j, joint) in topology.joints.iter().enumerate() {
+            let scheduled = |signal| {
+                (self.inputs.iter().zip(index)).any(|(i, &k)| i.signal == signal && k == j)
+            };
+            if joint.driven && !scheduled(Signal::JointAngle) {
+                return Err(format!(
+                    "joint {:?} is driven: the scenario needs attachment = \"driven\" and a \
+                     joint_angle input for it",
+                    crate::config::excerpt(&joint.name)
+                ));
+            }
+            if joint.driven && scheduled(Signal::ExternalTorque) {
+                return Err(format!(
+                    "joint {:?} is driven: an external torque on it has no effect",
+                    crate::config::excerpt(&joint.name)
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The configuration's limb as this scenario runs it: with attachment `driven`, every joint
+    /// named by a `joint_angle` input is driven (as well as those the configuration marks).
+    pub fn limb_config(&self, config: &ActuatorConfig) -> ActuatorConfig {
+        let mut limb = config.clone();
+        if self.attachment == SetupKind::Driven {
+            for input in self
+                .inputs
+                .iter()
+                .filter(|i| i.signal == Signal::JointAngle)
+            {
+                let name = input
+                    .joint
+                    .as_ref()
+                    .or(limb.joints.first().map(|j| &j.name));
+                if let Some(name) = name.cloned() {
+                    if let Some(j) = limb.joints.iter_mut().find(|j| j.name == name) {
+                        j.driven = true;
+                    }
+                }
+            }
+        }
+        limb
+    }
+
     /// The topology this scenario runs: the configuration's limb, or its first muscle alone.
     pub fn topology(&self, config: &ActuatorConfig) -> Topology {
         let first = &config.muscles[0];
         match self.attachment {
             SetupKind::Joint => config.topology(),
+            SetupKind::Driven => self.limb_config(config).topology(),
             SetupKind::Clamped => Topology::clamped(
                 &first.name,
                 first.params.clone(),
@@ -415,6 +482,10 @@ impl ScenarioRunner {
                     inputs.tendon_force[k] += v
                 }
                 Signal::ExternalTorque => inputs.external_torque[k] += v,
+                Signal::JointAngle => {
+                    inputs.joint_angle[k] += v;
+                    inputs.joint_velocity[k] += input.schedule.slope(t);
+                }
             }
         }
         if !tendon_force_scheduled {

@@ -126,6 +126,40 @@ impl Schedule {
         }
     }
 
+    /// The value's rate of change at time t, per s: the analytic derivative, from the right
+    /// where the schedule has a corner (the slope of the piece that starts at t); zero across
+    /// the jumps of `step` and `pulse` (a jump is a jump, not a velocity).
+    pub fn slope(&self, t: f64) -> f64 {
+        match self {
+            Schedule::Constant { .. } | Schedule::Step { .. } | Schedule::Pulse { .. } => 0.0,
+            Schedule::Ramp {
+                start,
+                end,
+                from,
+                to,
+            } => {
+                if t >= *start && t < *end {
+                    (to - from) / (end - start)
+                } else {
+                    0.0
+                }
+            }
+            Schedule::Sine {
+                amplitude,
+                frequency,
+                phase,
+                ..
+            } => {
+                let w = 2.0 * std::f64::consts::PI * frequency;
+                amplitude * w * (w * t + phase).cos()
+            }
+            Schedule::Piecewise { points } => points
+                .windows(2)
+                .find(|w| t >= w[0][0] && t < w[1][0])
+                .map_or(0.0, |w| (w[1][1] - w[0][1]) / (w[1][0] - w[0][0])),
+        }
+    }
+
     /// The first problem with the schedule's numbers, if any.
     pub fn check(&self) -> Result<(), String> {
         let finite = |name: &str, v: f64| {

@@ -119,6 +119,8 @@ impl Simulation {
         if inputs.excitation.len() != m
             || inputs.tendon_force.len() != m
             || inputs.external_torque.len() != j
+            || inputs.joint_angle.len() != j
+            || inputs.joint_velocity.len() != j
         {
             return Err(format!(
                 "inputs for {} muscles and {} joints given to a plant of {m} muscles and {j} joints",
@@ -235,6 +237,11 @@ impl Simulation {
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
         }
+        // A driven joint shared by several parts: each integrated θ' = ω0 with its own
+        // sub-steps; the state holds the rule's value, whatever the rounding.
+        self.plant
+            .set_driven_motion_after(&self.inputs, dt, &mut self.y);
+        self.plant.carry_driven_motion(&self.y, &mut self.inputs);
         self.tick += 1;
         Ok(())
     }
