@@ -116,6 +116,8 @@ pub(crate) struct EndpointNames {
     pub(crate) joint_states: String,
     pub(crate) reset: String,
     pub(crate) step: String,
+    /// `~/joint_states_in` and `~/joint_efforts`, with driven joints.
+    pub(crate) driven: Option<(String, String)>,
 }
 
 /// The node's topics and service.
@@ -134,6 +136,9 @@ pub(crate) struct Endpoints {
     pub(crate) step_topic: Subscription<Int64>,
     /// `/clock`, with a simulated clock.
     pub(crate) clock: Option<Publisher<Clock>>,
+    /// With driven joints: their motion in, the muscles' torque on them out.
+    pub(crate) joint_states_in: Option<Subscription<JointState>>,
+    pub(crate) joint_efforts: Option<Publisher<Float64MultiArray>>,
     pub(crate) names: EndpointNames,
 }
 
@@ -236,6 +241,7 @@ impl Endpoints {
         setup: &Setup,
         muscles: &[String],
         simulated_clock: bool,
+        driven_joints: bool,
         logger: &Logger,
     ) -> Result<Self, String> {
         let mut m = Maker {
@@ -271,6 +277,15 @@ impl Endpoints {
         let (reset, reset_name) = m.serve("~/reset", ("std_srvs", "Trigger"))?;
         let (step, step_name) = m.serve("~/step", (OURS, "Step"))?;
         let (step_topic, _) = m.subscribe("~/step", ("std_msgs", "Int64"))?;
+        let (joint_states_in, joint_efforts, driven_names) = if driven_joints {
+            let (sub, sub_name) =
+                m.subscribe("~/joint_states_in", ("sensor_msgs", "JointState"))?;
+            let (publ, pub_name) =
+                m.publish("~/joint_efforts", ("std_msgs", "Float64MultiArray"))?;
+            (Some(sub), Some(publ), Some((sub_name, pub_name)))
+        } else {
+            (None, None, None)
+        };
         let clock = if simulated_clock {
             Some(
                 m.publish_with("/clock", ("rosgraph_msgs", "Clock"), qos_clock())?
@@ -291,6 +306,8 @@ impl Endpoints {
             step,
             step_topic,
             clock,
+            joint_states_in,
+            joint_efforts,
             names: EndpointNames {
                 activation: activation_name,
                 activation_array: activation_array_name,
@@ -300,6 +317,7 @@ impl Endpoints {
                 joint_states: joint_states_name,
                 reset: reset_name,
                 step: step_name,
+                driven: driven_names,
             },
         })
     }

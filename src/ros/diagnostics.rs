@@ -35,6 +35,8 @@ pub struct InputStats {
     pub rejected_duplicate_name: AtomicU64,
     pub rejected_empty: AtomicU64,
     pub malformed: AtomicU64,
+    /// Joint states (driven joints) refused.
+    pub joint_states_rejected: AtomicU64,
     pub last_problem: Mutex<String>,
 }
 
@@ -52,6 +54,7 @@ impl InputStats {
     pub(crate) fn total_rejected(&self) -> u64 {
         self.activation_rejected.load(Ordering::Relaxed)
             + self.load_rejected.load(Ordering::Relaxed)
+            + self.joint_states_rejected.load(Ordering::Relaxed)
     }
 }
 
@@ -100,6 +103,9 @@ pub(crate) fn diagnostics(
         ticks,
     };
     let rate = stats.rate_hz();
+    let driven = ld(&stats.driven_joints);
+    let motion_age = ld(&stats.joint_motion_age_ticks);
+    let stale = driven > 0 && motion_age > params.joint_state_timeout_ticks.max(1) as u64;
     let (level, message) = if idle && !stalled {
         (
             DiagnosticStatus::OK,
@@ -115,6 +121,18 @@ pub(crate) fn diagnostics(
                 "tick loop stalled: no tick in the last period (at tick {})",
                 ld(&stats.current_tick)
             ),
+        )
+    } else if stale {
+        (
+            DiagnosticStatus::WARN,
+            if motion_age == u64::MAX {
+                format!(
+                    "driven joints: no JointState on ~/joint_states_in yet (at tick {})",
+                    ld(&stats.current_tick)
+                )
+            } else {
+                format!("driven joints: no JointState for {motion_age} ticks (their motion is extrapolated)")
+            },
         )
     } else if new_failures > 0 {
         (
@@ -138,6 +156,15 @@ pub(crate) fn diagnostics(
             kv("model", params.model.name()),
             kv("rate_hz", rate),
             kv("clock", clock.name()),
+            kv("driven_joints", driven),
+            kv(
+                "joint_state_age_ticks",
+                if motion_age == u64::MAX {
+                    "none yet".to_string()
+                } else {
+                    motion_age.to_string()
+                },
+            ),
             kv(
                 "realtime_priority",
                 stats.realtime.load(Ordering::Relaxed).to_string(),
@@ -208,6 +235,7 @@ pub(crate) fn diagnostics(
             kv("clamped_commands", ld(&inputs.clamped_commands)),
             kv("clamped_values", ld(&inputs.clamped_values)),
             kv("malformed", ld(&inputs.malformed)),
+            kv("joint_states_rejected", ld(&inputs.joint_states_rejected)),
             kv("last_problem", last),
         ],
     };

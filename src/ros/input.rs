@@ -144,6 +144,52 @@ pub fn validate_load(
     })
 }
 
+/// A `JointState` for the driven joints, checked: `(joint index, angle rad, velocity rad/s)` for
+/// each driven joint it names, in the message's order. `driven` is (joint index, name) of every
+/// driven joint. Other joints in the message (a robot simulator publishes all of its own) are
+/// ignored; `Ok(vec![])` when it names none of the driven joints. Refused whole: arrays whose
+/// lengths do not match the names (`velocity` may be empty: 0 rad/s), a name twice, a non-finite
+/// angle or velocity of a driven joint.
+pub fn validate_joint_motion(
+    names: &[String],
+    position: &[f64],
+    velocity: &[f64],
+    driven: &[(usize, String)],
+) -> Result<Vec<(usize, f64, f64)>, Rejection> {
+    if position.len() != names.len() {
+        return Err(Rejection::LengthMismatch {
+            names: names.len(),
+            values: position.len(),
+        });
+    }
+    if !velocity.is_empty() && velocity.len() != names.len() {
+        return Err(Rejection::LengthMismatch {
+            names: names.len(),
+            values: velocity.len(),
+        });
+    }
+    let mut out = Vec::new();
+    for (k, name) in names.iter().enumerate() {
+        if names[..k].contains(name) {
+            return Err(Rejection::DuplicateName(quote(name)));
+        }
+        let Some((j, _)) = driven.iter().find(|(_, n)| n == name) else {
+            continue;
+        };
+        let (angle, speed) = (position[k], velocity.get(k).copied().unwrap_or(0.0));
+        for v in [angle, speed] {
+            if !v.is_finite() {
+                return Err(Rejection::NonFinite {
+                    name: quote(name),
+                    value: v,
+                });
+            }
+        }
+        out.push((*j, angle, speed));
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -206,5 +252,60 @@ mod tests {
         assert_eq!(ok.values, vec![(0, -3.0)]);
         assert!(validate_load(&s(&["knee"]), &[1.0], &known).is_err());
         assert!(validate_load(&s(&["elbow"]), &[f64::NEG_INFINITY], &known).is_err());
+    }
+
+    #[test]
+    fn joint_states_for_driven_joints() {
+        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let driven = vec![(1, "elbow".to_string())];
+        // Other joints are ignored; the driven one is taken by name.
+        let ok = validate_joint_motion(
+            &names(&["shoulder", "elbow"]),
+            &[0.3, -0.2],
+            &[1.0, 2.0],
+            &driven,
+        )
+        .unwrap();
+        assert_eq!(ok, vec![(1, -0.2, 2.0)]);
+        // No velocity: at rest.
+        let ok = validate_joint_motion(&names(&["elbow"]), &[0.1], &[], &driven).unwrap();
+        assert_eq!(ok, vec![(1, 0.1, 0.0)]);
+        // None of ours: nothing.
+        assert!(
+            validate_joint_motion(&names(&["knee"]), &[0.1], &[0.0], &driven)
+                .unwrap()
+                .is_empty()
+        );
+        for (n, p, v, kind) in [
+            (names(&["elbow"]), vec![f64::NAN], vec![0.0], "non_finite"),
+            (
+                names(&["elbow"]),
+                vec![0.0],
+                vec![f64::INFINITY],
+                "non_finite",
+            ),
+            (names(&["elbow", "x"]), vec![0.0], vec![], "length_mismatch"),
+            (
+                names(&["elbow"]),
+                vec![0.0],
+                vec![1.0, 2.0],
+                "length_mismatch",
+            ),
+            (
+                names(&["elbow", "elbow"]),
+                vec![0.0, 0.1],
+                vec![],
+                "duplicate_name",
+            ),
+        ] {
+            assert_eq!(
+                validate_joint_motion(&n, &p, &v, &driven)
+                    .unwrap_err()
+                    .kind(),
+                kind
+            );
+        }
+        // A NaN on a joint that is not driven is not ours to judge.
+        assert!(validate_joint_motion(&names(&["knee"]), &[f64::NAN], &[], &driven).is_ok());
     }
 }

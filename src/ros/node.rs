@@ -48,6 +48,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         &setup,
         actuator.muscle_names(),
         clock.mode().is_simulated(),
+        !actuator.driven_joints().is_empty(),
         &logger,
     )?;
     let spinner = node
@@ -77,6 +78,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         state: endpoints.state,
         joint_states: endpoints.joint_states,
         clock: endpoints.clock,
+        efforts: endpoints.joint_efforts,
         rec: rec.clone(),
         tick_origin_ns,
         pacing: Pacing {
@@ -132,6 +134,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             _ = tasks::activation_array(&endpoints.activation_array, &cx).fuse() => {},
             _ = tasks::muscle_commands(&endpoints.muscle_commands, &cx).fuse() => {},
             _ = tasks::load(&endpoints.load, &cx).fuse() => {},
+            _ = joint_states_in(endpoints.joint_states_in.as_ref(), &cx).fuse() => {},
             _ = tasks::step_topic(&endpoints.step_topic, &cx, mode).fuse() => {},
             _ = tasks::step(&endpoints.step, &shared, mode, &log).fuse() => {},
             _ = tasks::reset(&endpoints.reset, &shared, &log).fuse() => {},
@@ -155,6 +158,17 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     }
     signals.close();
     Ok(())
+}
+
+/// `~/joint_states_in` when there are driven joints; otherwise nothing, for ever.
+async fn joint_states_in(
+    sub: Option<&ros2_client::Subscription<crate::msgs::JointState>>,
+    cx: &InputContext<'_>,
+) {
+    match sub {
+        Some(s) => tasks::joint_states_in(s, cx).await,
+        None => futures::future::pending().await,
+    }
 }
 
 /// The node's logger: stderr and `/rosout` as the ROS arguments say.
@@ -189,6 +203,7 @@ fn start_recording(
         load: &names.load,
         activation_array: &names.activation_array,
         muscle_commands: &names.muscle_commands,
+        driven: names.driven.as_ref().map(|(a, b)| (a.as_str(), b.as_str())),
     };
     match record::start(
         &setup.params,

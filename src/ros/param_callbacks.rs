@@ -17,6 +17,8 @@ use std::time::Duration;
 struct Names {
     muscles: Vec<String>,
     joints: Vec<String>,
+    /// (index, name) of the driven joints.
+    driven: Vec<(usize, String)>,
 }
 
 impl Names {
@@ -24,6 +26,11 @@ impl Names {
         Self {
             muscles: a.muscle_names().to_vec(),
             joints: a.joint_names().to_vec(),
+            driven: a
+                .driven_joints()
+                .iter()
+                .map(|&j| (j, a.joint_names()[j].clone()))
+                .collect(),
         }
     }
 }
@@ -97,6 +104,13 @@ impl Shared {
         self.names
             .read()
             .map(|n| n.joints.clone())
+            .unwrap_or_default()
+    }
+    /// The driven joints now: (index, name).
+    pub(crate) fn driven(&self) -> Vec<(usize, String)> {
+        self.names
+            .read()
+            .map(|n| n.driven.clone())
             .unwrap_or_default()
     }
 }

@@ -16,8 +16,9 @@ pub const RECORD_DIR: &str = "record_dir";
 pub const CLOCK: &str = "clock";
 pub const REAL_TIME_FACTOR: &str = "real_time_factor";
 pub const CLOCK_RATE_HZ: &str = "clock_rate_hz";
+pub const JOINT_STATE_TIMEOUT_TICKS: &str = "joint_state_timeout_ticks";
 /// All of them, in the order they are declared.
-pub const ALL: [&str; 9] = [
+pub const ALL: [&str; 10] = [
     MODEL,
     RATE_HZ,
     PUBLISH_RATE_HZ,
@@ -27,6 +28,7 @@ pub const ALL: [&str; 9] = [
     CLOCK,
     REAL_TIME_FACTOR,
     CLOCK_RATE_HZ,
+    JOINT_STATE_TIMEOUT_TICKS,
 ];
 /// Highest `real_time_factor` (beyond it, 0 = as fast as possible is the honest value).
 pub const MAX_REAL_TIME_FACTOR: f64 = 1e6;
@@ -59,6 +61,8 @@ pub struct NodeParams {
     pub real_time_factor: f64,
     /// `sim`, `lockstep`: `/clock` messages per simulated second; 0 = every tick.
     pub clock_rate_hz: f64,
+    /// Driven joints: ticks without a `JointState` after which their input is reported stale.
+    pub joint_state_timeout_ticks: i64,
 }
 
 impl Default for NodeParams {
@@ -73,6 +77,7 @@ impl Default for NodeParams {
             clock: ClockMode::Wall,
             real_time_factor: 0.0,
             clock_rate_hz: 100.0,
+            joint_state_timeout_ticks: 100,
         }
     }
 }
@@ -90,6 +95,7 @@ impl NodeParams {
             CLOCK => ParameterValue::String(self.clock.name().into()),
             REAL_TIME_FACTOR => ParameterValue::Double(self.real_time_factor),
             CLOCK_RATE_HZ => ParameterValue::Double(self.clock_rate_hz),
+            JOINT_STATE_TIMEOUT_TICKS => ParameterValue::Integer(self.joint_state_timeout_ticks),
             _ => return None,
         })
     }
@@ -194,6 +200,15 @@ impl NodeParams {
                 }
                 self.clock_rate_hz = r;
             }
+            JOINT_STATE_TIMEOUT_TICKS => match value {
+                ParameterValue::Integer(n) if *n >= 1 => self.joint_state_timeout_ticks = *n,
+                other => {
+                    return Err(format!(
+                        "parameter \"joint_state_timeout_ticks\" must be an integer >= 1, got {}",
+                        describe(other)
+                    ))
+                }
+            },
             other => {
                 return Err(format!(
                     "unknown parameter {:?} (known: {})",
@@ -290,7 +305,21 @@ mod tests {
         assert_eq!(publish_every(1000.0, 0.0), 1);
         assert_eq!(publish_every(1000.0, 100.0), 10);
         assert_eq!(publish_every(1000.0, 2000.0), 1);
-        assert_eq!(p.values().len(), 9);
+        assert_eq!(p.values().len(), 10);
+        assert!(p
+            .set(
+                JOINT_STATE_TIMEOUT_TICKS,
+                &ParameterValue::Integer(0),
+                false
+            )
+            .is_err());
+        assert!(p
+            .set(
+                JOINT_STATE_TIMEOUT_TICKS,
+                &ParameterValue::Double(5.0),
+                false
+            )
+            .is_err());
         assert!(p
             .set(CLOCK, &ParameterValue::String("lockstep".into()), false)
             .is_ok());

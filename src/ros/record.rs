@@ -30,6 +30,8 @@ pub struct Topics<'a> {
     pub load: &'a str,
     pub activation_array: &'a str,
     pub muscle_commands: &'a [String],
+    /// `~/joint_states_in` and `~/joint_efforts`, with driven joints.
+    pub driven: Option<(&'a str, &'a str)>,
 }
 
 /// Where the node's threads hand messages for the recording: the recorder's sender and the
@@ -151,6 +153,10 @@ pub fn start(
     )?;
     for (k, t) in topics.muscle_commands.iter().enumerate() {
         layout.add(Channel::MuscleCommand(k), t, FLOAT64_TYPE)?;
+    }
+    if let Some((joint_states_in, efforts)) = topics.driven {
+        layout.add(Channel::JointStatesIn, joint_states_in, JOINT_STATE_TYPE)?;
+        layout.add(Channel::JointEfforts, efforts, FLOAT64_ARRAY_TYPE)?;
     }
     let recorder = Recorder::start(
         &file_path(p, fqn, start_ns),

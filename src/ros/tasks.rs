@@ -13,7 +13,8 @@ use super::threads::sample_to_msgs;
 use super::tick::{Command, Event, Sample, TickStats};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::msgs::{
-    Float64, Float64MultiArray, Int64, StepRequest, StepResponse, TriggerRequest, TriggerResponse,
+    Float64, Float64MultiArray, Int64, JointState, StepRequest, StepResponse, TriggerRequest,
+    TriggerResponse,
 };
 use crate::runs::{self, Channel};
 use futures::{FutureExt, StreamExt};
@@ -192,6 +193,39 @@ pub(crate) async fn load(sub: &Subscription<ExternalLoad>, cx: &InputContext<'_>
                 &cx.stats.load_rejected,
                 &rej,
                 format!("external load rejected: {rej}"),
+            ),
+        }
+    })
+    .await
+}
+
+/// `~/joint_states_in` (`sensor_msgs/JointState`): the driven joints' angle and velocity, by
+/// name, from the simulator that owns them; they take effect at the next tick and are
+/// extrapolated linearly until the next message.
+pub(crate) async fn joint_states_in(sub: &Subscription<JointState>, cx: &InputContext<'_>) {
+    let received = AtomicU64::new(0);
+    cx.each(sub, "joint state", &received, |msg| {
+        cx.record(Channel::JointStatesIn, msg.header.stamp.to_nanos(), &msg);
+        let driven = cx.shared.driven();
+        match input::validate_joint_motion(&msg.name, &msg.position, &msg.velocity, &driven) {
+            Ok(motion) if motion.is_empty() => cx.problem(
+                "joint_state_unmatched",
+                format!(
+                    "joint state ignored: it names none of the driven joints ({})",
+                    crate::config::excerpt(
+                        &driven
+                            .iter()
+                            .map(|(_, n)| n.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )
+                ),
+            ),
+            Ok(motion) => cx.shared.send(Command::JointMotion(motion)),
+            Err(rej) => cx.rejected(
+                &cx.stats.joint_states_rejected,
+                &rej,
+                format!("joint state rejected: {rej}"),
             ),
         }
     })

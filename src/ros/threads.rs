@@ -8,7 +8,7 @@ use super::tick::{
     self, Applied, CommandReceiver, Event, LoopIo, Output, Pacing, RunSummary, Sample, TickStats,
 };
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
-use crate::msgs::{state_messages, Clock, JointState};
+use crate::msgs::{state_messages, Clock, Float64MultiArray, JointState, MultiArrayLayout};
 use crate::runs::Channel;
 use crate::sim::Actuator;
 use ros2_client::builtin_interfaces::Time;
@@ -40,12 +40,23 @@ pub(crate) fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {
     )
 }
 
+/// `~/joint_efforts`: the muscles' net torque on each driven joint, N m, in configuration
+/// order (ros2_control's `forward_command_controller` convention).
+pub(crate) fn efforts_msg(s: &Sample) -> Float64MultiArray {
+    Float64MultiArray {
+        layout: MultiArrayLayout::default(),
+        data: s.driven.iter().map(|&j| s.state.joints[j].torque).collect(),
+    }
+}
+
 /// Where the publisher thread sends what the tick loop hands over.
 struct Outlets {
     state: Publisher<ActuatorState>,
     joint_states: Publisher<JointState>,
     /// `/clock`, with a simulated clock.
     clock: Option<Publisher<Clock>>,
+    /// `~/joint_efforts`, with driven joints.
+    efforts: Option<Publisher<Float64MultiArray>>,
     errors: Arc<AtomicU64>,
     rec: Option<RecordTx>,
 }
@@ -68,6 +79,13 @@ fn publish_loop(rx: Receiver<Output>, out: Outlets) {
                 }
                 failed(out.state.publish(state).is_ok());
                 failed(out.joint_states.publish(js).is_ok());
+                if let (Some(p), false) = (&out.efforts, s.driven.is_empty()) {
+                    let efforts = efforts_msg(&s);
+                    if let Some(r) = &out.rec {
+                        r.put(Channel::JointEfforts, s.stamp_ns, &efforts);
+                    }
+                    failed(p.publish(efforts).is_ok());
+                }
             }
             Output::Clock(ns) => {
                 if let Some(p) = &out.clock {
@@ -91,6 +109,7 @@ pub(crate) struct ThreadInputs {
     pub(crate) state: Publisher<ActuatorState>,
     pub(crate) joint_states: Publisher<JointState>,
     pub(crate) clock: Option<Publisher<Clock>>,
+    pub(crate) efforts: Option<Publisher<Float64MultiArray>>,
     pub(crate) rec: Option<RecordTx>,
     /// The stamp of tick 0, ns (since the Unix epoch for the wall clock).
     pub(crate) tick_origin_ns: i64,
@@ -131,6 +150,7 @@ impl Threads {
             state: t.state,
             joint_states: t.joint_states,
             clock: t.clock,
+            efforts: t.efforts,
             errors: publish_errors.clone(),
             rec: t.rec.clone(),
         };

@@ -32,6 +32,9 @@ pub enum Command {
     Replace(Box<Actuator>),
     /// Publish every `n`th tick.
     PublishEvery(u64),
+    /// Driven joints' motion: (joint index, angle rad, velocity rad/s), extrapolated linearly
+    /// until the next one.
+    JointMotion(Vec<(usize, f64, f64)>),
     /// `sim`: simulated seconds per wall-clock second (0 = as fast as possible).
     RealTimeFactor(f64),
     /// `sim`, `lockstep`: publish `/clock` every `n`th tick.
@@ -65,6 +68,8 @@ pub struct Sample {
     pub model: ModelKind,
     pub muscle_names: Arc<[String]>,
     pub joint_names: Arc<[String]>,
+    /// The driven joints (indices, configuration order): their efforts go on `~/joint_efforts`.
+    pub driven: Arc<[usize]>,
     /// Everything observable after the tick.
     pub state: StateSnapshot,
 }
@@ -138,6 +143,10 @@ pub struct TickStats {
     pub rate_hz_bits: AtomicU64,
     /// Mean step cost over the last second, ns (f64 bits).
     pub window_step_ns: AtomicU64,
+    /// Driven joints in the actuator.
+    pub driven_joints: AtomicU64,
+    /// Ticks since a driven joint's motion last arrived (u64::MAX: none yet).
+    pub joint_motion_age_ticks: AtomicU64,
 }
 
 impl TickStats {
@@ -350,6 +359,11 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         VecDeque::with_capacity(CONTROL_RESERVE);
     let mut muscle_names: Arc<[String]> = actuator.muscle_names().into();
     let mut joint_names: Arc<[String]> = actuator.joint_names().into();
+    let mut driven: Arc<[usize]> = actuator.driven_joints().into();
+    let mut motion_age: u64 = u64::MAX;
+    io.stats
+        .driven_joints
+        .store(driven.len() as u64, Ordering::Relaxed);
     let mut excitation = vec![0.0; muscle_names.len()];
     let mut load = vec![0.0; joint_names.len()];
 
@@ -436,6 +450,11 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     actuator = *new;
                     muscle_names = actuator.muscle_names().into();
                     joint_names = actuator.joint_names().into();
+                    driven = actuator.driven_joints().into();
+                    motion_age = u64::MAX;
+                    io.stats
+                        .driven_joints
+                        .store(driven.len() as u64, Ordering::Relaxed);
                     excitation.resize(muscle_names.len(), 0.0);
                     load.resize(joint_names.len(), 0.0);
                     for (i, u) in excitation.iter().enumerate() {
@@ -462,6 +481,12 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     });
                 }
                 Command::PublishEvery(k) => publish_every = k.max(1),
+                Command::JointMotion(v) => {
+                    for &(j, angle, velocity) in &v {
+                        actuator.set_joint_motion(j, angle, velocity);
+                    }
+                    motion_age = 0;
+                }
                 Command::RealTimeFactor(f) => {
                     real_time_factor = f;
                     origin = Instant::now();
@@ -515,8 +540,13 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             model: actuator.model(),
             muscle_names: muscle_names.clone(),
             joint_names: joint_names.clone(),
+            driven: driven.clone(),
             state: actuator.state().clone(),
         };
+        motion_age = motion_age.saturating_add(1);
+        io.stats
+            .joint_motion_age_ticks
+            .store(motion_age, Ordering::Relaxed);
         let hand = |o: Output| match io.samples.try_send(o) {
             Ok(()) => {}
             Err(TrySendError::Full(_)) => {

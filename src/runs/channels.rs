@@ -49,6 +49,10 @@ pub enum Channel {
     ActivationArray,
     /// `~/<muscle>/cmd_activation` as received: the k-th muscle topic the node opened.
     MuscleCommand(usize),
+    /// `~/joint_states_in` as received: the driven joints' motion.
+    JointStatesIn,
+    /// `~/joint_efforts` as published: the muscles' net torque on each driven joint.
+    JointEfforts,
 }
 
 /// The channels of one recording with their ids (the recorder numbers them in order).
