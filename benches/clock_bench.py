@@ -3,7 +3,8 @@
 
 1. `clock:=sim` as fast as it can: the real-time factor (simulated over wall-clock seconds, read
    from /clock by an rclpy subscriber over DURATION s) for Hill and DM, with ~/state published
-   every tick, every 10 ticks (100 Hz) and practically never, an rclpy subscriber on ~/state;
+   every tick, every 10 ticks (100 Hz) and practically never, an rclpy subscriber on ~/state
+   (reliable, or best effort with --best-effort) counting what it receives;
 2. `clock:=lockstep`: the round trip of `~/step` (1 tick) from an rclpy client, beside the round
    trip of the same service type served by a second rclpy process, in the same run.
 
@@ -28,7 +29,8 @@ from muscle_actuator_msgs.msg import ActuatorState  # noqa: E402
 from muscle_actuator_msgs.srv import Step  # noqa: E402
 from rosgraph_msgs.msg import Clock  # noqa: E402
 
-STATE_QOS = QoSProfile(reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST, depth=10)
+RELIABLE = QoSProfile(reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST, depth=10)
+BEST_EFFORT = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, history=HistoryPolicy.KEEP_LAST, depth=10)
 CLOCK_QOS = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, history=HistoryPolicy.KEEP_LAST, depth=1)
 
 
@@ -89,7 +91,7 @@ def wait(pred, what, timeout=30.0):
         time.sleep(0.01)
 
 
-def sim_rtf(bin_, model, publish, duration):
+def sim_rtf(bin_, model, publish, duration, qos):
     ns = f"/bench_sim_{model}_{str(publish).replace('.', '_')}"
     proc = node(bin_, ns, "clock:=sim", f"model:={model}", f"publish_rate_hz:={publish}")
     peer = Spun("bench_sim_peer")
@@ -99,7 +101,7 @@ def sim_rtf(bin_, model, publish, duration):
     def on_state(_m):
         last["states"] += 1
 
-    peer.node.create_subscription(ActuatorState, f"{ns}/muscle_actuator/state", on_state, STATE_QOS)
+    peer.node.create_subscription(ActuatorState, f"{ns}/muscle_actuator/state", on_state, qos)
     try:
         wait(lambda: last["clock"] is not None, "/clock")
         time.sleep(1.0)
@@ -159,6 +161,8 @@ def main():
     ap.add_argument("--bin", required=True)
     ap.add_argument("--duration", type=float, default=5.0)
     ap.add_argument("--steps", type=int, default=1000)
+    ap.add_argument("--best-effort", action="store_true",
+                    help="subscribe to ~/state best effort (default: reliable, as the node publishes)")
     ap.add_argument("--step-server", action="store_true", help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.step_server:
@@ -166,11 +170,13 @@ def main():
         return
     rclpy.init()
     print(f"load average {os.getloadavg()[0]:.2f}")
-    print("clock:=sim, as fast as possible, an rclpy subscriber on ~/state:")
+    qos = BEST_EFFORT if a.best_effort else RELIABLE
+    print(f"clock:=sim, as fast as possible, an rclpy subscriber on ~/state "
+          f"({'best effort' if a.best_effort else 'reliable'}):")
     print(f"{'model':8} {'~/state':>16} {'real-time factor':>17} {'states/s received':>18}")
     for model in ("hill", "huxley"):
         for label, publish in (("every tick", 0.0), ("100 Hz (1/10)", 100.0), ("none", 0.001)):
-            rtf, sps = sim_rtf(a.bin, model, publish, a.duration)
+            rtf, sps = sim_rtf(a.bin, model, publish, a.duration, qos)
             print(f"{model:8} {label:>16} {rtf:17.1f} {sps:18.0f}")
     ours, theirs = lockstep_rtt(a.bin, a.steps)
     print(f"clock:=lockstep, ~/step of 1 tick (DM), {len(ours)} calls each, interleaved:")
