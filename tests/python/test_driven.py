@@ -12,10 +12,9 @@ import pytest
 from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
-from std_srvs.srv import Trigger
 
 from helpers import ROOT, NodeProcess, reliable, wait_until
-from test_clock import matched, step
+from test_clock import matched, reset, step
 
 AMPLITUDE, FREQUENCY, OFFSET = 0.5, 1.0, 0.1
 TICKS = 300
@@ -105,7 +104,7 @@ def test_efforts_match_simulate_of_the_same_motion(peer, driven, files):
         time.sleep(0.02)
     else:
         raise AssertionError("the node never showed the warm-up joint state")
-    assert peer.call(Trigger, driven.topic("~/reset"), Trigger.Request()).success
+    reset(peer, driven)
     peer.activation(driven.topic("~/activation"), flexor=0.2, extensor=0.1)
     online = {}
     for k in range(TICKS):
