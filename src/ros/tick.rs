@@ -489,8 +489,11 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                 }
                 Command::RealTimeFactor(f) => {
                     real_time_factor = f;
-                    origin = Instant::now();
-                    n = 0;
+                    // Only a simulated clock is paced by it: the wall schedule stays as it is.
+                    if mode == ClockMode::Sim {
+                        origin = Instant::now();
+                        n = 0;
+                    }
                 }
                 Command::ClockEvery(k) => clock_every = k.max(1),
                 Command::Step { ticks, reply } => {
