@@ -400,23 +400,18 @@ fn driven_scenario_names_must_exist_and_fit() {
     assert!(err.contains("JointAngle") && err.contains("Joint"), "{err}");
 }
 
-/// The example scenario runs from the command line (CSV), its recording says `driven` and
-/// `replay` refuses it with the reason.
+/// The example scenario runs from the command line (CSV); its recording says `driven`, holds
+/// the motion as applied at every tick and the motion it started from, and `replay` reproduces
+/// every state bit for bit, for either model.
 #[test]
-fn driven_example_simulates_and_replay_refuses() {
+fn driven_example_simulates_and_replays_bit_for_bit() {
     let dir = temp_dir("driven_cli");
     let example = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/driven_elbow.toml");
     let csv = dir.join("driven.csv");
-    let mcap = dir.join("driven.mcap");
     run_ok(
         bin()
             .args(["simulate", example, "--model", "hill", "--csv"])
             .arg(&csv),
-    );
-    run_ok(
-        bin()
-            .args(["simulate", example, "--model", "hill", "--out"])
-            .arg(&mcap),
     );
     let text = std::fs::read_to_string(&csv).unwrap();
     let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
@@ -428,19 +423,36 @@ fn driven_example_simulates_and_replay_refuses() {
     let want = 0.1 + 0.5 * (w * 0.249).sin() + 0.5 * w * (w * 0.249).cos() * 1e-3;
     let got: f64 = row[pos].parse().unwrap();
     assert!((got - want).abs() < 1e-12, "{got} vs {want}");
-    let run = muscle_actuator::runs::load_run(&mcap).unwrap();
-    assert_eq!(
-        run.meta.attachment,
-        muscle_actuator::runs::AttachmentMeta::Driven
-    );
-    assert!(run.meta.config.joints[0].driven);
-    let o = bin()
-        .arg("replay")
-        .arg(&mcap)
-        .arg("--out")
-        .arg(dir.join("again.mcap"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(stderr(&o).contains("driven joints"), "{}", stderr(&o));
+    for model in ["hill", "huxley"] {
+        let mcap = dir.join(format!("driven_{model}.mcap"));
+        run_ok(
+            bin()
+                .args(["simulate", example, "--model", model, "--out"])
+                .arg(&mcap),
+        );
+        let run = muscle_actuator::runs::load_run(&mcap).unwrap();
+        assert_eq!(
+            run.meta.attachment,
+            muscle_actuator::runs::AttachmentMeta::Driven
+        );
+        assert!(run.meta.config.joints[0].driven);
+        // The sine starts at 0.1 rad moving at 0.5 · 2π rad/s: not the configuration's initial
+        // angle at rest, so a replay that ignored it would differ from tick 0.
+        assert_eq!(run.meta.initial_joint_motion, vec![(0.1, 0.5 * w)]);
+        // 1000 ticks, each with the motion it applied.
+        assert_eq!(run.joint_motions.len(), 1000);
+        let (t, names, angles, _) = &run.joint_motions[250];
+        assert_eq!(
+            (*t, names.as_slice()),
+            (250, ["elbow".to_string()].as_slice())
+        );
+        assert!((angles[0] - (0.1 + 0.5 * (w * 0.25).sin())).abs() < 1e-12);
+        let again = dir.join(format!("again_{model}.mcap"));
+        let s = muscle_actuator::runs::replay(&mcap, None, &again).unwrap();
+        assert_eq!((s.ticks, s.compared), (1000, 1001), "{s:?}");
+        assert_eq!(s.identical, s.compared, "{s:?}");
+        // The replay's own recording replays bit for bit too.
+        let s2 = muscle_actuator::runs::replay(&again, None, &dir.join("third.mcap")).unwrap();
+        assert_eq!(s2.identical, 1001, "{s2:?}");
+    }
 }

@@ -6,14 +6,15 @@
 
 use super::clock::NodeClock;
 use super::params::NodeParams;
-use super::tick::Applied;
+use super::tick::{Applied, AppliedInput};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
 use crate::msgs::{DiagnosticStatus, Header, KeyValue};
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
 use crate::runs::{
     self, AttachmentMeta, Channel, Layout, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
-    APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE,
-    JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC, STATE_TYPE,
+    APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE,
+    FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
+    STATE_TYPE,
 };
 use crate::sim::Actuator;
 use ros2_client::builtin_interfaces::Time;
@@ -126,6 +127,7 @@ pub fn start(
         parameters_json: Some(params_json),
         start_time_ns: start_ns,
         time_base: clock.time_base(tick_origin_ns),
+        initial_joint_motion: runs::driven_motion(actuator.simulation()),
         muscles: actuator.muscle_names().to_vec(),
         joints: actuator.joint_names().to_vec(),
     };
@@ -157,6 +159,11 @@ pub fn start(
     if let Some((joint_states_in, efforts)) = topics.driven {
         layout.add(Channel::JointStatesIn, joint_states_in, JOINT_STATE_TYPE)?;
         layout.add(Channel::JointEfforts, efforts, FLOAT64_ARRAY_TYPE)?;
+        layout.add(
+            Channel::AppliedJointMotion,
+            &format!("{fqn}{APPLIED_JOINT_MOTION_SUFFIX}"),
+            JOINT_STATE_TYPE,
+        )?;
     }
     let recorder = Recorder::start(
         &file_path(p, fqn, start_ns),
@@ -178,26 +185,32 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
             stamp: Time::from_nanos(a.stamp_ns),
             frame_id: String::new(),
         };
-        let names: Vec<String> = a
-            .values
-            .iter()
-            .map(|(i, _)| a.names.get(*i).cloned().unwrap_or_default())
-            .collect();
-        let values: Vec<f64> = a.values.iter().map(|(_, v)| *v).collect();
-        if a.excitation {
-            let m = ActivationCommand {
-                header,
-                muscle: names,
-                excitation: values,
-            };
-            tx.put(Channel::AppliedActivation, a.stamp_ns, &m);
-        } else {
-            let m = ExternalLoad {
-                header,
-                joint: names,
-                torque: values,
-            };
-            tx.put(Channel::AppliedLoad, a.stamp_ns, &m);
+        let name = |i: usize| a.names.get(i).cloned().unwrap_or_default();
+        match a.input {
+            AppliedInput::Excitation(v) => {
+                let m = ActivationCommand {
+                    header,
+                    muscle: v.iter().map(|(i, _)| name(*i)).collect(),
+                    excitation: v.iter().map(|(_, u)| *u).collect(),
+                };
+                tx.put(Channel::AppliedActivation, a.stamp_ns, &m);
+            }
+            AppliedInput::Load(v) => {
+                let m = ExternalLoad {
+                    header,
+                    joint: v.iter().map(|(j, _)| name(*j)).collect(),
+                    torque: v.iter().map(|(_, t)| *t).collect(),
+                };
+                tx.put(Channel::AppliedLoad, a.stamp_ns, &m);
+            }
+            AppliedInput::JointMotion(v) => {
+                let m = runs::joint_motion_msg(
+                    header,
+                    v.iter()
+                        .map(|&(j, angle, velocity)| (name(j), angle, velocity)),
+                );
+                tx.put(Channel::AppliedJointMotion, a.stamp_ns, &m);
+            }
         }
     }
 }

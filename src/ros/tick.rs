@@ -82,10 +82,20 @@ pub struct Applied {
     pub tick: u64,
     /// That tick's stamp (tick origin + tick / rate), ns since the Unix epoch.
     pub stamp_ns: i64,
-    /// Excitations (true: values are (muscle index, u)) or external torques (joint index, N m).
-    pub excitation: bool,
+    /// The muscle names (excitations) or joint names (torques, motion) the indices refer to.
     pub names: Arc<[String]>,
-    pub values: Vec<(usize, f64)>,
+    pub input: AppliedInput,
+}
+
+/// Which input was applied, with its values by index into [`Applied::names`].
+#[derive(Debug, Clone)]
+pub enum AppliedInput {
+    /// (muscle index, u).
+    Excitation(Vec<(usize, f64)>),
+    /// (joint index, N m).
+    Load(Vec<(usize, f64)>),
+    /// Driven joints: (joint index, angle rad, velocity rad/s).
+    JointMotion(Vec<(usize, f64, f64)>),
 }
 
 /// Something the log should say (the loop itself never logs).
@@ -320,17 +330,15 @@ fn hand_applied(
     io: &LoopIo,
     actuator: &Actuator,
     clock: TimeBase,
-    excitation: bool,
     names: &Arc<[String]>,
-    values: Vec<(usize, f64)>,
+    input: AppliedInput,
 ) {
     if let Some(tx) = &io.applied {
         if let Err(TrySendError::Full(_)) = tx.try_send(Applied {
             tick: actuator.tick(),
             stamp_ns: clock.stamp_ns(actuator.tick(), actuator.rate_hz()),
-            excitation,
             names: names.clone(),
-            values,
+            input,
         }) {
             io.stats.applied_dropped.fetch_add(1, Ordering::Relaxed);
         }
@@ -422,7 +430,13 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         }
                         actuator.set_excitation(i, u);
                     }
-                    hand_applied(&io, &actuator, clock, true, &muscle_names, v);
+                    hand_applied(
+                        &io,
+                        &actuator,
+                        clock,
+                        &muscle_names,
+                        AppliedInput::Excitation(v),
+                    );
                 }
                 Command::Load(v) => {
                     for &(i, t) in &v {
@@ -431,7 +445,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         }
                         actuator.set_external_torque(i, t);
                     }
-                    hand_applied(&io, &actuator, clock, false, &joint_names, v);
+                    hand_applied(&io, &actuator, clock, &joint_names, AppliedInput::Load(v));
                 }
                 Command::Reset(reply) => {
                     let before = actuator.tick();
@@ -481,11 +495,16 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     });
                 }
                 Command::PublishEvery(k) => publish_every = k.max(1),
-                Command::JointMotion(v) => {
-                    for &(j, angle, velocity) in &v {
-                        actuator.set_joint_motion(j, angle, velocity);
-                    }
+                Command::JointMotion(mut v) => {
+                    v.retain(|&(j, angle, velocity)| actuator.set_joint_motion(j, angle, velocity));
                     motion_age = 0;
+                    hand_applied(
+                        &io,
+                        &actuator,
+                        clock,
+                        &joint_names,
+                        AppliedInput::JointMotion(v),
+                    );
                 }
                 Command::RealTimeFactor(f) => {
                     real_time_factor = f;

@@ -14,6 +14,10 @@ pub const LOAD_TOPIC: &str = "/muscle_actuator/external_load";
 /// Suffixes (after the node's name) of the node's applied-input topics.
 pub const APPLIED_ACTIVATION_SUFFIX: &str = "/applied/activation";
 pub const APPLIED_LOAD_SUFFIX: &str = "/applied/external_load";
+/// Suffix of the driven joints' motion as applied (node and offline runs alike).
+pub const APPLIED_JOINT_MOTION_SUFFIX: &str = "/applied/joint_motion";
+/// The driven joints' motion of an offline run, as applied: the node's name for it.
+pub const APPLIED_JOINT_MOTION_TOPIC: &str = "/muscle_actuator/applied/joint_motion";
 pub const DIAGNOSTICS_TOPIC: &str = "/diagnostics";
 pub const ROSOUT_TOPIC: &str = "/rosout";
 
@@ -41,6 +45,9 @@ pub enum Channel {
     AppliedActivation,
     /// The node's `~/applied/external_load`.
     AppliedLoad,
+    /// `~/applied/joint_motion` (`sensor_msgs/JointState`): the driven joints' angle and
+    /// velocity as the tick loop applied them (offline: as the scenario's schedules gave them).
+    AppliedJointMotion,
     /// The node's `/diagnostics` arrays.
     Diagnostics,
     /// The node's own `/rosout` lines.

@@ -31,9 +31,9 @@ use crate::sim::simulation::{default_stepping, Simulation, Stepping};
 use crate::sim::snapshot::StateSnapshot;
 pub use channels::{
     Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
-    APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE,
-    JOINT_STATES_TOPIC, JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
-    STATE_TOPIC, STATE_TYPE,
+    APPLIED_JOINT_MOTION_SUFFIX, APPLIED_JOINT_MOTION_TOPIC, APPLIED_LOAD_SUFFIX,
+    DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATES_TOPIC,
+    JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC, STATE_TOPIC, STATE_TYPE,
 };
 use ros2_client::builtin_interfaces::Time;
 use std::collections::BTreeMap;
@@ -64,7 +64,7 @@ pub enum AttachmentMeta {
         initial_force: f64,
     },
     /// The configuration's limb with driven joints (those marked in `config`), their motion
-    /// from a scenario's schedules (not recorded: such runs are not replayed).
+    /// from a scenario's schedules (recorded as applied, on `~/applied/joint_motion`).
     Driven,
 }
 
@@ -84,6 +84,9 @@ pub struct RunMeta {
     pub start_time_ns: i64,
     /// What the log times and header stamps count.
     pub time_base: TimeBase,
+    /// The driven joints' motion the run started from, (angle rad, velocity rad/s) per driven
+    /// joint in configuration order; empty: their initial angles, at rest (as the node starts).
+    pub initial_joint_motion: Vec<(f64, f64)>,
     pub muscles: Vec<String>,
     pub joints: Vec<String>,
 }
@@ -216,6 +219,13 @@ impl RunMeta {
                 put("tick_origin_ns", tick_origin_ns.to_string());
             }
         }
+        if !self.initial_joint_motion.is_empty() {
+            // `{:?}` prints the shortest text that parses back to the same f64.
+            let v: Vec<String> = (self.initial_joint_motion.iter())
+                .map(|(a, w)| format!("{a:?} {w:?}"))
+                .collect();
+            put("initial_joint_motion", v.join(" "));
+        }
         put("muscles", self.muscles.join(","));
         put("joints", self.joints.join(","));
         put("program_version", env!("CARGO_PKG_VERSION").into());
@@ -292,6 +302,19 @@ impl RunMeta {
                 .and_then(|s| s.parse().ok())
                 .unwrap_or(0),
             time_base,
+            initial_joint_motion: match m.get("initial_joint_motion") {
+                None => vec![],
+                Some(v) => {
+                    let x: Vec<f64> = (v.split_whitespace())
+                        .map(str::parse)
+                        .collect::<Result<_, _>>()
+                        .map_err(|_| bad("initial_joint_motion", v))?;
+                    if !x.len().is_multiple_of(2) || x.iter().any(|x| !x.is_finite()) {
+                        return Err(bad("initial_joint_motion", v));
+                    }
+                    x.chunks(2).map(|p| (p[0], p[1])).collect()
+                }
+            },
             muscles: list("muscles"),
             joints: list("joints"),
         };
@@ -322,6 +345,14 @@ impl RunMeta {
                 ));
             }
             _ => {}
+        }
+        let driven = self.config.joints.iter().filter(|j| j.driven).count();
+        if !self.initial_joint_motion.is_empty() && self.initial_joint_motion.len() != driven {
+            return Err(format!(
+                "{} has {} (angle, velocity) pairs for {driven} driven joints",
+                key("initial_joint_motion"),
+                self.initial_joint_motion.len()
+            ));
         }
         let topology = self.topology();
         for (k, listed, actual) in [
@@ -362,8 +393,46 @@ impl RunMeta {
         if let AttachmentMeta::Force { initial_force } = self.attachment {
             initial.tendon_force.fill(initial_force);
         }
+        let driven = (plant.joints.iter().enumerate()).filter(|(_, j)| j.driven);
+        for (n, (j, p)) in driven.enumerate() {
+            let (angle, velocity) =
+                (self.initial_joint_motion.get(n).copied()).unwrap_or((p.initial_angle, 0.0));
+            initial.joint_angle[j] = angle;
+            initial.joint_velocity[j] = velocity;
+        }
         Simulation::new(plant, self.rate_hz, stepping, initial)
     }
+}
+
+/// The driven joints' motion that `sim` holds for its next tick: (angle rad, velocity rad/s) per
+/// driven joint, in configuration order ([`RunMeta::initial_joint_motion`] at tick 0).
+pub fn driven_motion(sim: &Simulation) -> Vec<(f64, f64)> {
+    let inputs = sim.inputs();
+    (sim.plant().joints.iter().enumerate())
+        .filter(|(_, j)| j.driven)
+        .map(|(j, _)| (inputs.joint_angle[j], inputs.joint_velocity[j]))
+        .collect()
+}
+
+/// The `sensor_msgs/JointState` of driven joints' motion as applied: (name, angle rad,
+/// velocity rad/s) each; no effort.
+pub fn joint_motion_msg(
+    header: Header,
+    motion: impl Iterator<Item = (String, f64, f64)>,
+) -> JointState {
+    let mut m = JointState {
+        header,
+        name: vec![],
+        position: vec![],
+        velocity: vec![],
+        effort: vec![],
+    };
+    for (name, angle, velocity) in motion {
+        m.name.push(name);
+        m.position.push(angle);
+        m.velocity.push(velocity);
+    }
+    m
 }
 
 /// Simulated time of `tick` at `rate_hz`, ns.
@@ -393,6 +462,8 @@ struct RunWriter {
     model: ModelKind,
     muscles: Vec<String>,
     joints: Vec<String>,
+    /// The driven joints (indices): their motion is written every tick.
+    driven: Vec<usize>,
     last: Option<Inputs>,
 }
 
@@ -405,6 +476,17 @@ impl RunWriter {
         if has_joint {
             layout.add(Channel::JointStates, JOINT_STATES_TOPIC, JOINT_STATE_TYPE)?;
             layout.add(Channel::Load, LOAD_TOPIC, LOAD_TYPE)?;
+        }
+        let driven: Vec<usize> = (meta.config.joints.iter().enumerate())
+            .filter(|(_, j)| j.driven && has_joint)
+            .map(|(k, _)| k)
+            .collect();
+        if !driven.is_empty() {
+            layout.add(
+                Channel::AppliedJointMotion,
+                APPLIED_JOINT_MOTION_TOPIC,
+                JOINT_STATE_TYPE,
+            )?;
         }
         let rec = Recorder::start(
             path,
@@ -424,6 +506,7 @@ impl RunWriter {
             } else {
                 vec![]
             },
+            driven,
             last: None,
         })
     }
@@ -476,6 +559,22 @@ impl RunWriter {
                     joint: self.joints.clone(),
                     torque: inputs.external_torque.clone(),
                 },
+            )?;
+        }
+        if !self.driven.is_empty() {
+            // Every tick: between schedule samples the motion is the carried-on extrapolation,
+            // so "unchanged from the last message" would not say what the tick applied.
+            let motion = (self.driven.iter()).map(|&j| {
+                (
+                    self.joints[j].clone(),
+                    inputs.joint_angle[j],
+                    inputs.joint_velocity[j],
+                )
+            });
+            self.put(
+                Channel::AppliedJointMotion,
+                ns,
+                &joint_motion_msg(stamp(ns), motion),
             )?;
         }
         self.last = Some(inputs.clone());
@@ -538,6 +637,7 @@ pub fn simulate_to_mcap(
         parameters_json: None,
         start_time_ns: now_ns(),
         time_base: TimeBase::Simulated,
+        initial_joint_motion: driven_motion(runner.simulation()),
         muscles: runner.muscle_names().to_vec(),
         joints: runner.joint_names().to_vec(),
     };
@@ -573,14 +673,21 @@ pub fn simulate_to_mcap(
     })
 }
 
+/// A driven joints' motion as applied: (tick, joint names, angles rad, velocities rad/s).
+pub type JointMotionAt = (u64, Vec<String>, Vec<f64>, Vec<f64>);
+/// Inputs as applied: (tick, names, values).
+pub type InputsAt = (u64, Vec<String>, Vec<f64>);
+
 /// A recorded run, decoded: metadata, states by tick, inputs by the tick they take effect.
 pub struct LoadedRun {
     pub meta: RunMeta,
     pub states: Vec<ActuatorState>,
     /// (tick, muscle names, excitations), in order.
-    pub activations: Vec<(u64, Vec<String>, Vec<f64>)>,
+    pub activations: Vec<InputsAt>,
     /// (tick, joint names, torques), in order.
-    pub loads: Vec<(u64, Vec<String>, Vec<f64>)>,
+    pub loads: Vec<InputsAt>,
+    /// Driven joints' motion as applied, in order.
+    pub joint_motions: Vec<JointMotionAt>,
     /// For a file cut by a crash (read up to the cut): the warning naming what was read.
     pub warning: Option<String>,
 }
@@ -603,6 +710,7 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
     let mut states = Vec::new();
     let mut activations = Vec::new();
     let mut loads = Vec::new();
+    let mut joint_motions = Vec::new();
     let applied = |ty: &str, suffix: &str| {
         rec.messages
             .iter()
@@ -627,9 +735,25 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
         }
         match m.type_name.as_str() {
             STATE_TYPE => states.push(recording::decode_cdr::<ActuatorState>(&m.data).map_err(on)?),
-            // Not used, but a recording whose messages do not decode is not accepted.
+            // Only the driven joints' motion as applied is used, but a recording whose
+            // messages do not decode is not accepted.
             JOINT_STATE_TYPE => {
-                recording::decode_cdr::<JointState>(&m.data).map_err(on)?;
+                let js: JointState = recording::decode_cdr(&m.data).map_err(on)?;
+                if m.topic.ends_with(APPLIED_JOINT_MOTION_SUFFIX) {
+                    let n = js.name.len();
+                    if js.position.len() != n || js.velocity.len() != n {
+                        return Err(on(format!(
+                            "{n} names with {} positions and {} velocities",
+                            js.position.len(),
+                            js.velocity.len()
+                        )));
+                    }
+                    let tick = meta
+                        .time_base
+                        .tick_of(js.header.stamp.to_nanos(), meta.rate_hz)
+                        .map_err(on)?;
+                    joint_motions.push((tick, js.name, js.position, js.velocity));
+                }
             }
             ACTIVATION_TYPE => {
                 let a: ActivationCommand = recording::decode_cdr(&m.data).map_err(on)?;
@@ -658,6 +782,7 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
         states,
         activations,
         loads,
+        joint_motions,
         warning: None,
     };
     checks::check_run(&run, recorded_span_s(rec))?;
@@ -703,6 +828,63 @@ fn state_bits(s: &ActuatorState) -> Vec<u64> {
     v
 }
 
+/// A run's recorded inputs, handed to a simulation tick by tick as the run applied them.
+struct RecordedInputs<'a> {
+    activations: std::iter::Peekable<std::slice::Iter<'a, InputsAt>>,
+    loads: std::iter::Peekable<std::slice::Iter<'a, InputsAt>>,
+    motions: std::iter::Peekable<std::slice::Iter<'a, JointMotionAt>>,
+}
+
+impl<'a> RecordedInputs<'a> {
+    fn new(run: &'a LoadedRun) -> Self {
+        Self {
+            activations: run.activations.iter().peekable(),
+            loads: run.loads.iter().peekable(),
+            motions: run.joint_motions.iter().peekable(),
+        }
+    }
+
+    /// Applies the inputs recorded for ticks up to `tick` not applied yet: excitations and
+    /// torques are held; a driven joint's motion carries on from where the last tick's
+    /// extrapolation ended until the next one recorded. Names the run does not have, values
+    /// that are not finite and motion for joints that are not driven are passed over, as the
+    /// run passed them over.
+    fn apply(&mut self, tick: u64, meta: &RunMeta, sim: &mut Simulation) {
+        let driven: Vec<bool> = sim.plant().joints.iter().map(|j| j.driven).collect();
+        let inputs = sim.inputs_mut();
+        let muscle = |n: &String| meta.muscles.iter().position(|m| m == n);
+        let joint = |n: &String| meta.joints.iter().position(|m| m == n);
+        while let Some((_, names, values)) = self.activations.next_if(|a| a.0 <= tick) {
+            for (n, u) in names.iter().zip(values) {
+                if let Some(slot) = muscle(n).and_then(|i| inputs.excitation.get_mut(i)) {
+                    if u.is_finite() {
+                        *slot = u.clamp(0.0, 1.0);
+                    }
+                }
+            }
+        }
+        while let Some((_, names, values)) = self.loads.next_if(|l| l.0 <= tick) {
+            for (n, t) in names.iter().zip(values) {
+                if let Some(slot) = joint(n).and_then(|j| inputs.external_torque.get_mut(j)) {
+                    if t.is_finite() {
+                        *slot = *t;
+                    }
+                }
+            }
+        }
+        while let Some((_, names, angles, velocities)) = self.motions.next_if(|m| m.0 <= tick) {
+            for ((n, a), w) in names.iter().zip(angles).zip(velocities) {
+                if let Some(j) = joint(n).filter(|&j| driven.get(j) == Some(&true)) {
+                    if a.is_finite() && w.is_finite() {
+                        inputs.joint_angle[j] = *a;
+                        inputs.joint_velocity[j] = *w;
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// Feeds the recorded inputs of `input` at their ticks through `model` (default: the recorded
 /// one) and records the result to `out`. With the recorded model every recorded state comes back
 /// bit for bit (the summary says how many were compared and matched).
@@ -712,12 +894,6 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
     if let AttachmentMeta::Force { .. } = meta.attachment {
         return Err(format!(
             "{}: a force-driven run (its tendon-force input is not a recorded topic) cannot be replayed",
-            input.display()
-        ));
-    }
-    if meta.config.joints.iter().any(|j| j.driven) {
-        return Err(format!(
-            "{}: a run with driven joints (their prescribed motion is not a recorded topic) cannot be replayed",
             input.display()
         ));
     }
@@ -767,36 +943,18 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
             }
         }
     };
+    let mut inputs = RecordedInputs::new(&run);
+    // The inputs of tick 0 first: an offline run's state at tick 0 shows them.
+    inputs.apply(0, meta, &mut sim);
     let mut state = StateSnapshot::default();
     sim.fill_snapshot(&mut state);
     if by_tick.contains_key(&0) {
         w.state(0, &state)?;
         check(0, &state);
     }
-    let mut acts = run.activations.iter().peekable();
-    let mut loads = run.loads.iter().peekable();
-    let mut inputs = sim.inputs().clone();
     for k in 0..last_tick {
-        while let Some((_, names, values)) = acts.next_if(|a| a.0 <= k) {
-            for (n, u) in names.iter().zip(values) {
-                if let Some(i) = meta.muscles.iter().position(|m| m == n) {
-                    if u.is_finite() && i < inputs.excitation.len() {
-                        inputs.excitation[i] = u.clamp(0.0, 1.0);
-                    }
-                }
-            }
-        }
-        while let Some((_, names, values)) = loads.next_if(|l| l.0 <= k) {
-            for (n, t) in names.iter().zip(values) {
-                if let Some(j) = meta.joints.iter().position(|m| m == n) {
-                    if t.is_finite() && j < inputs.external_torque.len() {
-                        inputs.external_torque[j] = *t;
-                    }
-                }
-            }
-        }
-        sim.inputs_mut().clone_from(&inputs);
-        w.inputs(k, &inputs)?;
+        inputs.apply(k, meta, &mut sim);
+        w.inputs(k, sim.inputs())?;
         sim.step()
             .map_err(|e| format!("replay with {model} failed at tick {k}: {e}"))?;
         sim.fill_snapshot(&mut state);
@@ -844,6 +1002,7 @@ mod tests {
             parameters_json: None,
             start_time_ns: 5,
             time_base: wall,
+            initial_joint_motion: vec![],
             muscles: cfg.topology().muscle_names(),
             joints: cfg.topology().joint_names(),
         };
