@@ -111,6 +111,8 @@ enum Item {
         publish_time: u64,
         data: Vec<u8>,
     },
+    /// A metadata record learnt while recording (a reader keeps the last one of a name).
+    Metadata(mcap::records::Metadata),
     Finish,
 }
 
@@ -230,6 +232,12 @@ impl Recorder {
                             }
                             dirty = true;
                         }
+                        Ok(Item::Metadata(m)) => {
+                            if w.write_metadata(&m).is_err() {
+                                break;
+                            }
+                            dirty = true;
+                        }
                         Ok(Item::Finish) | Err(RecvTimeoutError::Disconnected) => {
                             w.finish();
                             return;
@@ -249,7 +257,7 @@ impl Recorder {
                 // Failed: drain and count what still arrives until the handle goes away.
                 while let Ok(item) = rx.recv() {
                     match item {
-                        Item::Message { .. } => {
+                        Item::Message { .. } | Item::Metadata(_) => {
                             w.stats.dropped.fetch_add(1, Ordering::Relaxed);
                         }
                         Item::Finish => return,
@@ -371,6 +379,22 @@ impl RecordSender {
         &self.stats
     }
 
+    /// Hands a metadata record over (written after what is queued before it); false (and
+    /// counted as dropped) when the channel is full or closed.
+    pub fn metadata(&self, name: &str, metadata: BTreeMap<String, String>) -> bool {
+        let Some(tx) = &self.tx else { return false };
+        let item = Item::Metadata(mcap::records::Metadata {
+            name: name.into(),
+            metadata,
+        });
+        if tx.try_send(item).is_ok() {
+            true
+        } else {
+            self.stats.dropped.fetch_add(1, Ordering::Relaxed);
+            false
+        }
+    }
+
     /// Asks the recorder to finish the file now (what is queued before this request is written,
     /// then the summary) and waits up to `timeout` for it: for a process that must exit before
     /// its owner of the [`Recorder`] gets to finish it. True if the file is finished.
@@ -424,6 +448,17 @@ impl Worker {
         if let Some(w) = self.writer.take() {
             drop(w.into_inner());
         }
+    }
+
+    fn write_metadata(&mut self, m: &mcap::records::Metadata) -> Result<(), ()> {
+        let Some(w) = self.writer.as_mut() else {
+            return Err(());
+        };
+        if let Err(e) = w.write_metadata(m) {
+            self.fail("writing a metadata record", e);
+            return Err(());
+        }
+        Ok(())
     }
 
     fn write(

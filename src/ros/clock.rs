@@ -1,8 +1,10 @@
 //! The node's clock (parameter `clock`, README "Time"): `wall`, ticks paced by the wall clock
 //! and stamped with it; `sim`, the node is the graph's clock, stepping as fast as it can or at
 //! `real_time_factor` × real time and publishing `/clock`; `lockstep`, the node is the clock and
-//! advances only when asked (`~/step`). Every stamp the node writes (states, `/diagnostics`,
-//! `/rosout`, the recording's log times) reads [`NodeClock::now_ns`].
+//! advances only when asked (`~/step`). With `use_sim_time` and `clock` wall, the node follows
+//! an external `/clock` instead ([`ClockMode::Follow`]): each clock message advances it by the
+//! whole ticks it covers. Every stamp the node writes (states, `/diagnostics`, `/rosout`, the
+//! recording's log times) reads [`NodeClock::now_ns`].
 
 use crate::runs::{self, TimeBase};
 use std::sync::atomic::{AtomicI64, Ordering};
@@ -13,6 +15,8 @@ pub enum ClockMode {
     Wall,
     Sim,
     Lockstep,
+    /// `clock` wall with `use_sim_time`: ticks follow an external `/clock`.
+    Follow,
 }
 
 impl ClockMode {
@@ -23,12 +27,33 @@ impl ClockMode {
             ClockMode::Wall => "wall",
             ClockMode::Sim => "sim",
             ClockMode::Lockstep => "lockstep",
+            ClockMode::Follow => "wall with use_sim_time (following /clock)",
         }
     }
 
-    /// Whether the node is the graph's clock (publishes `/clock`, stamps simulated time).
+    /// The mode of parameter `clock` with `use_sim_time`: `wall` follows `/clock` when it is
+    /// true; `sim` and `lockstep` are the graph's clock themselves and do not.
+    pub fn with_sim_time(self, use_sim_time: bool) -> Self {
+        match self {
+            ClockMode::Wall if use_sim_time => ClockMode::Follow,
+            other => other,
+        }
+    }
+
+    /// Whether the node is the graph's clock (publishes `/clock`).
+    pub fn publishes_clock(self) -> bool {
+        matches!(self, ClockMode::Sim | ClockMode::Lockstep)
+    }
+
+    /// Whether ticks are stamped with simulated time (the node's own, or a followed `/clock`)
+    /// rather than the wall clock.
     pub fn is_simulated(self) -> bool {
         self != ClockMode::Wall
+    }
+
+    /// Whether ticks wait for someone else (a `~/step`, a `/clock`) rather than a schedule.
+    pub fn is_driven(self) -> bool {
+        matches!(self, ClockMode::Lockstep | ClockMode::Follow)
     }
 }
 
@@ -69,7 +94,8 @@ impl NodeClock {
         self.mode
     }
 
-    /// Now, ns: since the Unix epoch (wall) or since the simulation's start (sim, lockstep).
+    /// Now, ns: since the Unix epoch (wall), since the simulation's start (sim, lockstep), or
+    /// the followed `/clock`'s time at the last tick (0 before the first one).
     pub fn now_ns(&self) -> i64 {
         match self.mode {
             ClockMode::Wall => runs::now_ns(),
@@ -84,7 +110,8 @@ impl NodeClock {
         }
     }
 
-    /// The stamp of tick 0 at start: the wall clock's now, or simulated time zero.
+    /// The stamp of tick 0 at start: the wall clock's now, or simulated time zero (following
+    /// `/clock`: not known until the first message, which re-anchors it).
     pub fn start_origin_ns(&self) -> i64 {
         match self.mode {
             ClockMode::Wall => runs::now_ns(),
@@ -92,10 +119,14 @@ impl NodeClock {
         }
     }
 
-    /// The recording's time base for a run whose tick 0 is stamped `tick_origin_ns`.
+    /// The recording's time base for a run whose tick 0 is stamped `tick_origin_ns` (following
+    /// `/clock`: no origin until the first message).
     pub fn time_base(&self, tick_origin_ns: i64) -> TimeBase {
         match self.mode {
             ClockMode::Wall => TimeBase::Wall { tick_origin_ns },
+            ClockMode::Follow => TimeBase::RosClock {
+                tick_origin_ns: None,
+            },
             _ => TimeBase::Simulated,
         }
     }

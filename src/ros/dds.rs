@@ -2,6 +2,7 @@
 //! and the node's endpoints, its topics and the reset service, under the remap rules.
 
 use super::args;
+use super::clock::ClockMode;
 use super::input;
 use super::logging::Logger;
 use super::setup::Setup;
@@ -92,12 +93,14 @@ pub(crate) fn qos_reliable(depth: usize) -> QosProfile {
         .history(History::KeepLast { depth })
 }
 
-/// `/clock` as rclpy's time source subscribes to it: best effort, keep last 1.
-fn qos_clock() -> QosProfile {
+/// `/clock` as rclpy's time source subscribes to it: best effort, keep last `depth` (1 to
+/// publish; more to follow, so that a jump back between two looks is still seen). A best-effort
+/// reader takes reliable and best-effort writers alike.
+fn qos_clock(depth: usize) -> QosProfile {
     QosProfile::publisher_default()
         .reliability(Reliability::BestEffort)
         .durability(Durability::Volatile)
-        .history(History::KeepLast { depth: 1 })
+        .history(History::KeepLast { depth })
 }
 
 fn dds_name(resolved: &str) -> Result<Name, String> {
@@ -136,6 +139,8 @@ pub(crate) struct Endpoints {
     pub(crate) step_topic: Subscription<Int64>,
     /// `/clock`, with a simulated clock.
     pub(crate) clock: Option<Publisher<Clock>>,
+    /// `/clock` to follow (`use_sim_time` with `clock` wall).
+    pub(crate) clock_in: Option<Subscription<Clock>>,
     /// With driven joints: their motion in, the muscles' torque on them out.
     pub(crate) joint_states_in: Option<Subscription<JointState>>,
     pub(crate) joint_efforts: Option<Publisher<Float64MultiArray>>,
@@ -179,10 +184,19 @@ impl Maker<'_> {
         name: &str,
         ty: (&str, &str),
     ) -> Result<(Subscription<M>, String), String> {
+        self.subscribe_with(name, ty, self.qos.clone())
+    }
+
+    fn subscribe_with<M: 'static + DeserializeOwned>(
+        &mut self,
+        name: &str,
+        ty: (&str, &str),
+        qos: QosProfile,
+    ) -> Result<(Subscription<M>, String), String> {
         let (t, resolved) = self.topic(name, ty)?;
         let sub = self
             .node
-            .create_subscription::<M>(&t, Some(self.qos.clone()))
+            .create_subscription::<M>(&t, Some(qos))
             .map_err(|e| format!("cannot subscribe to {resolved}: {e:?}"))?;
         Ok((sub, resolved))
     }
@@ -240,7 +254,7 @@ impl Endpoints {
         node: &mut Node,
         setup: &Setup,
         muscles: &[String],
-        simulated_clock: bool,
+        clock_mode: ClockMode,
         driven_joints: bool,
         logger: &Logger,
     ) -> Result<Self, String> {
@@ -286,9 +300,17 @@ impl Endpoints {
         } else {
             (None, None, None)
         };
-        let clock = if simulated_clock {
+        let clock = if clock_mode.publishes_clock() {
             Some(
-                m.publish_with("/clock", ("rosgraph_msgs", "Clock"), qos_clock())?
+                m.publish_with("/clock", ("rosgraph_msgs", "Clock"), qos_clock(1))?
+                    .0,
+            )
+        } else {
+            None
+        };
+        let clock_in = if clock_mode == ClockMode::Follow {
+            Some(
+                m.subscribe_with("/clock", ("rosgraph_msgs", "Clock"), qos_clock(10))?
                     .0,
             )
         } else {
@@ -306,6 +328,7 @@ impl Endpoints {
             step,
             step_topic,
             clock,
+            clock_in,
             joint_states_in,
             joint_efforts,
             names: EndpointNames {

@@ -37,6 +37,9 @@ pub struct InputStats {
     pub malformed: AtomicU64,
     /// Joint states (driven joints) refused.
     pub joint_states_rejected: AtomicU64,
+    /// `/clock` messages received (following an external clock), and refused.
+    pub clock_received: AtomicU64,
+    pub clock_rejected: AtomicU64,
     pub last_problem: Mutex<String>,
 }
 
@@ -72,6 +75,7 @@ pub(crate) struct DiagPrev {
     rejected: u64,
     step_failures: u64,
     ticks: u64,
+    clock_jumps: u64,
 }
 
 pub(crate) fn diagnostics(
@@ -93,26 +97,46 @@ pub(crate) fn diagnostics(
     let new_rejected = rejected - prev.rejected.min(rejected);
     let new_failures = step_failures - prev.step_failures.min(step_failures);
     let ticks = ld(&stats.ticks);
-    // A lockstep loop ticks only when asked: no tick is no stall.
+    // A lockstep loop ticks only when asked, a loop following /clock only when the clock
+    // moves: no tick is no stall.
     let idle = ticks == prev.ticks;
-    let stalled = idle && clock != ClockMode::Lockstep;
+    let stalled = idle && !clock.is_driven();
+    let clock_jumps = ld(&stats.clock_jumps);
+    let jumped = clock_jumps > prev.clock_jumps;
     *prev = DiagPrev {
         overruns,
         rejected,
         step_failures,
         ticks,
+        clock_jumps,
     };
     let rate = stats.rate_hz();
     let driven = ld(&stats.driven_joints);
     let motion_age = ld(&stats.joint_motion_age_ticks);
     let stale = driven > 0 && motion_age > params.joint_state_timeout_ticks.max(1) as u64;
-    let (level, message) = if idle && !stalled {
+    let (level, message) = if jumped {
         (
-            DiagnosticStatus::OK,
+            DiagnosticStatus::WARN,
             format!(
-                "lockstep: waiting for ~/step (at tick {})",
+                "/clock jumped ({clock_jumps} so far): the actuator was reset and tick 0 \
+                 re-anchored at the new time (at tick {})",
                 ld(&stats.current_tick)
             ),
+        )
+    } else if idle && !stalled {
+        (
+            DiagnosticStatus::OK,
+            if clock == ClockMode::Follow {
+                format!(
+                    "following /clock: waiting for it to move (at tick {})",
+                    ld(&stats.current_tick)
+                )
+            } else {
+                format!(
+                    "lockstep: waiting for ~/step (at tick {})",
+                    ld(&stats.current_tick)
+                )
+            },
         )
     } else if stalled {
         (
@@ -195,6 +219,7 @@ pub(crate) fn diagnostics(
             kv("publish_errors", publish_errors),
             kv("step_failures", step_failures),
             kv("resets", ld(&stats.resets)),
+            kv("clock_jumps", clock_jumps),
         ],
     };
     let last = inputs

@@ -15,7 +15,7 @@ use super::threads::{self, ThreadInputs, Threads};
 use super::tick::{self, Pacing};
 use crate::recording::RecorderState;
 use futures::FutureExt;
-use ros2_client::{NodeName, NodeOptions};
+use ros2_client::{NodeName, NodeOptions, ParameterValue};
 use std::sync::atomic::Ordering;
 use std::sync::{Arc, OnceLock};
 
@@ -29,25 +29,38 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     let dds = Dds::start()?;
     let (cmd_tx, cmd_rx) = tick::command_channel();
     let shared = Arc::new(Shared::new(&setup.params, &actuator, cmd_tx));
-    let options = NodeOptions::new()
+    let mut options = NodeOptions::new()
         .enable_rosout(!setup.ros_args.disable_rosout)
         .start_parameter_services(true);
+    if setup.use_sim_time {
+        // Reported by the parameter services as given (the store's default is false).
+        options = options.declare_parameter("use_sim_time", ParameterValue::Boolean(true));
+    }
     let node_name = NodeName::new(&setup.namespace, &setup.name)
         .map_err(|e| format!("invalid node name {}: {e:?}", setup.fqn))?;
     let mut node = dds
         .context
         .new_node(node_name, shared.attach(options, &setup.params))
         .map_err(|e| format!("cannot create node {}: {e:?}", setup.fqn))?;
-    let clock = Arc::new(NodeClock::new(setup.params.clock));
+    let clock = Arc::new(NodeClock::new(
+        setup.params.clock.with_sim_time(setup.use_sim_time),
+    ));
     let logger = logger(&setup, &node, &clock);
     for note in &setup.ignored {
         logger.debug(note);
+    }
+    if setup.use_sim_time && setup.params.clock.publishes_clock() {
+        logger.info(&format!(
+            "use_sim_time is true, but clock:={} makes this node the graph's clock: it \
+             publishes /clock and does not follow one",
+            setup.params.clock.name()
+        ));
     }
     let endpoints = Endpoints::create(
         &mut node,
         &setup,
         actuator.muscle_names(),
-        clock.mode().is_simulated(),
+        clock.mode(),
         !actuator.driven_joints().is_empty(),
         &logger,
     )?;
@@ -135,6 +148,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             _ = tasks::muscle_commands(&endpoints.muscle_commands, &cx).fuse() => {},
             _ = tasks::load(&endpoints.load, &cx).fuse() => {},
             _ = joint_states_in(endpoints.joint_states_in.as_ref(), &cx).fuse() => {},
+            _ = clock_in(endpoints.clock_in.as_ref(), &cx).fuse() => {},
             _ = tasks::step_topic(&endpoints.step_topic, &cx, mode).fuse() => {},
             _ = tasks::step(&endpoints.step, &shared, mode, &log).fuse() => {},
             _ = tasks::reset(&endpoints.reset, &shared, &log).fuse() => {},
@@ -144,7 +158,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
                 }
             },
             _ = diagnostics::publish_task(diag, &endpoints.diagnostics, &log, rec.clone()).fuse() => {},
-            _ = tasks::events(&events, &threads.stats, &log).fuse() => {},
+            _ = tasks::events(&events, &threads.stats, &log, rec.as_ref()).fuse() => {},
         }
     });
 
@@ -167,6 +181,17 @@ async fn joint_states_in(
 ) {
     match sub {
         Some(s) => tasks::joint_states_in(s, cx).await,
+        None => futures::future::pending().await,
+    }
+}
+
+/// `/clock` when following one (`use_sim_time`); otherwise nothing, for ever.
+async fn clock_in(
+    sub: Option<&ros2_client::Subscription<crate::msgs::Clock>>,
+    cx: &InputContext<'_>,
+) {
+    match sub {
+        Some(s) => tasks::clock_in(s, cx).await,
         None => futures::future::pending().await,
     }
 }

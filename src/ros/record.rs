@@ -11,10 +11,10 @@ use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
 use crate::msgs::{DiagnosticStatus, Header, KeyValue};
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
 use crate::runs::{
-    self, AttachmentMeta, Channel, Layout, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
-    APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE,
-    FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
-    STATE_TYPE,
+    self, AttachmentMeta, Channel, Layout, RunMeta, TimeBase, ACTIVATION_TYPE,
+    APPLIED_ACTIVATION_SUFFIX, APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC,
+    DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE,
+    ROSOUT_TOPIC, STATE_TYPE,
 };
 use crate::sim::Actuator;
 use ros2_client::builtin_interfaces::Time;
@@ -42,6 +42,8 @@ pub struct RecordTx {
     pub sender: RecordSender,
     layout: Arc<Layout>,
     clock: Arc<NodeClock>,
+    /// The run's metadata as first written.
+    meta: Arc<RunMeta>,
 }
 
 impl RecordTx {
@@ -61,6 +63,18 @@ impl RecordTx {
             }
         }
     }
+
+    /// Following `/clock`: the first clock message put tick 0 at `tick_origin_ns`. The run's
+    /// metadata record is written again with it (a reader keeps the last record of a name).
+    pub fn anchored(&self, tick_origin_ns: i64) {
+        let mut meta = (*self.meta).clone();
+        meta.time_base = TimeBase::RosClock {
+            tick_origin_ns: Some(tick_origin_ns),
+        };
+        if let Ok(map) = meta.to_map() {
+            self.sender.metadata(runs::METADATA_NAME, map);
+        }
+    }
 }
 
 /// A running recording.
@@ -68,6 +82,7 @@ pub struct NodeRecorder {
     pub recorder: Recorder,
     layout: Arc<Layout>,
     clock: Arc<NodeClock>,
+    meta: Arc<RunMeta>,
 }
 
 impl NodeRecorder {
@@ -76,6 +91,7 @@ impl NodeRecorder {
             sender: self.recorder.sender(),
             layout: self.layout.clone(),
             clock: self.clock.clone(),
+            meta: self.meta.clone(),
         }
     }
 }
@@ -113,6 +129,10 @@ pub fn start(
         m.insert("record".into(), p.record.into());
         m.insert("record_dir".into(), p.record_dir.clone().into());
         m.insert("clock".into(), p.clock.name().into());
+        m.insert(
+            "use_sim_time".into(),
+            (clock.mode() == super::clock::ClockMode::Follow).into(),
+        );
         m.insert("real_time_factor".into(), p.real_time_factor.into());
         m.insert("clock_rate_hz".into(), p.clock_rate_hz.into());
         serde_json::Value::Object(m).to_string()
@@ -175,6 +195,7 @@ pub fn start(
         recorder,
         layout: Arc::new(layout),
         clock: clock.clone(),
+        meta: Arc::new(meta),
     })
 }
 

@@ -13,6 +13,8 @@ pub(crate) struct Setup {
     pub(crate) name: String,
     pub(crate) fqn: String,
     pub(crate) params: NodeParams,
+    /// The standard `use_sim_time` (start-up value): with `clock` wall, follow `/clock`.
+    pub(crate) use_sim_time: bool,
     pub(crate) ros_args: RosArgs,
     /// Notes on the undeclared parameters ignored, logged at debug level once the logger
     /// exists.
@@ -34,6 +36,7 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
     let fqn = args::expand("~", &namespace, &name);
     let mut p = NodeParams::default();
     let mut ignored = Vec::new();
+    let mut use_sim_time = false;
     for a in ros_args.resolved_params(&fqn)? {
         // As rclcpp and rclpy do (without `allow_undeclared_parameters`), a parameter this
         // node does not declare is ignored: a shared file holds other nodes' parameters.
@@ -46,8 +49,9 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
             continue;
         }
         if a.name == "use_sim_time" {
-            if !matches!(a.value, ros2_client::ParameterValue::Boolean(_)) {
-                return Err(format!("{}: use_sim_time must be a bool", a.source));
+            match a.value {
+                ros2_client::ParameterValue::Boolean(b) => use_sim_time = b,
+                _ => return Err(format!("{}: use_sim_time must be a bool", a.source)),
             }
             continue;
         }
@@ -59,6 +63,7 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
         name,
         fqn,
         params: p,
+        use_sim_time,
         ros_args,
         ignored,
     }))
@@ -98,5 +103,28 @@ mod tests {
             .map(String::from)
             .collect();
         assert!(setup(&bad).unwrap_err().contains("record"));
+        // use_sim_time: a bool, the last value wins; with clock wall it follows /clock.
+        let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };
+        let s = setup(&args(
+            "--ros-args -p use_sim_time:=false -p use_sim_time:=true",
+        ))
+        .unwrap()
+        .unwrap();
+        assert!(s.use_sim_time);
+        assert_eq!(
+            s.params.clock.with_sim_time(s.use_sim_time),
+            super::super::clock::ClockMode::Follow
+        );
+        let s = setup(&args("--ros-args -p use_sim_time:=true -p clock:=sim"))
+            .unwrap()
+            .unwrap();
+        assert_eq!(
+            s.params.clock.with_sim_time(s.use_sim_time),
+            super::super::clock::ClockMode::Sim
+        );
+        assert!(!setup(&args("--ros-args")).unwrap().unwrap().use_sim_time);
+        assert!(setup(&args("--ros-args -p use_sim_time:=1"))
+            .unwrap_err()
+            .contains("use_sim_time must be a bool"));
     }
 }

@@ -13,8 +13,8 @@ use super::threads::sample_to_msgs;
 use super::tick::{Command, Event, Sample, TickStats};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::msgs::{
-    Float64, Float64MultiArray, Int64, JointState, StepRequest, StepResponse, TriggerRequest,
-    TriggerResponse,
+    Clock, Float64, Float64MultiArray, Int64, JointState, StepRequest, StepResponse,
+    TriggerRequest, TriggerResponse,
 };
 use crate::runs::{self, Channel};
 use futures::{FutureExt, StreamExt};
@@ -232,6 +232,25 @@ pub(crate) async fn joint_states_in(sub: &Subscription<JointState>, cx: &InputCo
     .await
 }
 
+/// `/clock` to follow (`use_sim_time` with `clock` wall): each time goes to the tick loop, which
+/// steps the whole ticks it covers (after the inputs received before it). A time before zero is
+/// refused.
+pub(crate) async fn clock_in(sub: &Subscription<Clock>, cx: &InputContext<'_>) {
+    cx.each(sub, "clock", &cx.stats.clock_received, |msg| {
+        let ns = msg.clock.to_nanos();
+        if ns < 0 {
+            cx.stats.clock_rejected.fetch_add(1, Ordering::Relaxed);
+            cx.problem(
+                "clock_negative",
+                format!("/clock message refused: its time ({ns} ns) is before zero"),
+            );
+        } else {
+            cx.shared.send(Command::ClockTime(ns));
+        }
+    })
+    .await
+}
+
 /// Longest the reset service waits for the tick loop's answer.
 const RESET_ANSWER_TIMEOUT: Duration = Duration::from_secs(2);
 
@@ -279,7 +298,12 @@ pub(crate) async fn reset(
 const EVENT_POLL: Duration = Duration::from_millis(50);
 
 /// The tick loop's events as log lines (the loop itself never logs); late ticks summarised.
-pub(crate) async fn events(rx: &Receiver<Event>, stats: &TickStats, log: &Reporter) {
+pub(crate) async fn events(
+    rx: &Receiver<Event>,
+    stats: &TickStats,
+    log: &Reporter,
+    rec: Option<&RecordTx>,
+) {
     let mut late = LateTicks::new();
     loop {
         smol::Timer::after(EVENT_POLL).await;
@@ -318,6 +342,27 @@ pub(crate) async fn events(rx: &Receiver<Event>, stats: &TickStats, log: &Report
                 Event::Reset { at_tick } => log
                     .logger
                     .info(&format!("reset to the initial state after {at_tick} ticks")),
+                Event::ClockAnchored { origin_ns } => {
+                    if let Some(r) = rec {
+                        r.anchored(origin_ns);
+                    }
+                    log.logger.info(&format!(
+                        "following /clock: tick 0 at {:.6} s",
+                        origin_ns as f64 * 1e-9
+                    ));
+                }
+                Event::ClockJumped {
+                    from_ns,
+                    to_ns,
+                    at_tick,
+                } => log.logger.warn(&format!(
+                    "/clock jumped {} from {:.6} s to {:.6} s: reset to the initial state after \
+                     {at_tick} ticks, tick 0 now at {:.6} s",
+                    if to_ns < from_ns { "back" } else { "forward" },
+                    from_ns as f64 * 1e-9,
+                    to_ns as f64 * 1e-9,
+                    to_ns as f64 * 1e-9
+                )),
             }
         }
     }

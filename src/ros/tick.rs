@@ -39,6 +39,9 @@ pub enum Command {
     RealTimeFactor(f64),
     /// `sim`, `lockstep`: publish `/clock` every `n`th tick.
     ClockEvery(u64),
+    /// Following `/clock`: the external clock's time now, ns. The loop steps the whole ticks it
+    /// covers; a time before the last one (or too far past it) resets.
+    ClockTime(i64),
     /// `lockstep`: advance `ticks` ticks (after the steps queued before); the reply, if any,
     /// gets the state after the last of them.
     Step {
@@ -112,6 +115,38 @@ pub enum Event {
     Replaced { model: ModelKind, rate_hz: f64 },
     /// A reset was done on request.
     Reset { at_tick: u64 },
+    /// Following `/clock`: the first clock message anchored tick 0 at `origin_ns`.
+    ClockAnchored { origin_ns: i64 },
+    /// Following `/clock`: the clock went from `from_ns` back to `to_ns` (or forward by more
+    /// than [`FOLLOW_MAX_AHEAD_S`]): the actuator was reset after `at_tick` ticks and tick 0
+    /// re-anchored at `to_ns`.
+    ClockJumped {
+        from_ns: i64,
+        to_ns: i64,
+        at_tick: u64,
+    },
+}
+
+/// Following `/clock`, a clock that moves forward by more than this much simulated time at once
+/// is a jump (reset and re-anchored), not ticks to catch up on, s.
+pub const FOLLOW_MAX_AHEAD_S: f64 = 60.0;
+
+/// The ticks a clock at `ns` covers on `clock`: the largest k whose stamp is at or before `ns`
+/// (0 before the origin).
+pub fn ticks_covered(clock: TimeBase, ns: i64, rate_hz: f64) -> u64 {
+    let origin = clock.tick_origin_ns();
+    if ns <= origin {
+        return 0;
+    }
+    // The float estimate is within a tick of the answer; the stamps settle it exactly.
+    let mut k = ((ns - origin) as f64 * rate_hz / 1e9).floor() as u64;
+    while k > 0 && clock.stamp_ns(k, rate_hz) > ns {
+        k -= 1;
+    }
+    while clock.stamp_ns(k + 1, rate_hz) <= ns {
+        k += 1;
+    }
+    k
 }
 
 /// Counters and timing figures shared with the diagnostics (written by the tick loop).
@@ -157,6 +192,8 @@ pub struct TickStats {
     pub driven_joints: AtomicU64,
     /// Ticks since a driven joint's motion last arrived (u64::MAX: none yet).
     pub joint_motion_age_ticks: AtomicU64,
+    /// Following `/clock`: jumps back (or too far forward) that reset the actuator.
+    pub clock_jumps: AtomicU64,
 }
 
 impl TickStats {
@@ -357,9 +394,11 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             .realtime
             .store(request_realtime_priority(), Ordering::Relaxed);
     }
-    if mode == ClockMode::Lockstep {
+    if mode.is_driven() {
         io.commands.wake_me();
     }
+    // Following /clock: the latest clock time received, ns.
+    let mut follow_until: Option<i64> = None;
     let mut real_time_factor = io.pacing.real_time_factor;
     let mut clock_every = io.pacing.clock_every.max(1);
     // Lockstep: the steps asked for, in order (ticks left, reply).
@@ -515,6 +554,45 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     }
                 }
                 Command::ClockEvery(k) => clock_every = k.max(1),
+                Command::ClockTime(ns) if mode == ClockMode::Follow => {
+                    let rate = actuator.rate_hz();
+                    match follow_until {
+                        None => {
+                            // The first clock message: the tick reached (0) is at its time.
+                            clock = TimeBase::Wall {
+                                tick_origin_ns: ns
+                                    - crate::runs::tick_ns(actuator.tick(), rate) as i64,
+                            };
+                            send_event(Event::ClockAnchored {
+                                origin_ns: clock.tick_origin_ns(),
+                            });
+                        }
+                        Some(last)
+                            if ns < last
+                                || ticks_covered(clock, ns, rate).saturating_sub(actuator.tick())
+                                    as f64
+                                    > FOLLOW_MAX_AHEAD_S * rate =>
+                        {
+                            let before = actuator.tick();
+                            actuator.reset();
+                            excitation.iter_mut().for_each(|u| *u = 0.0);
+                            load.iter_mut().for_each(|t| *t = 0.0);
+                            clock = TimeBase::Wall { tick_origin_ns: ns };
+                            io.stats.clock_jumps.fetch_add(1, Ordering::Relaxed);
+                            send_event(Event::ClockJumped {
+                                from_ns: last,
+                                to_ns: ns,
+                                at_tick: before,
+                            });
+                        }
+                        Some(_) => {}
+                    }
+                    follow_until = Some(ns);
+                    io.pacing
+                        .clock
+                        .advance_to(clock.stamp_ns(actuator.tick(), rate));
+                }
+                Command::ClockTime(_) => {}
                 Command::Step { ticks, reply } => {
                     if ticks > 0 {
                         steps.push_back((ticks, reply));
@@ -522,8 +600,15 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                 }
             }
         }
-        // Lockstep: nothing to do until a step is asked for (a sender wakes the loop).
-        if mode == ClockMode::Lockstep && steps.is_empty() {
+        // Lockstep: nothing to do until a step is asked for; following /clock, until the
+        // clock covers the next tick (a sender wakes the loop).
+        let waiting = match mode {
+            ClockMode::Lockstep => steps.is_empty(),
+            ClockMode::Follow => follow_until
+                .is_none_or(|ns| ticks_covered(clock, ns, actuator.rate_hz()) <= actuator.tick()),
+            _ => false,
+        };
+        if waiting {
             std::thread::park_timeout(LOCKSTEP_IDLE);
             continue;
         }
@@ -578,9 +663,9 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         };
         if mode.is_simulated() {
             io.pacing.clock.advance_to(stamp_ns);
-            if actuator.tick().is_multiple_of(clock_every) {
-                hand(Output::Clock(stamp_ns));
-            }
+        }
+        if mode.publishes_clock() && actuator.tick().is_multiple_of(clock_every) {
+            hand(Output::Clock(stamp_ns));
         }
         if actuator.tick().is_multiple_of(publish_every) || publish_every == 1 {
             // Never waiting, in every mode: a simulated clock that waited for the publisher
@@ -1146,5 +1231,120 @@ mod tests {
             .map(|&k| crate::runs::tick_ns(k, rate) as i64)
             .collect();
         assert_eq!(clocks, expected);
+    }
+
+    /// The ticks a clock time covers: exactly those stamped at or before it, at rates whose
+    /// period is not a whole number of ns too.
+    #[test]
+    fn ticks_covered_are_those_stamped_at_or_before() {
+        for rate in [1000.0, 333.0, 2500.0, 7.0] {
+            for origin in [0, 5_000_000_000_123, -7] {
+                let clock = TimeBase::Wall {
+                    tick_origin_ns: origin,
+                };
+                assert_eq!(ticks_covered(clock, origin - 1, rate), 0);
+                for k in [0u64, 1, 2, 999, 1000, 123_457] {
+                    let at = clock.stamp_ns(k, rate);
+                    assert_eq!(ticks_covered(clock, at, rate), k, "{rate} {origin} {k}");
+                    assert_eq!(ticks_covered(clock, at + 1, rate), k);
+                    if k > 0 {
+                        assert_eq!(ticks_covered(clock, at - 1, rate), k - 1);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Following /clock: nothing before the first clock time, which anchors tick 0; each time
+    /// steps the ticks it covers, stamped with it; a paused clock pauses the loop; a jump back
+    /// resets and re-anchors, and so does a jump forward of more than a minute; `/clock` is not
+    /// published.
+    #[test]
+    fn follow_steps_the_ticks_each_clock_time_covers() {
+        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
+        let (tx, rx) = command_channel();
+        let (out_tx, out_rx) = std::sync::mpsc::sync_channel(65_536);
+        let (event_tx, event_rx) = std::sync::mpsc::sync_channel(64);
+        let stats = Arc::new(TickStats::default());
+        let stop = Arc::new(AtomicBool::new(false));
+        let clock = Arc::new(NodeClock::new(ClockMode::Follow));
+        let handle = spawn(
+            actuator,
+            1,
+            LoopIo {
+                commands: rx,
+                samples: out_tx,
+                events: event_tx,
+                stats: stats.clone(),
+                stop: stop.clone(),
+                applied: None,
+                tick_origin_ns: 0,
+                pacing: Pacing {
+                    clock: clock.clone(),
+                    real_time_factor: 0.0,
+                    clock_every: 1,
+                },
+            },
+        )
+        .unwrap();
+        let settle = |ticks: u64| {
+            let end = Instant::now() + Duration::from_secs(30);
+            while stats.ticks.load(Ordering::Relaxed) < ticks {
+                assert!(Instant::now() < end, "stuck before {ticks} ticks");
+                std::thread::sleep(Duration::from_millis(1));
+            }
+            std::thread::sleep(Duration::from_millis(50));
+            stats.ticks.load(Ordering::Relaxed)
+        };
+        std::thread::sleep(Duration::from_millis(50));
+        assert_eq!(stats.ticks.load(Ordering::Relaxed), 0);
+        let t0: i64 = 5_000_000_000_000;
+        tx.send(Command::ClockTime(t0)).ok();
+        tx.send(Command::ClockTime(t0 + 10_500_000)).ok();
+        assert_eq!(settle(10), 10, "10.5 ms covers 10 ticks");
+        assert_eq!(clock.now_ns(), t0 + 10_000_000);
+        std::thread::sleep(Duration::from_millis(100));
+        assert_eq!(stats.ticks.load(Ordering::Relaxed), 10, "paused");
+        // Back to 1 s: reset, tick 0 there; then 3 ticks from it.
+        tx.send(Command::ClockTime(1_000_000_000)).ok();
+        tx.send(Command::ClockTime(1_003_000_000)).ok();
+        assert_eq!(settle(13), 13);
+        assert_eq!(stats.clock_jumps.load(Ordering::Relaxed), 1);
+        // Two minutes on at once: a jump too (not 120 000 ticks to catch up on).
+        tx.send(Command::ClockTime(121_003_000_000)).ok();
+        tx.send(Command::ClockTime(121_005_000_000)).ok();
+        assert_eq!(settle(15), 15);
+        assert_eq!(stats.clock_jumps.load(Ordering::Relaxed), 2);
+        stop.store(true, Ordering::Relaxed);
+        handle.join().unwrap();
+        let states: Vec<(u64, i64)> = out_rx
+            .try_iter()
+            .map(|o| match o {
+                Output::State(s) => (s.tick, s.stamp_ns),
+                Output::Clock(_) => panic!("a follower publishes no /clock"),
+            })
+            .collect();
+        let mut expected: Vec<(u64, i64)> =
+            (1..=10).map(|k| (k, t0 + k as i64 * 1_000_000)).collect();
+        expected.extend((1..=3).map(|k| (k, 1_000_000_000 + k as i64 * 1_000_000)));
+        expected.extend((1..=2).map(|k| (k, 121_003_000_000 + k as i64 * 1_000_000)));
+        assert_eq!(states, expected);
+        let events: Vec<Event> = event_rx.try_iter().collect();
+        assert_eq!(
+            events,
+            vec![
+                Event::ClockAnchored { origin_ns: t0 },
+                Event::ClockJumped {
+                    from_ns: t0 + 10_500_000,
+                    to_ns: 1_000_000_000,
+                    at_tick: 10
+                },
+                Event::ClockJumped {
+                    from_ns: 1_003_000_000,
+                    to_ns: 121_003_000_000,
+                    at_tick: 3
+                },
+            ]
+        );
     }
 }

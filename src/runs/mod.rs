@@ -99,14 +99,24 @@ pub enum TimeBase {
     /// Wall-clock time, ns since the Unix epoch; tick k of the run is stamped
     /// `tick_origin_ns + k / rate` (node runs).
     Wall { tick_origin_ns: i64 },
+    /// The time of an external `/clock` the node followed (`use_sim_time`), ns; tick k is
+    /// stamped `tick_origin_ns + k / rate`, the origin being the first `/clock` time received
+    /// (`None` until one arrived: the run has no tick yet).
+    RosClock { tick_origin_ns: Option<i64> },
 }
 
 impl TimeBase {
     /// The stamp of tick 0, ns.
     pub fn tick_origin_ns(self) -> i64 {
         match self {
-            TimeBase::Simulated => 0,
-            TimeBase::Wall { tick_origin_ns } => tick_origin_ns,
+            TimeBase::Simulated
+            | TimeBase::RosClock {
+                tick_origin_ns: None,
+            } => 0,
+            TimeBase::Wall { tick_origin_ns }
+            | TimeBase::RosClock {
+                tick_origin_ns: Some(tick_origin_ns),
+            } => tick_origin_ns,
         }
     }
 
@@ -118,6 +128,16 @@ impl TimeBase {
 
     /// The tick stamped `ns` at `rate_hz` (refused before the origin: it names no tick).
     pub fn tick_of(self, ns: i64, rate_hz: f64) -> Result<u64, String> {
+        if self
+            == (TimeBase::RosClock {
+                tick_origin_ns: None,
+            })
+        {
+            return Err(format!(
+                "stamp {ns} ns names no tick: the node received no /clock message, so the run \
+                 has no tick origin"
+            ));
+        }
         let origin = self.tick_origin_ns();
         let since = ns.checked_sub(origin).filter(|d| *d >= 0).ok_or_else(|| {
             format!("stamp {ns} ns is before the run's tick origin ({origin} ns)")
@@ -218,6 +238,12 @@ impl RunMeta {
                 put("time_base", "wall".into());
                 put("tick_origin_ns", tick_origin_ns.to_string());
             }
+            TimeBase::RosClock { tick_origin_ns } => {
+                put("time_base", "ros_clock".into());
+                if let Some(t) = tick_origin_ns {
+                    put("tick_origin_ns", t.to_string());
+                }
+            }
         }
         if !self.initial_joint_motion.is_empty() {
             // `{:?}` prints the shortest text that parses back to the same f64.
@@ -287,6 +313,12 @@ impl RunMeta {
                     tick_origin_ns: v.parse().map_err(|_| bad("tick_origin_ns", v))?,
                 }
             }
+            Some("ros_clock") => TimeBase::RosClock {
+                tick_origin_ns: match m.get("tick_origin_ns") {
+                    Some(v) => Some(v.parse().map_err(|_| bad("tick_origin_ns", v))?),
+                    None => None,
+                },
+            },
             Some(other) => return Err(bad("time_base", other)),
         };
         let meta = RunMeta {
@@ -1019,5 +1051,28 @@ mod tests {
         assert!(RunMeta::from_map(&map)
             .unwrap_err()
             .contains("tick_origin_ns"));
+        // Following /clock: no origin until the first clock message, then the one it gave.
+        for origin in [None, Some(5_000_000_000_000)] {
+            meta.time_base = TimeBase::RosClock {
+                tick_origin_ns: origin,
+            };
+            assert_eq!(RunMeta::from_map(&meta.to_map().unwrap()).unwrap(), meta);
+        }
+        let rc = meta.time_base;
+        assert_eq!(rc.tick_of(rc.stamp_ns(42, 1000.0), 1000.0), Ok(42));
+        let none = TimeBase::RosClock {
+            tick_origin_ns: None,
+        };
+        assert!(none.tick_of(0, 1000.0).unwrap_err().contains("no /clock"));
+        // The driven joints' initial motion round-trips exactly, and must fit them.
+        let mut cfg = ActuatorConfig::default();
+        cfg.joints[0].driven = true;
+        meta.config = cfg;
+        meta.initial_joint_motion = vec![(0.1 + 0.2, std::f64::consts::PI / 3.0)];
+        assert_eq!(RunMeta::from_map(&meta.to_map().unwrap()).unwrap(), meta);
+        meta.initial_joint_motion.push((0.0, 0.0));
+        assert!(RunMeta::from_map(&meta.to_map().unwrap())
+            .unwrap_err()
+            .contains("initial_joint_motion"));
     }
 }
