@@ -220,6 +220,8 @@ pub(crate) fn diagnostics(
             kv("step_failures", step_failures),
             kv("resets", ld(&stats.resets)),
             kv("clock_jumps", clock_jumps),
+            kv("scheduled_inputs", ld(&stats.scheduled_pending)),
+            kv("scheduled_dropped", ld(&stats.scheduled_dropped)),
         ],
     };
     let last = inputs

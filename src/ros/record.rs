@@ -48,15 +48,26 @@ pub struct RecordTx {
 
 impl RecordTx {
     /// Serializes `msg` and hands it to the recorder on channel `ch` (log time: the node's
-    /// clock now).
+    /// clock now), for what the node received or logged.
     pub fn put<T: serde::Serialize>(&self, ch: Channel, publish_ns: i64, msg: &T) {
+        self.put_logged(ch, self.clock.now_ns(), publish_ns, msg);
+    }
+
+    /// As [`RecordTx::put`] for what the tick loop made (states, joint states, efforts, inputs
+    /// as applied): log time = the tick's stamp, so that the same ticks give the same records
+    /// whenever the recorder's thread got to them.
+    pub fn put_tick<T: serde::Serialize>(&self, ch: Channel, stamp_ns: i64, msg: &T) {
+        self.put_logged(ch, stamp_ns, stamp_ns, msg);
+    }
+
+    fn put_logged<T: serde::Serialize>(&self, ch: Channel, log_ns: i64, publish_ns: i64, msg: &T) {
         let Some(id) = self.layout.id(ch) else {
             return;
         };
         match encode_cdr(msg) {
             Ok(data) => {
-                let now = self.clock.now_ns().max(0) as u64;
-                self.sender.record(id, now, publish_ns.max(0) as u64, data);
+                let log = log_ns.max(0) as u64;
+                self.sender.record(id, log, publish_ns.max(0) as u64, data);
             }
             Err(_) => {
                 self.sender.stats().dropped.fetch_add(1, Ordering::Relaxed);
@@ -214,7 +225,7 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
                     muscle: v.iter().map(|(i, _)| name(*i)).collect(),
                     excitation: v.iter().map(|(_, u)| *u).collect(),
                 };
-                tx.put(Channel::AppliedActivation, a.stamp_ns, &m);
+                tx.put_tick(Channel::AppliedActivation, a.stamp_ns, &m);
             }
             AppliedInput::Load(v) => {
                 let m = ExternalLoad {
@@ -222,7 +233,7 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
                     joint: v.iter().map(|(j, _)| name(*j)).collect(),
                     torque: v.iter().map(|(_, t)| *t).collect(),
                 };
-                tx.put(Channel::AppliedLoad, a.stamp_ns, &m);
+                tx.put_tick(Channel::AppliedLoad, a.stamp_ns, &m);
             }
             AppliedInput::JointMotion(v) => {
                 let m = runs::joint_motion_msg(
@@ -230,7 +241,7 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
                     v.iter()
                         .map(|&(j, angle, velocity)| (name(j), angle, velocity)),
                 );
-                tx.put(Channel::AppliedJointMotion, a.stamp_ns, &m);
+                tx.put_tick(Channel::AppliedJointMotion, a.stamp_ns, &m);
             }
         }
     }

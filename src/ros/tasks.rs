@@ -55,8 +55,8 @@ impl InputContext<'_> {
     }
 
     /// Excitations by name, from any of the three activation topics: validated the same way
-    /// and applied at the next tick boundary.
-    fn excite(&self, names: &[String], values: &[f64], known: &[String]) {
+    /// and applied at the next tick boundary (with a header `stamp_ns`, see [`stamped`]).
+    fn excite(&self, names: &[String], values: &[f64], known: &[String], stamp_ns: Option<i64>) {
         match input::validate_activation(names, values, known) {
             Ok(acc) => {
                 if !acc.clamped.is_empty() {
@@ -77,7 +77,8 @@ impl InputContext<'_> {
                         ),
                     );
                 }
-                self.shared.send(Command::Excitation(acc.values));
+                self.shared
+                    .send(stamped(stamp_ns, Command::Excitation(acc.values)));
             }
             Err(rej) => self.rejected(
                 &self.stats.activation_rejected,
@@ -115,11 +116,26 @@ impl InputContext<'_> {
     }
 }
 
+/// An input with its message's header stamp (not zero): the tick loop holds one stamped ahead
+/// of a simulated clock until its time ([`Command::Stamped`]). A zero stamp means "now".
+fn stamped(stamp_ns: Option<i64>, input: Command) -> Command {
+    match stamp_ns {
+        Some(ns) if ns != 0 => Command::Stamped(ns, Box::new(input)),
+        _ => input,
+    }
+}
+
 /// `~/activation`: excitations by muscle name.
 pub(crate) async fn activation(sub: &Subscription<ActivationCommand>, cx: &InputContext<'_>) {
     cx.each(sub, "activation", &cx.stats.activation_received, |msg| {
         cx.record(Channel::Activation, msg.header.stamp.to_nanos(), &msg);
-        cx.excite(&msg.muscle, &msg.excitation, &cx.shared.muscles());
+        let stamp = msg.header.stamp.to_nanos();
+        cx.excite(
+            &msg.muscle,
+            &msg.excitation,
+            &cx.shared.muscles(),
+            Some(stamp),
+        );
     })
     .await
 }
@@ -148,7 +164,7 @@ pub(crate) async fn activation_array(sub: &Subscription<Float64MultiArray>, cx: 
                 return;
             }
             // All of them, in order: the names are the configuration's own.
-            cx.excite(&known, &msg.data, &known);
+            cx.excite(&known, &msg.data, &known, None);
         },
     )
     .await
@@ -173,6 +189,7 @@ pub(crate) async fn muscle_commands(
                     std::slice::from_ref(name),
                     &[msg.data],
                     &cx.shared.muscles(),
+                    None,
                 );
             }
             Err(e) => cx.unreadable("cmd_activation", format!("{e:?}")),
@@ -188,7 +205,10 @@ pub(crate) async fn load(sub: &Subscription<ExternalLoad>, cx: &InputContext<'_>
     cx.each(sub, "external load", &cx.stats.load_received, |msg| {
         cx.record(Channel::Load, msg.header.stamp.to_nanos(), &msg);
         match input::validate_load(&msg.joint, &msg.torque, &cx.shared.joints()) {
-            Ok(acc) => cx.shared.send(Command::Load(acc.values)),
+            Ok(acc) => cx.shared.send(stamped(
+                Some(msg.header.stamp.to_nanos()),
+                Command::Load(acc.values),
+            )),
             Err(rej) => cx.rejected(
                 &cx.stats.load_rejected,
                 &rej,

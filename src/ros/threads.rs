@@ -74,15 +74,15 @@ fn publish_loop(rx: Receiver<Output>, out: Outlets) {
             Output::State(s) => {
                 let (state, js) = sample_to_msgs(&s);
                 if let Some(r) = &out.rec {
-                    r.put(Channel::State, s.stamp_ns, &state);
-                    r.put(Channel::JointStates, s.stamp_ns, &js);
+                    r.put_tick(Channel::State, s.stamp_ns, &state);
+                    r.put_tick(Channel::JointStates, s.stamp_ns, &js);
                 }
                 failed(out.state.publish(state).is_ok());
                 failed(out.joint_states.publish(js).is_ok());
                 if let (Some(p), false) = (&out.efforts, s.driven.is_empty()) {
                     let efforts = efforts_msg(&s);
                     if let Some(r) = &out.rec {
-                        r.put(Channel::JointEfforts, s.stamp_ns, &efforts);
+                        r.put_tick(Channel::JointEfforts, s.stamp_ns, &efforts);
                     }
                     failed(p.publish(efforts).is_ok());
                 }

@@ -39,6 +39,10 @@ pub enum Command {
     RealTimeFactor(f64),
     /// `sim`, `lockstep`: publish `/clock` every `n`th tick.
     ClockEvery(u64),
+    /// An input (`Excitation`, `Load`) with its message's header stamp, ns: with a simulated
+    /// clock, a stamp ahead of the node's time (by at most [`SCHEDULE_HORIZON_S`]) holds it until
+    /// the first tick stamped at or after it; otherwise it applies at the next tick.
+    Stamped(i64, Box<Command>),
     /// Following `/clock`: the external clock's time now, ns. The loop steps the whole ticks it
     /// covers; a time before the last one (or too far past it) resets.
     ClockTime(i64),
@@ -127,6 +131,13 @@ pub enum Event {
     },
 }
 
+/// With a simulated clock, inputs stamped further ahead of the node's time than this are taken
+/// for another clock's (a wall-clock stamp) and apply at the next tick, s.
+pub const SCHEDULE_HORIZON_S: f64 = 3600.0;
+
+/// Most inputs waiting for their stamp at once; more are dropped and counted.
+pub const SCHEDULE_CAPACITY: usize = 1024;
+
 /// Following `/clock`, a clock that moves forward by more than this much simulated time at once
 /// is a jump (reset and re-anchored), not ticks to catch up on, s.
 pub const FOLLOW_MAX_AHEAD_S: f64 = 60.0;
@@ -194,6 +205,9 @@ pub struct TickStats {
     pub joint_motion_age_ticks: AtomicU64,
     /// Following `/clock`: jumps back (or too far forward) that reset the actuator.
     pub clock_jumps: AtomicU64,
+    /// Inputs stamped ahead, waiting for their tick; and those dropped for want of room.
+    pub scheduled_pending: AtomicU64,
+    pub scheduled_dropped: AtomicU64,
 }
 
 impl TickStats {
@@ -446,6 +460,9 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         }
     };
     let mut commands = io.commands.buffer();
+    let mut ready = io.commands.buffer();
+    // Inputs stamped ahead (simulated clocks), in stamp order: (stamp ns, input).
+    let mut scheduled: VecDeque<(i64, Command)> = VecDeque::with_capacity(SCHEDULE_CAPACITY);
 
     while !io.stop.load(Ordering::Relaxed) {
         // 1. Inputs that arrived since the last tick take effect now (never waiting for the
@@ -460,7 +477,34 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
         io.stats
             .commands_dropped
             .store(io.commands.dropped(), Ordering::Relaxed);
+        // Inputs whose stamp has come first (in stamp order), then those that arrived; inputs
+        // stamped ahead wait.
+        let now_ns = clock.stamp_ns(actuator.tick(), actuator.rate_hz());
+        while let Some((_, c)) = scheduled.pop_front_if(|(at, _)| *at <= now_ns) {
+            ready.push(c);
+        }
         for command in commands.drain(..) {
+            match command {
+                Command::Stamped(at, input)
+                    if mode.is_simulated()
+                        && at > now_ns
+                        && (at - now_ns) as f64 <= SCHEDULE_HORIZON_S * 1e9 =>
+                {
+                    if scheduled.len() < SCHEDULE_CAPACITY {
+                        let k = scheduled.partition_point(|(t, _)| *t <= at);
+                        scheduled.insert(k, (at, *input));
+                    } else {
+                        io.stats.scheduled_dropped.fetch_add(1, Ordering::Relaxed);
+                    }
+                }
+                Command::Stamped(_, input) => ready.push(*input),
+                other => ready.push(other),
+            }
+        }
+        io.stats
+            .scheduled_pending
+            .store(scheduled.len() as u64, Ordering::Relaxed);
+        for command in ready.drain(..) {
             match command {
                 Command::Excitation(v) => {
                     for &(i, u) in &v {
@@ -492,6 +536,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                     actuator.reset();
                     excitation.iter_mut().for_each(|u| *u = 0.0);
                     load.iter_mut().for_each(|t| *t = 0.0);
+                    scheduled.clear();
                     io.stats.resets.fetch_add(1, Ordering::Relaxed);
                     send_event(Event::Reset { at_tick: before });
                     if let Some(r) = reply {
@@ -578,6 +623,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                             excitation.iter_mut().for_each(|u| *u = 0.0);
                             load.iter_mut().for_each(|t| *t = 0.0);
                             clock = TimeBase::Wall { tick_origin_ns: ns };
+                            scheduled.clear();
                             io.stats.clock_jumps.fetch_add(1, Ordering::Relaxed);
                             send_event(Event::ClockJumped {
                                 from_ns: last,
@@ -593,6 +639,8 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                         .advance_to(clock.stamp_ns(actuator.tick(), rate));
                 }
                 Command::ClockTime(_) => {}
+                // Unwrapped above.
+                Command::Stamped(_, _) => {}
                 Command::Step { ticks, reply } => {
                     if ticks > 0 {
                         steps.push_back((ticks, reply));
@@ -623,6 +671,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             actuator.reset();
             excitation.iter_mut().for_each(|u| *u = 0.0);
             load.iter_mut().for_each(|t| *t = 0.0);
+            scheduled.clear();
             io.stats.step_failures.fetch_add(1, Ordering::Relaxed);
             send_event(Event::StepFailed {
                 tick,
@@ -1346,5 +1395,103 @@ mod tests {
                 },
             ]
         );
+    }
+
+    /// With a simulated clock an input stamped ahead waits for the first tick stamped at or
+    /// after it (in stamp order, whatever the order of arrival); one stamped in the past, with
+    /// zero, or beyond the horizon (a wall-clock stamp) applies at the next tick; a reset drops
+    /// those waiting.
+    #[test]
+    fn inputs_stamped_ahead_wait_for_their_tick() {
+        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
+        let rate = actuator.rate_hz();
+        let (tx, rx) = command_channel();
+        let (out_tx, out_rx) = std::sync::mpsc::sync_channel(65_536);
+        let (event_tx, _event_rx) = std::sync::mpsc::sync_channel(64);
+        let (applied_tx, applied_rx) = std::sync::mpsc::sync_channel(64);
+        let stats = Arc::new(TickStats::default());
+        let stop = Arc::new(AtomicBool::new(false));
+        let handle = spawn(
+            actuator,
+            1,
+            LoopIo {
+                commands: rx,
+                samples: out_tx,
+                events: event_tx,
+                stats: stats.clone(),
+                stop: stop.clone(),
+                applied: Some(applied_tx),
+                tick_origin_ns: 0,
+                pacing: Pacing {
+                    clock: Arc::new(NodeClock::new(ClockMode::Lockstep)),
+                    real_time_factor: 0.0,
+                    clock_every: 1,
+                },
+            },
+        )
+        .unwrap();
+        let at = |tick: u64| crate::runs::tick_ns(tick, rate) as i64;
+        let excite = |u: f64| Box::new(Command::Excitation(vec![(0, u)]));
+        // Sent out of order: tick 7's before tick 4's (and one between two ticks: tick 9).
+        tx.send(Command::Stamped(at(7), excite(0.7))).ok();
+        tx.send(Command::Stamped(at(4), excite(0.4))).ok();
+        tx.send(Command::Stamped(at(8) + 1, excite(0.9))).ok();
+        let wall_stamp = 1_763_800_000_000_000_000;
+        tx.send(Command::Stamped(
+            wall_stamp,
+            Box::new(Command::Load(vec![(0, 0.25)])),
+        ))
+        .ok();
+        tx.send(Command::Step {
+            ticks: 12,
+            reply: None,
+        })
+        .ok();
+        let end = Instant::now() + Duration::from_secs(30);
+        while stats.ticks.load(Ordering::Relaxed) < 12 {
+            assert!(Instant::now() < end);
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        // One stamped ahead, then a reset: it never applies.
+        tx.send(Command::Stamped(at(20), excite(1.0))).ok();
+        let (r_tx, _r_rx) = futures::channel::oneshot::channel();
+        tx.send(Command::Reset(Some(r_tx))).ok();
+        tx.send(Command::Step {
+            ticks: 30,
+            reply: None,
+        })
+        .ok();
+        while stats.ticks.load(Ordering::Relaxed) < 42 {
+            assert!(Instant::now() < end);
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        assert_eq!(stats.scheduled_pending.load(Ordering::Relaxed), 0);
+        stop.store(true, Ordering::Relaxed);
+        handle.join().unwrap();
+        let applied: Vec<(u64, bool)> = applied_rx
+            .try_iter()
+            .map(|a| (a.tick, matches!(a.input, AppliedInput::Excitation(_))))
+            .collect();
+        // The wall-stamped load at once (tick 0), then the excitations at 4, 7 and 9.
+        assert_eq!(applied, vec![(0, false), (4, true), (7, true), (9, true)]);
+        let u: Vec<(u64, f64)> = out_rx
+            .try_iter()
+            .filter_map(|o| match o {
+                Output::State(s) => Some((s.tick, s.state.muscles[0].excitation)),
+                Output::Clock(_) => None,
+            })
+            .collect();
+        let want = |k: u64| match k {
+            1..=4 => 0.0,
+            5..=7 => 0.4,
+            8..=9 => 0.7,
+            _ => 0.9,
+        };
+        assert_eq!(
+            &u[..12],
+            &(1..=12).map(|k| (k, want(k))).collect::<Vec<_>>()[..]
+        );
+        // After the reset: nothing applied, excitation 0 to the end.
+        assert!(u[12..].iter().all(|(_, x)| *x == 0.0), "{:?}", &u[12..]);
     }
 }
