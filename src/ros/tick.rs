@@ -1195,33 +1195,8 @@ mod tests {
     /// goes out every `clock_every` ticks, stamped tick / rate.
     #[test]
     fn lockstep_ticks_only_when_stepped() {
-        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
-        let rate = actuator.rate_hz();
-        let (tx, rx) = command_channel();
-        let (out_tx, out_rx) = std::sync::mpsc::sync_channel(4096);
-        let (event_tx, _event_rx) = std::sync::mpsc::sync_channel(64);
-        let stats = Arc::new(TickStats::default());
-        let stop = Arc::new(AtomicBool::new(false));
-        let clock = Arc::new(NodeClock::new(ClockMode::Lockstep));
-        let handle = spawn(
-            actuator,
-            1,
-            LoopIo {
-                commands: rx,
-                samples: out_tx,
-                events: event_tx,
-                stats: stats.clone(),
-                stop: stop.clone(),
-                applied: None,
-                tick_origin_ns: 0,
-                pacing: Pacing {
-                    clock: clock.clone(),
-                    real_time_factor: 0.0,
-                    clock_every: 4,
-                },
-            },
-        )
-        .unwrap();
+        let l = TestLoop::start(ClockMode::Lockstep, 4);
+        let (tx, stats, clock, rate) = (&l.tx, &l.stats, &l.clock, 1000.0);
         std::thread::sleep(Duration::from_millis(100));
         assert_eq!(
             stats.ticks.load(Ordering::Relaxed),
@@ -1266,10 +1241,9 @@ mod tests {
             17,
             "no tick after the steps"
         );
-        stop.store(true, Ordering::Relaxed);
-        handle.join().unwrap();
-        let clocks: Vec<i64> = out_rx
-            .try_iter()
+        let (out, _, _) = l.finish();
+        let clocks: Vec<i64> = out
+            .into_iter()
             .filter_map(|o| match o {
                 Output::Clock(ns) => Some(ns),
                 Output::State(_) => None,
@@ -1310,75 +1284,39 @@ mod tests {
     /// published.
     #[test]
     fn follow_steps_the_ticks_each_clock_time_covers() {
-        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
-        let (tx, rx) = command_channel();
-        let (out_tx, out_rx) = std::sync::mpsc::sync_channel(65_536);
-        let (event_tx, event_rx) = std::sync::mpsc::sync_channel(64);
-        let stats = Arc::new(TickStats::default());
-        let stop = Arc::new(AtomicBool::new(false));
-        let clock = Arc::new(NodeClock::new(ClockMode::Follow));
-        let handle = spawn(
-            actuator,
-            1,
-            LoopIo {
-                commands: rx,
-                samples: out_tx,
-                events: event_tx,
-                stats: stats.clone(),
-                stop: stop.clone(),
-                applied: None,
-                tick_origin_ns: 0,
-                pacing: Pacing {
-                    clock: clock.clone(),
-                    real_time_factor: 0.0,
-                    clock_every: 1,
-                },
-            },
-        )
-        .unwrap();
-        let settle = |ticks: u64| {
-            let end = Instant::now() + Duration::from_secs(30);
-            while stats.ticks.load(Ordering::Relaxed) < ticks {
-                assert!(Instant::now() < end, "stuck before {ticks} ticks");
-                std::thread::sleep(Duration::from_millis(1));
-            }
-            std::thread::sleep(Duration::from_millis(50));
-            stats.ticks.load(Ordering::Relaxed)
-        };
+        let l = TestLoop::start(ClockMode::Follow, 1);
         std::thread::sleep(Duration::from_millis(50));
-        assert_eq!(stats.ticks.load(Ordering::Relaxed), 0);
+        assert_eq!(l.stats.ticks.load(Ordering::Relaxed), 0);
         let t0: i64 = 5_000_000_000_000;
-        tx.send(Command::ClockTime(t0)).ok();
-        tx.send(Command::ClockTime(t0 + 10_500_000)).ok();
-        assert_eq!(settle(10), 10, "10.5 ms covers 10 ticks");
-        assert_eq!(clock.now_ns(), t0 + 10_000_000);
+        l.tx.send(Command::ClockTime(t0)).ok();
+        l.tx.send(Command::ClockTime(t0 + 10_500_000)).ok();
+        assert_eq!(l.settle(10), 10, "10.5 ms covers 10 ticks");
+        assert_eq!(l.clock.now_ns(), t0 + 10_000_000);
         std::thread::sleep(Duration::from_millis(100));
-        assert_eq!(stats.ticks.load(Ordering::Relaxed), 10, "paused");
+        assert_eq!(l.stats.ticks.load(Ordering::Relaxed), 10, "paused");
         // Back to 1 s: reset, tick 0 there; then 3 ticks from it.
-        tx.send(Command::ClockTime(1_000_000_000)).ok();
-        tx.send(Command::ClockTime(1_003_000_000)).ok();
-        assert_eq!(settle(13), 13);
-        assert_eq!(stats.clock_jumps.load(Ordering::Relaxed), 1);
+        l.tx.send(Command::ClockTime(1_000_000_000)).ok();
+        l.tx.send(Command::ClockTime(1_003_000_000)).ok();
+        assert_eq!(l.settle(13), 13);
+        assert_eq!(l.stats.clock_jumps.load(Ordering::Relaxed), 1);
         // Two minutes on at once: a jump too (not 120 000 ticks to catch up on).
-        tx.send(Command::ClockTime(121_003_000_000)).ok();
-        tx.send(Command::ClockTime(121_005_000_000)).ok();
-        assert_eq!(settle(15), 15);
-        assert_eq!(stats.clock_jumps.load(Ordering::Relaxed), 2);
-        stop.store(true, Ordering::Relaxed);
-        handle.join().unwrap();
-        let states: Vec<(u64, i64)> = out_rx
-            .try_iter()
+        l.tx.send(Command::ClockTime(121_003_000_000)).ok();
+        l.tx.send(Command::ClockTime(121_005_000_000)).ok();
+        assert_eq!(l.settle(15), 15);
+        assert_eq!(l.stats.clock_jumps.load(Ordering::Relaxed), 2);
+        let (out, events, _) = l.finish();
+        let states: Vec<(u64, i64)> = out
+            .into_iter()
             .map(|o| match o {
                 Output::State(s) => (s.tick, s.stamp_ns),
                 Output::Clock(_) => panic!("a follower publishes no /clock"),
             })
             .collect();
-        let mut expected: Vec<(u64, i64)> =
-            (1..=10).map(|k| (k, t0 + k as i64 * 1_000_000)).collect();
-        expected.extend((1..=3).map(|k| (k, 1_000_000_000 + k as i64 * 1_000_000)));
-        expected.extend((1..=2).map(|k| (k, 121_003_000_000 + k as i64 * 1_000_000)));
+        let ms = |t: i64, k: u64| (k, t + k as i64 * 1_000_000);
+        let mut expected: Vec<(u64, i64)> = (1..=10).map(|k| ms(t0, k)).collect();
+        expected.extend((1..=3).map(|k| ms(1_000_000_000, k)));
+        expected.extend((1..=2).map(|k| ms(121_003_000_000, k)));
         assert_eq!(states, expected);
-        let events: Vec<Event> = event_rx.try_iter().collect();
         assert_eq!(
             events,
             vec![
@@ -1403,79 +1341,34 @@ mod tests {
     /// those waiting.
     #[test]
     fn inputs_stamped_ahead_wait_for_their_tick() {
-        let actuator = crate::ros::params::NodeParams::default().build().unwrap();
-        let rate = actuator.rate_hz();
-        let (tx, rx) = command_channel();
-        let (out_tx, out_rx) = std::sync::mpsc::sync_channel(65_536);
-        let (event_tx, _event_rx) = std::sync::mpsc::sync_channel(64);
-        let (applied_tx, applied_rx) = std::sync::mpsc::sync_channel(64);
-        let stats = Arc::new(TickStats::default());
-        let stop = Arc::new(AtomicBool::new(false));
-        let handle = spawn(
-            actuator,
-            1,
-            LoopIo {
-                commands: rx,
-                samples: out_tx,
-                events: event_tx,
-                stats: stats.clone(),
-                stop: stop.clone(),
-                applied: Some(applied_tx),
-                tick_origin_ns: 0,
-                pacing: Pacing {
-                    clock: Arc::new(NodeClock::new(ClockMode::Lockstep)),
-                    real_time_factor: 0.0,
-                    clock_every: 1,
-                },
-            },
-        )
-        .unwrap();
-        let at = |tick: u64| crate::runs::tick_ns(tick, rate) as i64;
+        let l = TestLoop::start(ClockMode::Lockstep, 1);
+        let at = |tick: u64| crate::runs::tick_ns(tick, 1000.0) as i64;
         let excite = |u: f64| Box::new(Command::Excitation(vec![(0, u)]));
         // Sent out of order: tick 7's before tick 4's (and one between two ticks: tick 9).
-        tx.send(Command::Stamped(at(7), excite(0.7))).ok();
-        tx.send(Command::Stamped(at(4), excite(0.4))).ok();
-        tx.send(Command::Stamped(at(8) + 1, excite(0.9))).ok();
+        l.tx.send(Command::Stamped(at(7), excite(0.7))).ok();
+        l.tx.send(Command::Stamped(at(4), excite(0.4))).ok();
+        l.tx.send(Command::Stamped(at(8) + 1, excite(0.9))).ok();
         let wall_stamp = 1_763_800_000_000_000_000;
-        tx.send(Command::Stamped(
-            wall_stamp,
-            Box::new(Command::Load(vec![(0, 0.25)])),
-        ))
-        .ok();
-        tx.send(Command::Step {
-            ticks: 12,
-            reply: None,
-        })
-        .ok();
-        let end = Instant::now() + Duration::from_secs(30);
-        while stats.ticks.load(Ordering::Relaxed) < 12 {
-            assert!(Instant::now() < end);
-            std::thread::sleep(Duration::from_millis(1));
-        }
+        let load = Box::new(Command::Load(vec![(0, 0.25)]));
+        l.tx.send(Command::Stamped(wall_stamp, load)).ok();
+        let step = |ticks| Command::Step { ticks, reply: None };
+        l.tx.send(step(12)).ok();
+        l.settle(12);
         // One stamped ahead, then a reset: it never applies.
-        tx.send(Command::Stamped(at(20), excite(1.0))).ok();
-        let (r_tx, _r_rx) = futures::channel::oneshot::channel();
-        tx.send(Command::Reset(Some(r_tx))).ok();
-        tx.send(Command::Step {
-            ticks: 30,
-            reply: None,
-        })
-        .ok();
-        while stats.ticks.load(Ordering::Relaxed) < 42 {
-            assert!(Instant::now() < end);
-            std::thread::sleep(Duration::from_millis(1));
-        }
-        assert_eq!(stats.scheduled_pending.load(Ordering::Relaxed), 0);
-        stop.store(true, Ordering::Relaxed);
-        handle.join().unwrap();
-        let applied: Vec<(u64, bool)> = applied_rx
-            .try_iter()
+        l.tx.send(Command::Stamped(at(20), excite(1.0))).ok();
+        l.tx.send(Command::Reset(None)).ok();
+        l.tx.send(step(30)).ok();
+        l.settle(42);
+        assert_eq!(l.stats.scheduled_pending.load(Ordering::Relaxed), 0);
+        let (out, _, applied) = l.finish();
+        let applied: Vec<(u64, bool)> = applied
+            .iter()
             .map(|a| (a.tick, matches!(a.input, AppliedInput::Excitation(_))))
             .collect();
         // The wall-stamped load at once (tick 0), then the excitations at 4, 7 and 9.
         assert_eq!(applied, vec![(0, false), (4, true), (7, true), (9, true)]);
-        let u: Vec<(u64, f64)> = out_rx
-            .try_iter()
+        let u: Vec<(u64, f64)> = out
+            .into_iter()
             .filter_map(|o| match o {
                 Output::State(s) => Some((s.tick, s.state.muscles[0].excitation)),
                 Output::Clock(_) => None,
@@ -1493,5 +1386,82 @@ mod tests {
         );
         // After the reset: nothing applied, excitation 0 to the end.
         assert!(u[12..].iter().all(|(_, x)| *x == 0.0), "{:?}", &u[12..]);
+    }
+
+    /// A loop under test on `mode`'s clock, from the default actuator at tick origin 0: its
+    /// command sender, outputs, events, applied inputs, counters, stop flag and thread.
+    struct TestLoop {
+        tx: CommandSender,
+        out: std::sync::mpsc::Receiver<Output>,
+        events: std::sync::mpsc::Receiver<Event>,
+        applied: std::sync::mpsc::Receiver<Applied>,
+        stats: Arc<TickStats>,
+        clock: Arc<NodeClock>,
+        stop: Arc<AtomicBool>,
+        handle: std::thread::JoinHandle<RunSummary>,
+    }
+
+    impl TestLoop {
+        fn start(mode: ClockMode, clock_every: u64) -> Self {
+            let actuator = crate::ros::params::NodeParams::default().build().unwrap();
+            let (tx, rx) = command_channel();
+            let (out_tx, out) = std::sync::mpsc::sync_channel(65_536);
+            let (event_tx, events) = std::sync::mpsc::sync_channel(64);
+            let (applied_tx, applied) = std::sync::mpsc::sync_channel(64);
+            let stats = Arc::new(TickStats::default());
+            let stop = Arc::new(AtomicBool::new(false));
+            let clock = Arc::new(NodeClock::new(mode));
+            let handle = spawn(
+                actuator,
+                1,
+                LoopIo {
+                    commands: rx,
+                    samples: out_tx,
+                    events: event_tx,
+                    stats: stats.clone(),
+                    stop: stop.clone(),
+                    applied: Some(applied_tx),
+                    tick_origin_ns: 0,
+                    pacing: Pacing {
+                        clock: clock.clone(),
+                        real_time_factor: 0.0,
+                        clock_every,
+                    },
+                },
+            )
+            .unwrap();
+            Self {
+                tx,
+                out,
+                events,
+                applied,
+                stats,
+                clock,
+                stop,
+                handle,
+            }
+        }
+
+        /// Waits until `ticks` ticks are done (and a little more, to see that no more come).
+        fn settle(&self, ticks: u64) -> u64 {
+            let end = Instant::now() + Duration::from_secs(30);
+            while self.stats.ticks.load(Ordering::Relaxed) < ticks {
+                assert!(Instant::now() < end, "stuck before {ticks} ticks");
+                std::thread::sleep(Duration::from_millis(1));
+            }
+            std::thread::sleep(Duration::from_millis(50));
+            self.stats.ticks.load(Ordering::Relaxed)
+        }
+
+        /// Stops the loop; what it handed over.
+        fn finish(self) -> (Vec<Output>, Vec<Event>, Vec<Applied>) {
+            self.stop.store(true, Ordering::Relaxed);
+            self.handle.join().unwrap();
+            (
+                self.out.try_iter().collect(),
+                self.events.try_iter().collect(),
+                self.applied.try_iter().collect(),
+            )
+        }
     }
 }
