@@ -78,6 +78,17 @@ def joint_state(name, position, velocity):
     return m
 
 
+def warm_up(peer, node, pub, angle):
+    """The joint-state writer, like the command writer, may reach the node late until matched:
+    publish the elbow at rest at `angle` and step one tick until a state shows it."""
+    for _ in range(200):
+        pub.publish(joint_state(["elbow"], [angle], [0.0]))
+        if abs(step(peer, node, 1).state.position[0] - angle) < 1e-12:
+            return
+        time.sleep(0.02)
+    raise AssertionError("the node never showed the warm-up joint state")
+
+
 def test_efforts_match_simulate_of_the_same_motion(peer, driven, files):
     cfg, scn, d = files
     out = d / "offline.csv"
@@ -96,14 +107,7 @@ def test_efforts_match_simulate_of_the_same_motion(peer, driven, files):
     peer.wait_matched_sub(efforts)
     states_pub = peer.publisher(JointState, driven.topic("~/joint_states_in"))
     matched(peer, driven)
-    # The joint-state writer too: until a motion shows in a state, it may arrive late.
-    for _ in range(200):
-        states_pub.publish(joint_state(["elbow"], [0.25], [0.0]))
-        if abs(step(peer, driven, 1).state.position[0] - 0.25) < 1e-9:
-            break
-        time.sleep(0.02)
-    else:
-        raise AssertionError("the node never showed the warm-up joint state")
+    warm_up(peer, driven, states_pub, 0.25)
     reset(peer, driven)
     peer.activation(driven.topic("~/activation"), flexor=0.2, extensor=0.1)
     online = {}
@@ -188,13 +192,7 @@ def test_driven_node_run_replays_bit_for_bit(peer, node_factory, files, tmp_path
     pub = peer.publisher(JointState, n.topic("~/joint_states_in"))
     matched(peer, n)
     # Until the first joint state shows, the node steps with the elbow at rest where it starts.
-    for _ in range(200):
-        pub.publish(joint_state(["elbow"], [0.3], [0.0]))
-        if abs(step(peer, n, 1).state.position[0] - 0.3) < 1e-12:
-            break
-        time.sleep(0.02)
-    else:
-        raise AssertionError("the node never showed the warm-up joint state")
+    warm_up(peer, n, pub, 0.3)
     sent = 0
     for k in range(40):
         peer.activation(n.topic("~/activation"), flexor=0.1 * (k % 5), extensor=0.2)
