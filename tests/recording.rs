@@ -95,8 +95,31 @@ fn recorder_round_trip_and_errors() {
         assert!(rec.record_blocking(0, i, i, recording::encode_cdr(&msg).unwrap()));
         sent.push(msg);
     }
+    // A metadata record learnt while recording (a node following /clock learns its tick
+    // origin at the first clock message): written after what was queued before it; a reader
+    // keeps the last record of a name, a recovery keeps both where they were.
+    let tagged = |v: &str| std::collections::BTreeMap::from([("k".to_string(), v.to_string())]);
+    let rec = {
+        let rec = rec;
+        let sender = rec.sender();
+        assert!(sender.metadata("late", tagged("1")));
+        assert!(sender.metadata("late", tagged("2")));
+        rec
+    };
     assert_eq!(rec.finish(), RecorderState::Finished);
     let back = read_recording(&path, false).unwrap();
+    assert_eq!(back.metadata["late"], tagged("2"));
+    let late: Vec<(usize, &str)> = (back.metadata_records.iter())
+        .filter(|(_, m)| m.name == "late")
+        .map(|(before, m)| (*before, m.metadata["k"].as_str()))
+        .collect();
+    assert_eq!(late, vec![(100, "1"), (100, "2")]);
+    let recovered = dir().join("round_trip_recovered.mcap");
+    recording::recover::recover(&path, &recovered).unwrap();
+    assert_eq!(
+        read_recording(&recovered, false).unwrap().metadata["late"],
+        tagged("2")
+    );
     let got: Vec<ActivationCommand> = back
         .messages
         .iter()
