@@ -22,18 +22,47 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::integrator::{ConvergenceError, IterationMatrix, OdeSystem, Stats};
+use std::sync::Arc;
 
 /// Most stages of a tableau.
 const MAX_STAGES: usize = 6;
-/// Newton stops when the scaled correction is below this fraction of the step's tolerance
-/// (and never above `NEWTON_TOL_MAX`).
-const NEWTON_TOL_FRACTION: f64 = 0.1;
+/// Newton stops when the scaled error it estimates is left is below this fraction of the step's
+/// tolerance (and never above `NEWTON_TOL_MAX`). At 0.1 the elbow's joint scenario (DM) drifted
+/// 1.2e-6 m from the reference CSV of the earlier program (bound 1e-6 m, tests/reference_runs.rs);
+/// at 0.03 it stays at 8e-7 m, at 0.01 it costs 10% more evaluations for nothing measurable.
+const NEWTON_TOL_FRACTION: f64 = 0.03;
 const NEWTON_TOL_MAX: f64 = 1e-5;
 const NEWTON_MAX_ITER: usize = 10;
 const SLOW_CONTRACTION: f64 = 0.3;
 const NEWTON_RTOL: f64 = 1e-9;
 /// Relative change of `hγ` up to which the iteration matrix is kept.
 const REUSE: f64 = 0.2;
+
+/// The error left after a Newton iteration that contracts at rate θ, per unit of its last
+/// correction: `θ / (1 - θ)` (Hairer & Wanner 1996, IV.8, eq. 8.10).
+fn error_factor(rate: f64) -> f64 {
+    rate / (1.0 - rate)
+}
+
+/// The same factor for a stage's first iteration, before it has a rate of its own: the last
+/// one's, raised to 0.8 towards 1 (Hairer & Wanner 1996, IV.8, after eq. 8.10), and at least
+/// `ETA_MIN^0.8`. (Taking the last one as it is saves a third of the iterations, and put the DM
+/// pulse 2e-5 m off the reference solution.)
+fn first_error_factor(last: f64) -> f64 {
+    last.max(ETA_MIN).powf(0.8)
+}
+
+/// `x^(-1/k)`, the step-size factor's root of the error estimate: `cbrt` for k = 3 (both
+/// tableaux here), cheaper than `powf`.
+fn inverse_root(x: f64, k: u32) -> f64 {
+    match k {
+        3 => 1.0 / x.cbrt(),
+        _ => x.powf(-1.0 / k as f64),
+    }
+}
+
+/// Floor of the carried error factor.
+const ETA_MIN: f64 = 1e-16;
 
 /// A stiffly accurate ESDIRK tableau with an embedded method.
 #[derive(Debug, Clone, PartialEq)]
@@ -163,14 +192,19 @@ struct Work {
 #[derive(Debug, Clone)]
 pub struct Esdirk<M> {
     n: usize,
-    tableau: Tableau,
+    /// Shared, so that a step borrows it while the stages borrow the rest of `self` (a copy per
+    /// step was a measurable memmove).
+    tableau: Arc<Tableau>,
     matrix: M,
     jac_valid: bool,
     lu_valid: bool,
     lu_d: f64,
     refresh_next: bool,
-    /// Newton's stopping threshold on the scaled correction.
+    /// Newton's stopping threshold on the scaled error left after an iteration.
     newton_tol: f64,
+    /// `θ/(1 - θ)` of the last contraction rate θ Newton observed: the factor from the last
+    /// correction to the error left (Hairer & Wanner 1996, IV.8, eq. 8.10).
+    eta: f64,
     work: Work,
     /// Work counters.
     pub stats: Stats,
@@ -188,6 +222,7 @@ impl<M> Esdirk<M> {
             lu_d: 0.0,
             refresh_next: true,
             newton_tol: 1e-6,
+            eta: 1.0,
             work: Work {
                 f: (0..tableau.stages).map(|_| v()).collect(),
                 rhs: v(),
@@ -202,7 +237,7 @@ impl<M> Esdirk<M> {
                 end_f: v(),
                 end_valid: false,
             },
-            tableau,
+            tableau: Arc::new(tableau),
             stats: Stats::default(),
         }
     }
@@ -247,8 +282,11 @@ impl<M> Esdirk<M> {
                     return None;
                 }
                 slow |= rate > SLOW_CONTRACTION;
+                self.eta = error_factor(rate);
+            } else {
+                self.eta = first_error_factor(self.eta);
             }
-            if norm < self.newton_tol {
+            if self.eta * norm < self.newton_tol {
                 return Some(slow || iter >= 4);
             }
             prev_norm = norm;
@@ -270,7 +308,7 @@ impl<M> Esdirk<M> {
         M: IterationMatrix<S>,
     {
         let n = self.n;
-        // A copy of the tableau (plain numbers on the stack) frees `self` for the stages.
+        // A second handle on the tableau frees `self` for the stages.
         let tb = self.tableau.clone();
         let d = tb.gamma * h;
         {
@@ -409,7 +447,7 @@ impl<M> Esdirk<M> {
     {
         let span = t1 - t0;
         let h_min = span / max_substeps as f64;
-        let exponent = -1.0 / (self.tableau.embedded_order as f64 + 1.0);
+        let order = self.tableau.embedded_order;
         self.newton_tol = (NEWTON_TOL_FRACTION * tol).min(NEWTON_TOL_MAX);
         sys.scales(&mut self.work.inv_w);
         for s in self.work.inv_w.iter_mut() {
@@ -455,7 +493,7 @@ impl<M> Esdirk<M> {
                 .fold(0.0, f64::max);
             let err = if err.is_finite() { err } else { f64::INFINITY };
             let factor = if err > 0.0 {
-                (0.9 * err.powf(exponent)).clamp(0.2, 2.0)
+                (0.9 * inverse_root(err, order + 1)).clamp(0.2, 2.0)
             } else {
                 2.0
             };
