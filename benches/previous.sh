@@ -30,6 +30,10 @@ executable() {
 git -C "$ROOT" worktree add --detach --quiet "$TMP/previous" "$PREVIOUS"
 cp "$ROOT/benches/previous/limb_separate.rs" "$TMP/previous/benches/limb_previous.rs"
 printf '\n[[bench]]\nname = "limb_previous"\nharness = false\n' >>"$TMP/previous/Cargo.toml"
+# Another version number gives that program's crate its own artifacts in the shared target dir:
+# with the same name and version cargo would write both to the same files, and a later build of
+# this program could take the other's as up to date.
+sed -i 's/^version = "0.1.0"$/version = "0.1.0-dcf2021"/' "$TMP/previous/Cargo.toml"
 THIS_BIN="$(cd "$ROOT" && cargo bench --bench limb --no-run --message-format=json 2>/dev/null | executable)"
 PREV_BIN="$(cd "$TMP/previous" && cargo bench --bench limb_previous --no-run --message-format=json 2>/dev/null | executable)"
 [ -x "$THIS_BIN" ] && [ -x "$PREV_BIN" ] || { echo "build failed" >&2; exit 1; }
