@@ -338,19 +338,22 @@ impl<M> Esdirk<M> {
             // rhs = y + h Σ_j a_sj F_j; Newton starts from rhs + d F̂_s, the stage's slope F̂_s
             // predicted by the polynomial through the earlier stages.
             {
+                // One pass over the components (no copies), the sums in the order of j.
                 let wk = &mut self.work;
-                wk.rhs.copy_from_slice(y);
-                wk.delta.fill(0.0);
+                let mut ha = [0.0; MAX_STAGES];
+                let mut dp = [0.0; MAX_STAGES];
                 for j in 0..s {
-                    let (ha, dp) = (h * tb.a[s][j], d * tb.predictor[s][j]);
-                    let fj = &wk.f[j];
-                    for i in 0..n {
-                        wk.rhs[i] += ha * fj[i];
-                        wk.delta[i] += dp * fj[i];
-                    }
+                    (ha[j], dp[j]) = (h * tb.a[s][j], d * tb.predictor[s][j]);
                 }
+                let f = &wk.f[..s];
                 for i in 0..n {
-                    wk.z[i] = wk.rhs[i] + wk.delta[i];
+                    let (mut r, mut p) = (y[i], 0.0);
+                    for (j, fj) in f.iter().enumerate() {
+                        r += ha[j] * fj[i];
+                        p += dp[j] * fj[i];
+                    }
+                    wk.rhs[i] = r;
+                    wk.z[i] = r + p;
                 }
             }
             let Some(sl) = self.newton(sys, t + tb.c[s] * h, d) else {
@@ -364,12 +367,13 @@ impl<M> Esdirk<M> {
         }
         self.refresh_next = slow;
         let wk = &mut self.work;
-        wk.est.fill(0.0);
+        let mut he = [0.0; MAX_STAGES];
         for j in 0..tb.stages {
-            let he = h * tb.e[j];
-            for (e, f) in wk.est.iter_mut().zip(&wk.f[j]) {
-                *e += he * f;
-            }
+            he[j] = h * tb.e[j];
+        }
+        let f = &wk.f[..tb.stages];
+        for (i, e) in wk.est.iter_mut().enumerate() {
+            *e = f.iter().enumerate().fold(0.0, |acc, (j, fj)| acc + he[j] * fj[i]);
         }
         wk.end_t = t + h;
         wk.end_y.copy_from_slice(&wk.z);
