@@ -34,7 +34,6 @@ const NEWTON_TOL_FRACTION: f64 = 0.03;
 const NEWTON_TOL_MAX: f64 = 1e-5;
 const NEWTON_MAX_ITER: usize = 10;
 const SLOW_CONTRACTION: f64 = 0.3;
-const NEWTON_RTOL: f64 = 1e-9;
 /// Relative change of `hγ` up to which the iteration matrix is kept.
 const REUSE: f64 = 0.2;
 
@@ -180,7 +179,9 @@ struct Work {
     fz: Vec<f64>,
     delta: Vec<f64>,
     est: Vec<f64>,
-    weights: Vec<f64>,
+    /// 1 / the system's scales: Newton's norm.
+    inv_scale: Vec<f64>,
+    /// 1 / (tolerance × scales): the error estimate's norm.
     inv_w: Vec<f64>,
     end_t: f64,
     end_y: Vec<f64>,
@@ -230,7 +231,7 @@ impl<M> Esdirk<M> {
                 fz: v(),
                 delta: v(),
                 est: v(),
-                weights: v(),
+                inv_scale: v(),
                 inv_w: v(),
                 end_t: f64::NAN,
                 end_y: v(),
@@ -271,7 +272,7 @@ impl<M> Esdirk<M> {
             let mut norm = 0.0f64;
             for i in 0..self.n {
                 wk.z[i] += wk.delta[i];
-                norm = norm.max(wk.delta[i].abs() / (wk.weights[i] + NEWTON_RTOL * wk.z[i].abs()));
+                norm = norm.max(wk.delta[i].abs() * wk.inv_scale[i]);
             }
             if !norm.is_finite() {
                 return None;
@@ -332,7 +333,6 @@ impl<M> Esdirk<M> {
             self.lu_d = d;
             self.stats.factorisations += 1;
         }
-        sys.scales(&mut self.work.weights);
         let mut slow = false;
         for s in 1..tb.stages {
             // rhs = y + h Σ_j a_sj F_j; Newton starts from rhs + d F̂_s, the stage's slope F̂_s
@@ -427,7 +427,18 @@ impl<M> Esdirk<M> {
     where
         M: IterationMatrix<S>,
     {
+        self.load_scales(sys);
         self.step_split(sys, t, h, y, 0)
+    }
+
+    /// Newton's weights from the system's scales, once per call (the scales are constants of
+    /// the system; the scales themselves are left in `inv_w`).
+    fn load_scales<S: OdeSystem + ?Sized>(&mut self, sys: &S) {
+        let wk = &mut self.work;
+        sys.scales(&mut wk.inv_w);
+        for (i, s) in wk.inv_scale.iter_mut().zip(&wk.inv_w) {
+            *i = 1.0 / s;
+        }
     }
 
     /// Integrates from t0 to t1 with sub-steps chosen by the local error estimate, so that each
@@ -453,7 +464,8 @@ impl<M> Esdirk<M> {
         let h_min = span / max_substeps as f64;
         let order = self.tableau.embedded_order;
         self.newton_tol = (NEWTON_TOL_FRACTION * tol).min(NEWTON_TOL_MAX);
-        sys.scales(&mut self.work.inv_w);
+        // The scales, left in inv_w, become its weights.
+        self.load_scales(sys);
         for s in self.work.inv_w.iter_mut() {
             *s = 1.0 / (tol * *s);
         }
