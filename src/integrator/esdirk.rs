@@ -295,7 +295,7 @@ impl<M> Esdirk<M> {
         None
     }
 
-    /// One attempt from (t, y) with step h: on success the result is in `work.z` and the error
+    /// One attempt from (t, y) with step h: on success the result is in `work.end_y` and the error
     /// estimate in `work.est`.
     fn try_step<S: OdeSystem + ?Sized>(
         &mut self,
@@ -315,7 +315,9 @@ impl<M> Esdirk<M> {
         {
             let wk = &mut self.work;
             if wk.end_valid && (wk.end_t - t).abs() <= 1e-9 * h && wk.end_y == y && !force_refresh {
-                wk.f[0].copy_from_slice(&wk.end_f);
+                // Taken, not copied (buffers swap): it is no longer there to take again.
+                std::mem::swap(&mut wk.f[0], &mut wk.end_f);
+                wk.end_valid = false;
             } else {
                 sys.rhs(t, y, &mut wk.f[0]);
                 self.stats.rhs_evals += 1;
@@ -376,8 +378,11 @@ impl<M> Esdirk<M> {
             *e = f.iter().enumerate().fold(0.0, |acc, (j, fj)| acc + he[j] * fj[i]);
         }
         wk.end_t = t + h;
-        wk.end_y.copy_from_slice(&wk.z);
-        wk.end_f.copy_from_slice(&wk.f[tb.stages - 1]);
+        // Buffers swap rather than copy (a copy of a few numbers is a call to memcpy): the result
+        // is in `end_y` from here; `z` and the last stage's slot are overwritten by the next step
+        // before they are read.
+        std::mem::swap(&mut wk.end_y, &mut wk.z);
+        std::mem::swap(&mut wk.end_f, &mut wk.f[tb.stages - 1]);
         wk.end_valid = true;
         self.matrix.solve(&mut wk.est);
         self.stats.solves += 1;
@@ -385,7 +390,7 @@ impl<M> Esdirk<M> {
     }
 
     fn end_is_finite(&self) -> bool {
-        self.work.z.iter().all(|v| v.is_finite())
+        self.work.end_y.iter().all(|v| v.is_finite())
     }
 
     fn step_split<S: OdeSystem + ?Sized>(
@@ -401,7 +406,7 @@ impl<M> Esdirk<M> {
     {
         for attempt in 0..2 {
             if self.try_step(sys, t, h, y, attempt == 1) && self.end_is_finite() {
-                y.copy_from_slice(&self.work.z);
+                y.copy_from_slice(&self.work.end_y);
                 self.stats.substeps += 1;
                 return Ok(());
             }
@@ -515,7 +520,7 @@ impl<M> Esdirk<M> {
             };
             if err <= 1.0 || step <= h_min * (1.0 + 1e-9) {
                 let clipped = step < *h;
-                y.copy_from_slice(&self.work.z);
+                y.copy_from_slice(&self.work.end_y);
                 t += step;
                 taken += 1;
                 self.stats.substeps += 1;
