@@ -115,7 +115,12 @@ impl Part {
                 scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
             }),
             stepper: match stepping {
-                // Third order for ticks one step covers, fourth while the state moves fast.
+                // Third order for ticks one step covers, fourth while the state moves fast (DM:
+                // a third cheaper after an excitation step); Hill's few sub-steps gain nothing
+                // from it (3% dearer, benches/limb.rs) and stay on the third-order method.
+                Stepping::Adaptive { .. } if plant.model.name() == "hill" => {
+                    Esdirk::new(n, matrix, Tableau::ark324())
+                }
                 Stepping::Adaptive { .. } => {
                     Esdirk::new(n, matrix, Tableau::ark324()).with_high_order(Tableau::esdirk436())
                 }
