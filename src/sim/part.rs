@@ -107,20 +107,25 @@ impl Part {
         let (n, m) = (plant.dim(), plant.muscle_count());
         let mut dims = Vec::new();
         jacobian::leaf_dims(&plant, &mut dims);
+        let matrix = ArrowheadMatrix::new(2 * plant.joint_count(), &dims);
         Self {
             memo: RefCell::new(ActivationMemo {
                 t: f64::NAN,
                 a: vec![0.0; m],
                 scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
             }),
-            stepper: Esdirk::new(
-                n,
-                ArrowheadMatrix::new(2 * plant.joint_count(), &dims),
-                match stepping {
-                    Stepping::Adaptive { .. } => Tableau::ark324(),
-                    Stepping::Fixed(_) => Tableau::trbdf2(),
-                },
-            ),
+            stepper: match stepping {
+                // Third order for ticks one step covers, fourth while the state moves fast (DM:
+                // a third cheaper after an excitation step); Hill's few sub-steps gain nothing
+                // from it (3% dearer, benches/limb.rs) and stay on the third-order method.
+                Stepping::Adaptive { .. } if plant.model.name() == "hill" => {
+                    Esdirk::new(n, matrix, Tableau::ark324())
+                }
+                Stepping::Adaptive { .. } => {
+                    Esdirk::new(n, matrix, Tableau::ark324()).with_high_order(Tableau::esdirk436())
+                }
+                Stepping::Fixed(_) => Esdirk::new(n, matrix, Tableau::trbdf2()),
+            },
             y: vec![0.0; n],
             h: 0.0,
             saved_h: 0.0,
