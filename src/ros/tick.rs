@@ -1273,7 +1273,10 @@ mod tests {
                 assert_eq!(ticks_covered(clock, origin - 1, rate), 0);
                 // Up to the largest time a builtin_interfaces/Time holds (i32 seconds), and
                 // beyond: an answer, never a hang.
-                let top = clock.tick_of(i32::MAX as i64 * 1_000_000_000, rate).unwrap() - 1;
+                let top = clock
+                    .tick_of(i32::MAX as i64 * 1_000_000_000, rate)
+                    .unwrap()
+                    - 1;
                 assert!(ticks_covered(clock, i64::MAX, rate) > top);
                 for k in [0u64, 1, 2, 999, 1000, 123_457, top] {
                     let at = clock.stamp_ns(k, rate);

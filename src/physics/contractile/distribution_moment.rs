@@ -342,7 +342,10 @@ mod tests {
             let tol = 4.0 * f64::EPSILON * (1.0 + 0.5 * tau * tau);
             // Far in the tail both underflow to subnormals, where ulps are absolute.
             let err = (cdf - c).abs();
-            assert!(err <= tol * c.abs() + f64::MIN_POSITIVE, "Φ({tau}) = {cdf:e}, libm {c:e}");
+            assert!(
+                err <= tol * c.abs() + f64::MIN_POSITIVE,
+                "Φ({tau}) = {cdf:e}, libm {c:e}"
+            );
             assert_eq!(pdf, d, "ϕ({tau})");
             tau += 0.0137;
         }
