@@ -36,6 +36,10 @@ pub enum SubstepPolicy {
     Adaptive {
         /// Relative local error tolerance.
         tolerance: f64,
+        /// Whether the ticks whose state moves fast (sub-steps shorter than the tick) take the
+        /// fourth-order method rather than the third-order one (docs/model.md §10;
+        /// measured per model with `benches/limb.rs`).
+        fourth_order_transients: bool,
     },
     /// A fixed number of equal sub-steps per tick (models with state outside the ODE).
     Fixed(usize),

@@ -6,7 +6,7 @@ use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
 use crate::integrator::esdirk::{Esdirk, Tableau};
 use crate::integrator::{OdeSystem, Stats};
 use crate::physics::activation::activation_after;
-use crate::physics::muscle_model::SubstepMotion;
+use crate::physics::muscle_model::{SubstepMotion, SubstepPolicy};
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::jacobian::{self, JacobianScratch, PlantSystem};
 use crate::sim::simulation::Stepping;
@@ -114,17 +114,20 @@ impl Part {
                 a: vec![0.0; m],
                 scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
             }),
-            stepper: match stepping {
-                // Third order for ticks one step covers, fourth while the state moves fast (DM:
-                // a third cheaper after an excitation step); Hill's few sub-steps gain nothing
-                // from it (3% dearer, benches/limb.rs) and stay on the third-order method.
-                Stepping::Adaptive { .. } if plant.model.name() == "hill" => {
-                    Esdirk::new(n, matrix, Tableau::ark324())
-                }
-                Stepping::Adaptive { .. } => {
+            stepper: match (stepping, plant.model.spec().substeps) {
+                // Third order for ticks one step covers, fourth while the state moves fast, for
+                // the models that gain from it (their `SubstepPolicy` says so).
+                (
+                    Stepping::Adaptive { .. },
+                    SubstepPolicy::Adaptive {
+                        fourth_order_transients: true,
+                        ..
+                    },
+                ) => {
                     Esdirk::new(n, matrix, Tableau::ark324()).with_high_order(Tableau::esdirk436())
                 }
-                Stepping::Fixed(_) => Esdirk::new(n, matrix, Tableau::trbdf2()),
+                (Stepping::Adaptive { .. }, _) => Esdirk::new(n, matrix, Tableau::ark324()),
+                (Stepping::Fixed(_), _) => Esdirk::new(n, matrix, Tableau::trbdf2()),
             },
             y: vec![0.0; n],
             h: 0.0,

@@ -63,7 +63,7 @@ impl Stepping {
 /// The default stepping of a model (its [`SubstepPolicy`]).
 pub fn default_stepping(model: ModelKind) -> Stepping {
     match model.spec().substeps {
-        SubstepPolicy::Adaptive { tolerance } => Stepping::Adaptive {
+        SubstepPolicy::Adaptive { tolerance, .. } => Stepping::Adaptive {
             tolerance,
             max_substeps: DEFAULT_MAX_SUBSTEPS,
         },

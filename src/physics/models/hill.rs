@@ -16,7 +16,12 @@ pub static SPEC: ModelSpec = ModelSpec {
     // Chosen so that 1 kHz ticks (third-order ESDIRK sub-steps) meet the accuracy bounds against
     // the reference solver with a margin of at least 2 on every scenario (tests/integrator_accuracy.rs
     // and tests/limb.rs print them).
-    substeps: SubstepPolicy::Adaptive { tolerance: 5e-5 },
+    // A few sub-steps per transient tick: the fourth-order method took fewer but cost 3% more
+    // (benches/limb.rs).
+    substeps: SubstepPolicy::Adaptive {
+        tolerance: 5e-5,
+        fourth_order_transients: false,
+    },
     build,
 };
 
