@@ -12,7 +12,7 @@ use muscle_actuator::sim::Actuator;
 
 #[path = "common/cli.rs"]
 mod cli;
-use cli::{bin, run_ok, stderr, temp_dir};
+use cli::{bin, run_ok, temp_dir};
 
 const MODELS: [ModelKind; 2] = [ModelKind::HILL, ModelKind::HUXLEY];
 

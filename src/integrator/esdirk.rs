@@ -768,10 +768,10 @@ mod tests {
         }
     }
 
-    #[test]
-    fn converges_at_third_order_and_damps_stiff_modes() {
+    /// The order `tableau` shows on y' = -2y over [0, 1] from n to 2n fixed steps.
+    fn observed_order(tableau: fn() -> Tableau, n: usize) -> f64 {
         let err = |n: usize| {
-            let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::ark324());
+            let mut st = Esdirk::new(1, DenseMatrix::new(1), tableau());
             let mut y = [1.0];
             let h = 1.0 / n as f64;
             for k in 0..n {
@@ -779,12 +779,23 @@ mod tests {
             }
             (y[0] - (-2.0f64).exp()).abs()
         };
-        let order = (err(20) / err(40)).log2();
-        assert!((2.7..3.4).contains(&order), "observed order {order}");
-        let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::ark324());
+        (err(n) / err(2 * n)).log2()
+    }
+
+    /// One step of length 1 on y' = -1e9 y from 1: what an L-stable method leaves of it.
+    fn stiff_decay(tableau: fn() -> Tableau) -> f64 {
+        let mut st = Esdirk::new(1, DenseMatrix::new(1), tableau());
         let mut y = [1.0];
         st.step(&Decay(-1e9), 0.0, 1.0, &mut y).unwrap();
-        assert!(y[0].abs() < 1e-6, "R(-1e9) = {}", y[0]);
+        y[0]
+    }
+
+    #[test]
+    fn converges_at_third_order_and_damps_stiff_modes() {
+        let order = observed_order(Tableau::ark324, 20);
+        assert!((2.7..3.4).contains(&order), "observed order {order}");
+        let r = stiff_decay(Tableau::ark324);
+        assert!(r.abs() < 1e-6, "R(-1e9) = {r}");
     }
 
     /// ESDIRK4(3)6L[2]SA's order conditions: fourth order for the method (all eight trees),
@@ -840,21 +851,10 @@ mod tests {
 
     #[test]
     fn esdirk436_converges_at_fourth_order_and_damps_stiff_modes() {
-        let err = |n: usize| {
-            let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::esdirk436());
-            let mut y = [1.0];
-            let h = 1.0 / n as f64;
-            for k in 0..n {
-                st.step(&Decay(-2.0), k as f64 * h, h, &mut y).unwrap();
-            }
-            (y[0] - (-2.0f64).exp()).abs()
-        };
-        let order = (err(10) / err(20)).log2();
+        let order = observed_order(Tableau::esdirk436, 10);
         assert!((3.7..4.4).contains(&order), "observed order {order}");
-        let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::esdirk436());
-        let mut y = [1.0];
-        st.step(&Decay(-1e9), 0.0, 1.0, &mut y).unwrap();
-        assert!(y[0].abs() < 1e-6, "R(-1e9) = {}", y[0]);
+        let r = stiff_decay(Tableau::esdirk436);
+        assert!(r.abs() < 1e-6, "R(-1e9) = {r}");
         for lambda in [-1.0, -1e3, -1e6] {
             let sys = ProtheroRobinson(lambda);
             let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::esdirk436());

@@ -401,6 +401,20 @@ fn hand_applied(
     }
 }
 
+/// The actuator back to its initial state with every input cleared: those in force and those
+/// stamped ahead (a reset on request, a failed step, a `/clock` jump).
+fn back_to_rest(
+    actuator: &mut Actuator,
+    excitation: &mut [f64],
+    load: &mut [f64],
+    scheduled: &mut VecDeque<(i64, Command)>,
+) {
+    actuator.reset();
+    excitation.fill(0.0);
+    load.fill(0.0);
+    scheduled.clear();
+}
+
 /// Runs the loop until `io.stop` is set (or the command channel closes). Ticks at the actuator's
 /// rate against absolute deadlines; a tick that starts more than one period late is an overrun.
 pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSummary {
@@ -538,10 +552,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                 Command::Reset(reply) => {
                     let before = actuator.tick();
                     clock = reanchored(period, clock, before, actuator.rate_hz());
-                    actuator.reset();
-                    excitation.iter_mut().for_each(|u| *u = 0.0);
-                    load.iter_mut().for_each(|t| *t = 0.0);
-                    scheduled.clear();
+                    back_to_rest(&mut actuator, &mut excitation, &mut load, &mut scheduled);
                     io.stats.resets.fetch_add(1, Ordering::Relaxed);
                     send_event(Event::Reset { at_tick: before });
                     if let Some(r) = reply {
@@ -624,11 +635,8 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
                                     > FOLLOW_MAX_AHEAD_S * rate =>
                         {
                             let before = actuator.tick();
-                            actuator.reset();
-                            excitation.iter_mut().for_each(|u| *u = 0.0);
-                            load.iter_mut().for_each(|t| *t = 0.0);
+                            back_to_rest(&mut actuator, &mut excitation, &mut load, &mut scheduled);
                             clock = TimeBase::Wall { tick_origin_ns: ns };
-                            scheduled.clear();
                             io.stats.clock_jumps.fetch_add(1, Ordering::Relaxed);
                             send_event(Event::ClockJumped {
                                 from_ns: last,
@@ -673,10 +681,7 @@ pub fn run(mut actuator: Actuator, mut publish_every: u64, io: LoopIo) -> RunSum
             // of range is not applied again); the next valid command applies as usual.
             let tick = e.tick;
             clock = reanchored(period, clock, tick, actuator.rate_hz());
-            actuator.reset();
-            excitation.iter_mut().for_each(|u| *u = 0.0);
-            load.iter_mut().for_each(|t| *t = 0.0);
-            scheduled.clear();
+            back_to_rest(&mut actuator, &mut excitation, &mut load, &mut scheduled);
             io.stats.step_failures.fetch_add(1, Ordering::Relaxed);
             send_event(Event::StepFailed {
                 tick,

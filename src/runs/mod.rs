@@ -865,14 +865,17 @@ struct RecordedInputs<'a> {
     activations: std::iter::Peekable<std::slice::Iter<'a, InputsAt>>,
     loads: std::iter::Peekable<std::slice::Iter<'a, InputsAt>>,
     motions: std::iter::Peekable<std::slice::Iter<'a, JointMotionAt>>,
+    /// Per joint of the simulation, whether it is driven.
+    driven: Vec<bool>,
 }
 
 impl<'a> RecordedInputs<'a> {
-    fn new(run: &'a LoadedRun) -> Self {
+    fn new(run: &'a LoadedRun, sim: &Simulation) -> Self {
         Self {
             activations: run.activations.iter().peekable(),
             loads: run.loads.iter().peekable(),
             motions: run.joint_motions.iter().peekable(),
+            driven: sim.plant().joints.iter().map(|j| j.driven).collect(),
         }
     }
 
@@ -882,7 +885,7 @@ impl<'a> RecordedInputs<'a> {
     /// that are not finite and motion for joints that are not driven are passed over, as the
     /// run passed them over.
     fn apply(&mut self, tick: u64, meta: &RunMeta, sim: &mut Simulation) {
-        let driven: Vec<bool> = sim.plant().joints.iter().map(|j| j.driven).collect();
+        let driven = &self.driven;
         let inputs = sim.inputs_mut();
         let muscle = |n: &String| meta.muscles.iter().position(|m| m == n);
         let joint = |n: &String| meta.joints.iter().position(|m| m == n);
@@ -975,7 +978,7 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
             }
         }
     };
-    let mut inputs = RecordedInputs::new(&run);
+    let mut inputs = RecordedInputs::new(&run, &sim);
     // The inputs of tick 0 first: an offline run's state at tick 0 shows them.
     inputs.apply(0, meta, &mut sim);
     let mut state = StateSnapshot::default();
