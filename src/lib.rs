@@ -3,14 +3,17 @@
 //! - [`physics`]: the mathematics of docs/model.md, no I/O.
 //! - [`integrator`]: the fixed-tick implicit stepper and the adaptive reference solver.
 //! - [`sim`]: the actuator stepped tick by tick (the facade the node and the CLI use).
-//! - [`config`]: the configuration file.
+//! - [`config`]: the configuration file: schema, the antagonistic-pair form, parsing, validation.
 //! - [`msgs`]: the ROS 2 message types and a tick's state as messages (no DDS).
 //! - [`recording`]: rosbag2-compatible MCAP recordings (no physics).
 //! - [`runs`]: runs as recordings: `simulate --out`, replay and compare.
+//! - [`text`]: user text as messages quote it: excerpts, one-line messages (neutral).
+//! - [`files`]: bounded reading of the files a user names (neutral).
 
 pub mod config;
 pub mod csv;
 pub mod figures;
+pub mod files;
 pub mod integrator;
 pub mod msgs;
 pub mod physics;
@@ -18,3 +21,4 @@ pub mod recording;
 pub mod ros;
 pub mod runs;
 pub mod sim;
+pub mod text;

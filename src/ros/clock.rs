@@ -66,7 +66,7 @@ impl std::str::FromStr for ClockMode {
             "lockstep" => Ok(ClockMode::Lockstep),
             other => Err(format!(
                 "clock {:?} is not one of {}",
-                crate::config::excerpt(other),
+                crate::text::excerpt(other),
                 ClockMode::NAMES.join(", ")
             )),
         }

@@ -158,7 +158,7 @@ pub(crate) async fn activation_array(sub: &Subscription<Float64MultiArray>, cx: 
                     "activation_array rejected: {} values for {} muscles (in order: {})",
                     msg.data.len(),
                     known.len(),
-                    crate::config::excerpt(&known.join(", "))
+                    crate::text::excerpt(&known.join(", "))
                 );
                 cx.rejected(&cx.stats.activation_rejected, &rej, m);
                 return;
@@ -232,7 +232,7 @@ pub(crate) async fn joint_states_in(sub: &Subscription<JointState>, cx: &InputCo
                 "joint_state_unmatched",
                 format!(
                     "joint state ignored: it names none of the driven joints ({})",
-                    crate::config::excerpt(
+                    crate::text::excerpt(
                         &driven
                             .iter()
                             .map(|(_, n)| n.as_str())

@@ -16,7 +16,7 @@ pub mod compare;
 pub mod export;
 pub mod limits;
 
-use crate::config::{excerpt, ActuatorConfig};
+use crate::config::ActuatorConfig;
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::msgs::{definition, state_messages, type_hash, Header, JointState};
 use crate::physics::model::ModelKind;
@@ -29,6 +29,7 @@ use crate::recording::{
 use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
 use crate::sim::simulation::{default_stepping, Simulation, Stepping};
 use crate::sim::snapshot::StateSnapshot;
+use crate::text::excerpt;
 pub use channels::{
     Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
     APPLIED_JOINT_MOTION_SUFFIX, APPLIED_JOINT_MOTION_TOPIC, APPLIED_LOAD_SUFFIX,
