@@ -16,7 +16,8 @@ use crate::msgs::{
     Clock, Float64, Float64MultiArray, Int64, JointState, StepRequest, StepResponse,
     TriggerRequest, TriggerResponse,
 };
-use crate::runs::{self, Channel};
+use crate::runs::Channel;
+use crate::time;
 use futures::{FutureExt, StreamExt};
 use ros2_client::{RmwRequestId, Server, Subscription};
 use serde::de::DeserializeOwned;
@@ -147,7 +148,7 @@ pub(crate) async fn activation_array(sub: &Subscription<Float64MultiArray>, cx: 
         "activation_array",
         &cx.stats.activation_received,
         |msg| {
-            cx.record(Channel::ActivationArray, runs::now_ns(), &msg);
+            cx.record(Channel::ActivationArray, time::now_ns(), &msg);
             let known = cx.shared.muscles();
             if msg.data.len() != known.len() {
                 let rej = Rejection::LengthMismatch {
@@ -184,7 +185,7 @@ pub(crate) async fn muscle_commands(
         cx.stats.activation_received.fetch_add(1, Ordering::Relaxed);
         match r {
             Ok((msg, _info)) => {
-                cx.record(Channel::MuscleCommand(k), runs::now_ns(), &msg);
+                cx.record(Channel::MuscleCommand(k), time::now_ns(), &msg);
                 cx.excite(
                     std::slice::from_ref(name),
                     &[msg.data],
