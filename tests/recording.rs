@@ -170,7 +170,7 @@ fn replay_is_bit_identical() {
     );
     let a = load_run(&src).unwrap();
     let b = load_run(&out).unwrap();
-    assert_eq!(b.meta.time_base, runs::TimeBase::Simulated);
+    assert_eq!(b.meta.time_base, muscle_actuator::time::TimeBase::Simulated);
     assert_eq!(a.states, b.states);
     assert_eq!(a.activations, b.activations);
 

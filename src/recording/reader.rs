@@ -112,7 +112,7 @@ impl Recording {
 /// message up to the cut, with [`Recording::stopped_early`] set. A cut file with no message is
 /// an error.
 pub fn read_run_file(path: &Path) -> Result<Recording, String> {
-    let buf = crate::config::read_regular_file(path, MAX_RECORDING_BYTES)
+    let buf = crate::files::read_regular_file(path, MAX_RECORDING_BYTES)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let complete = buf.ends_with(MAGIC) && buf.len() >= 2 * MAGIC.len();
     let rec = read_bytes(&buf, !complete).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -138,7 +138,7 @@ enum Stop {
 /// file. Recovering: returns everything readable up to the damage (a file cut by a crash holds
 /// every chunk flushed before it).
 pub fn read_recording(path: &Path, recover: bool) -> Result<Recording, String> {
-    let buf = crate::config::read_regular_file(path, MAX_RECORDING_BYTES)
+    let buf = crate::files::read_regular_file(path, MAX_RECORDING_BYTES)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     read_bytes(&buf, recover).map_err(|e| format!("{}: {e}", path.display()))
 }

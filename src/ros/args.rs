@@ -3,7 +3,7 @@
 //! --log-level [logger:=]level [--]`, plus name expansion and remapping of topic and service
 //! names.
 
-use crate::config::{excerpt, read_regular_file};
+use crate::{files::read_regular_file, text::excerpt};
 use ros2_client::ParameterValue;
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 //! whole ticks it covers. Every stamp the node writes (states, `/diagnostics`, `/rosout`, the
 //! recording's log times) reads [`NodeClock::now_ns`].
 
-use crate::runs::{self, TimeBase};
+use crate::time::{self, TimeBase};
 use std::sync::atomic::{AtomicI64, Ordering};
 
 /// How ticks are paced.
@@ -66,7 +66,7 @@ impl std::str::FromStr for ClockMode {
             "lockstep" => Ok(ClockMode::Lockstep),
             other => Err(format!(
                 "clock {:?} is not one of {}",
-                crate::config::excerpt(other),
+                crate::text::excerpt(other),
                 ClockMode::NAMES.join(", ")
             )),
         }
@@ -98,7 +98,7 @@ impl NodeClock {
     /// the followed `/clock`'s time at the last tick (0 before the first one).
     pub fn now_ns(&self) -> i64 {
         match self.mode {
-            ClockMode::Wall => runs::now_ns(),
+            ClockMode::Wall => time::now_ns(),
             _ => self.sim_ns.load(Ordering::Acquire),
         }
     }
@@ -114,7 +114,7 @@ impl NodeClock {
     /// `/clock`: not known until the first message, which re-anchors it).
     pub fn start_origin_ns(&self) -> i64 {
         match self.mode {
-            ClockMode::Wall => runs::now_ns(),
+            ClockMode::Wall => time::now_ns(),
             _ => 0,
         }
     }

@@ -71,7 +71,7 @@ impl fmt::Display for Rejection {
 /// A user-supplied name as the log and the diagnostics show it: quoted, at most 64 characters,
 /// with its length when it was cut.
 pub fn quote(name: &str) -> String {
-    let e = crate::config::excerpt(name);
+    let e = crate::text::excerpt(name);
     if e.len() == name.len() {
         format!("{name:?}")
     } else {

@@ -205,8 +205,8 @@ fn apply_param(
     drop(p);
     if let Some(l) = shared.log() {
         let shown = match value {
-            ros2_client::ParameterValue::String(s) => format!("{:?}", crate::config::excerpt(s)),
-            other => crate::config::excerpt(&format!("{other:?}")),
+            ros2_client::ParameterValue::String(s) => format!("{:?}", crate::text::excerpt(s)),
+            other => crate::text::excerpt(&format!("{other:?}")),
         };
         l.info(&format!("parameter {name} set to {shown}"));
     }

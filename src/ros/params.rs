@@ -1,9 +1,9 @@
 //! The node's parameters (README, "The ROS interface"): their defaults, types and validation.
 
 use super::clock::ClockMode;
-use crate::config::{excerpt, ActuatorConfig};
 use crate::physics::model::ModelKind;
 use crate::sim::Actuator;
+use crate::{config::ActuatorConfig, text::excerpt};
 use ros2_client::ParameterValue;
 
 /// Parameter names.

@@ -11,12 +11,13 @@ use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
 use crate::msgs::{DiagnosticStatus, Header, KeyValue};
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
 use crate::runs::{
-    self, AttachmentMeta, Channel, Layout, RunMeta, TimeBase, ACTIVATION_TYPE,
-    APPLIED_ACTIVATION_SUFFIX, APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC,
-    DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE,
-    ROSOUT_TOPIC, STATE_TYPE,
+    self, AttachmentMeta, Channel, Layout, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
+    APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE,
+    FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
+    STATE_TYPE,
 };
 use crate::sim::Actuator;
+use crate::time::{self, TimeBase};
 use ros2_client::builtin_interfaces::Time;
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
@@ -114,7 +115,7 @@ pub fn enabled(p: &NodeParams) -> bool {
 
 /// The file for a run of node `fqn` started at `start_ns`: `DIR/<name>_<UTC time>.mcap`.
 pub fn file_path(p: &NodeParams, fqn: &str, start_ns: i64) -> PathBuf {
-    let t = runs::iso8601(start_ns)
+    let t = time::iso8601(start_ns)
         .replace([':', '-'], "")
         .replace('.', "-");
     let name = fqn.trim_start_matches('/').replace('/', "_");
@@ -130,7 +131,7 @@ pub fn start(
     clock: &Arc<NodeClock>,
     tick_origin_ns: i64,
 ) -> Result<NodeRecorder, String> {
-    let start_ns = runs::now_ns();
+    let start_ns = time::now_ns();
     let params_json = {
         let mut m = serde_json::Map::new();
         m.insert("model".into(), p.model.name().into());

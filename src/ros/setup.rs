@@ -43,7 +43,7 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
         if a.name != "use_sim_time" && !params::ALL.contains(&a.name.as_str()) {
             ignored.push(format!(
                 "ignoring undeclared parameter {:?} (from {})",
-                crate::config::excerpt(&a.name),
+                crate::text::excerpt(&a.name),
                 a.source
             ));
             continue;

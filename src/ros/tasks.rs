@@ -16,7 +16,8 @@ use crate::msgs::{
     Clock, Float64, Float64MultiArray, Int64, JointState, StepRequest, StepResponse,
     TriggerRequest, TriggerResponse,
 };
-use crate::runs::{self, Channel};
+use crate::runs::Channel;
+use crate::time;
 use futures::{FutureExt, StreamExt};
 use ros2_client::{RmwRequestId, Server, Subscription};
 use serde::de::DeserializeOwned;
@@ -147,7 +148,7 @@ pub(crate) async fn activation_array(sub: &Subscription<Float64MultiArray>, cx: 
         "activation_array",
         &cx.stats.activation_received,
         |msg| {
-            cx.record(Channel::ActivationArray, runs::now_ns(), &msg);
+            cx.record(Channel::ActivationArray, time::now_ns(), &msg);
             let known = cx.shared.muscles();
             if msg.data.len() != known.len() {
                 let rej = Rejection::LengthMismatch {
@@ -158,7 +159,7 @@ pub(crate) async fn activation_array(sub: &Subscription<Float64MultiArray>, cx: 
                     "activation_array rejected: {} values for {} muscles (in order: {})",
                     msg.data.len(),
                     known.len(),
-                    crate::config::excerpt(&known.join(", "))
+                    crate::text::excerpt(&known.join(", "))
                 );
                 cx.rejected(&cx.stats.activation_rejected, &rej, m);
                 return;
@@ -184,7 +185,7 @@ pub(crate) async fn muscle_commands(
         cx.stats.activation_received.fetch_add(1, Ordering::Relaxed);
         match r {
             Ok((msg, _info)) => {
-                cx.record(Channel::MuscleCommand(k), runs::now_ns(), &msg);
+                cx.record(Channel::MuscleCommand(k), time::now_ns(), &msg);
                 cx.excite(
                     std::slice::from_ref(name),
                     &[msg.data],
@@ -232,7 +233,7 @@ pub(crate) async fn joint_states_in(sub: &Subscription<JointState>, cx: &InputCo
                 "joint_state_unmatched",
                 format!(
                     "joint state ignored: it names none of the driven joints ({})",
-                    crate::config::excerpt(
+                    crate::text::excerpt(
                         &driven
                             .iter()
                             .map(|(_, n)| n.as_str())

@@ -2,8 +2,19 @@
 //! recorder gave it. Offline runs record a few of them, the node all; a writer asks a
 //! [`Layout`] for the id of a [`Channel`] instead of counting positions.
 
-use super::channel;
-use crate::recording::ChannelSpec;
+use crate::msgs::{definition, type_hash};
+use crate::recording::{qos_yaml, schema::ros2msg_schema, ChannelSpec};
+
+/// The channel of `topic` with type `type_name` (reliable, volatile, depth 10, as the node).
+pub fn channel(topic: &str, type_name: &str) -> Result<ChannelSpec, String> {
+    Ok(ChannelSpec {
+        topic: topic.into(),
+        type_name: type_name.into(),
+        schema: ros2msg_schema(type_name, &definition)?,
+        qos_yaml: qos_yaml(true, false, 10),
+        type_hash: type_hash(type_name).map(String::from),
+    })
+}
 
 /// Topics of an offline run (`simulate --out`, `replay --out`): the node's names under its
 /// default name.

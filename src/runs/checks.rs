@@ -5,9 +5,9 @@
 
 use super::limits::MAX_RECORDED_TICKS;
 use super::{LoadedRun, RunMeta};
-use crate::config::excerpt;
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use crate::text::excerpt;
 
 /// Slack of the simulated span over the recorded one: a node's tick loop keeps to the wall
 /// clock its log times follow, within jitter; offline runs log simulated time exactly.

@@ -1,8 +1,8 @@
 //! `compare A B`: the differences between two recorded runs, per muscle and joint.
 
 use super::{load_run, LoadedRun};
-use crate::config::excerpt;
 use crate::figures::plot::{write_chart, Chart, Series};
+use crate::text::excerpt;
 use plotters::style::RGBColor;
 use serde::Serialize;
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! small steps. Its ODE is the plant's equations with the activations in closed form.
 
 use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
-use crate::integrator::esdirk::{Esdirk, Tableau};
+use crate::integrator::{esdirk::Esdirk, tableau::Tableau};
 use crate::integrator::{OdeSystem, Stats};
 use crate::physics::activation::activation_after;
 use crate::physics::muscle_model::{SubstepMotion, SubstepPolicy};

@@ -193,14 +193,14 @@ impl Scenario {
         let cannot = |e: &dyn std::fmt::Display| {
             format!("cannot read scenario file {}: {e}", path.display())
         };
-        let bytes = crate::config::read_regular_file(path, crate::config::MAX_FILE_BYTES)
+        let bytes = crate::files::read_regular_file(path, crate::files::MAX_FILE_BYTES)
             .map_err(|e| cannot(&e))?;
         let text = String::from_utf8(bytes).map_err(|e| cannot(&e))?;
         let s: Scenario = toml::from_str(&text).map_err(|e| {
             format!(
                 "scenario file {}: {}",
                 path.display(),
-                crate::config::toml_error(&e, &text)
+                crate::text::toml_error(&e, &text)
             )
         })?;
         s.check()
@@ -224,7 +224,7 @@ impl Scenario {
         if self.name.chars().count() > MAX_NAME_CHARS {
             return Err(format!(
                 "name {:?} is longer than {MAX_NAME_CHARS} characters",
-                crate::config::excerpt(&self.name)
+                crate::text::excerpt(&self.name)
             ));
         }
         if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= 3600.0) {
@@ -316,11 +316,11 @@ impl Scenario {
                 Some(m) => names.iter().position(|n| n == m).ok_or_else(|| {
                     format!(
                         "input[{i}]: unknown {what} {:?} (this scenario has {})",
-                        crate::config::excerpt(m),
+                        crate::text::excerpt(m),
                         if names.is_empty() {
                             "none".to_string()
                         } else {
-                            crate::config::one_line(&names.join(", "))
+                            crate::text::one_line(&names.join(", "))
                         }
                     )
                 }),
@@ -401,13 +401,13 @@ impl Scenario {
                 return Err(format!(
                     "joint {:?} is driven: the scenario needs attachment = \"driven\" and a \
                      joint_angle input for it",
-                    crate::config::excerpt(&joint.name)
+                    crate::text::excerpt(&joint.name)
                 ));
             }
             if joint.driven && scheduled(Signal::ExternalTorque) {
                 return Err(format!(
                     "joint {:?} is driven: an external torque on it has no effect",
-                    crate::config::excerpt(&joint.name)
+                    crate::text::excerpt(&joint.name)
                 ));
             }
         }

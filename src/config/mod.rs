@@ -1,0 +1,74 @@
+//! The actuator configuration (TOML): joints, and muscles that span them through moment arms
+//! (docs/configuration.md). Every parameter can be overridden; anything left out keeps its
+//! embedded default (Table 1 of the paper for muscles, docs/model.md §1 and §8).
+//!
+//! ```toml
+//! [[joint]]
+//! name = "elbow"
+//! inertia = 0.06
+//!
+//! [[muscle]]
+//! name = "flexor"
+//! f_max = 4000.0
+//! path_length = 0.4164          # m, with every spanned joint at 0 rad
+//! [[muscle.span]]
+//! joint = "elbow"
+//! moment_arm = 0.03             # m; or [c0, c1, …], a polynomial in the joint angle
+//! ```
+//!
+//! The antagonistic-pair form is read too ([`pair`]): a single `[joint]` table with a pulley
+//! `radius` (and optional common `path_length`), and two muscles without spans, the first
+//! pulling towards positive angles; or one, which replaces the default muscle of its name.
+//!
+//! Built-in configurations by name: `elbow` (the default) and `arm` (after OpenSim's arm26).
+//!
+//! - [`schema`]: the structs, the default and the topology a configuration describes.
+//! - [`pair`]: the antagonistic-pair form.
+//! - [`parse`]: built-in names, files and TOML text.
+//! - [`validate`]: the rules and the warnings.
+
+pub mod pair;
+pub mod parse;
+pub mod schema;
+pub mod validate;
+
+use crate::physics::params::ParamError;
+/// For src/main.rs, which quotes warnings with it; the text helpers are [`crate::text`]'s.
+pub use crate::text::excerpt;
+pub use parse::BUILT_IN;
+pub use schema::{
+    ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_PATH_PRESTRETCH, DEFAULT_RADIUS,
+};
+
+/// Why a configuration could not be used.
+#[derive(Debug, thiserror::Error)]
+pub enum ConfigError {
+    /// The file could not be read.
+    #[error("cannot read configuration file {path}: {reason}")]
+    Io {
+        /// The path.
+        path: String,
+        /// Why.
+        reason: String,
+    },
+    /// The file is not valid TOML for this schema.
+    #[error("configuration file {path}: {message}")]
+    Parse {
+        /// The path.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// One or more parameters break their rules.
+    #[error("{}", .0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"))]
+    Invalid(Vec<ParamError>),
+}
+
+/// The error of `parameter` = `value` breaking `rule`.
+fn rule(parameter: String, value: impl ToString, rule: &'static str) -> ParamError {
+    ParamError {
+        parameter,
+        value: value.to_string(),
+        rule,
+    }
+}

@@ -1,0 +1,201 @@
+//! The offline run writer: a run to MCAP tick by tick, log time = simulated time (the writer of
+//! `simulate --out` and `replay --out`); and the message of driven joints' motion as applied,
+//! which the node records too.
+
+use super::channels::{
+    Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_JOINT_MOTION_TOPIC,
+    JOINT_STATES_TOPIC, JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, STATE_TOPIC, STATE_TYPE,
+};
+use super::metadata::{RunMeta, METADATA_NAME};
+use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use crate::msgs::{state_messages, Header, JointState};
+use crate::physics::model::ModelKind;
+use crate::physics::plant::Inputs;
+use crate::recording::{self, Recorder, RecorderOptions, RecorderState};
+use crate::sim::snapshot::StateSnapshot;
+use crate::time::tick_ns;
+use ros2_client::builtin_interfaces::Time;
+use std::path::Path;
+
+/// The `sensor_msgs/JointState` of driven joints' motion as applied: (name, angle rad,
+/// velocity rad/s) each; no effort.
+pub fn joint_motion_msg(
+    header: Header,
+    motion: impl Iterator<Item = (String, f64, f64)>,
+) -> JointState {
+    let mut m = JointState {
+        header,
+        name: vec![],
+        position: vec![],
+        velocity: vec![],
+        effort: vec![],
+    };
+    for (name, angle, velocity) in motion {
+        m.name.push(name);
+        m.position.push(angle);
+        m.velocity.push(velocity);
+    }
+    m
+}
+
+fn stamp(ns: u64) -> Header {
+    Header {
+        stamp: Time::from_nanos(ns as i64),
+        frame_id: String::new(),
+    }
+}
+
+/// Writes a run to MCAP tick by tick: states, joint states (with a joint) and inputs (when they
+/// change), log time = simulated time.
+pub(super) struct RunWriter {
+    rec: Recorder,
+    layout: Layout,
+    has_joint: bool,
+    rate_hz: f64,
+    model: ModelKind,
+    muscles: Vec<String>,
+    joints: Vec<String>,
+    /// The driven joints (indices): their motion is written every tick.
+    driven: Vec<usize>,
+    last: Option<Inputs>,
+}
+
+impl RunWriter {
+    pub(super) fn start(path: &Path, meta: &RunMeta) -> Result<Self, String> {
+        let has_joint = !meta.joints.is_empty();
+        let mut layout = Layout::new();
+        layout.add(Channel::State, STATE_TOPIC, STATE_TYPE)?;
+        layout.add(Channel::Activation, ACTIVATION_TOPIC, ACTIVATION_TYPE)?;
+        if has_joint {
+            layout.add(Channel::JointStates, JOINT_STATES_TOPIC, JOINT_STATE_TYPE)?;
+            layout.add(Channel::Load, LOAD_TOPIC, LOAD_TYPE)?;
+        }
+        let driven: Vec<usize> = (meta.config.joints.iter().enumerate())
+            .filter(|(_, j)| j.driven && has_joint)
+            .map(|(k, _)| k)
+            .collect();
+        if !driven.is_empty() {
+            layout.add(
+                Channel::AppliedJointMotion,
+                APPLIED_JOINT_MOTION_TOPIC,
+                JOINT_STATE_TYPE,
+            )?;
+        }
+        let rec = Recorder::start(
+            path,
+            layout.specs(),
+            vec![(METADATA_NAME.into(), meta.to_map()?)],
+            RecorderOptions::default(),
+        )?;
+        Ok(Self {
+            rec,
+            layout,
+            has_joint,
+            rate_hz: meta.rate_hz,
+            model: meta.model,
+            muscles: meta.muscles.clone(),
+            joints: if has_joint {
+                meta.joints.clone()
+            } else {
+                vec![]
+            },
+            driven,
+            last: None,
+        })
+    }
+
+    fn put<T: serde::Serialize>(&self, ch: Channel, ns: u64, msg: &T) -> Result<(), String> {
+        let id = self
+            .layout
+            .id(ch)
+            .ok_or_else(|| format!("internal error: no {ch:?} channel in this recording"))?;
+        let data = recording::encode_cdr(msg)?;
+        if self.rec.record_blocking(id, ns, ns, data) {
+            Ok(())
+        } else {
+            Err(match self.rec.stats().state() {
+                RecorderState::Failed(e) => e,
+                _ => "the recording stopped".into(),
+            })
+        }
+    }
+
+    /// Inputs that take effect at `tick` (written when they change).
+    pub(super) fn inputs(&mut self, tick: u64, inputs: &Inputs) -> Result<(), String> {
+        let ns = tick_ns(tick, self.rate_hz);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let prev = self.last.take();
+        let changed =
+            |now: &[f64], before: Option<&Vec<f64>>| before.is_none_or(|b| bits(b) != bits(now));
+        if changed(&inputs.excitation, prev.as_ref().map(|p| &p.excitation)) {
+            self.put(
+                Channel::Activation,
+                ns,
+                &ActivationCommand {
+                    header: stamp(ns),
+                    muscle: self.muscles.clone(),
+                    excitation: inputs.excitation.clone(),
+                },
+            )?;
+        }
+        if self.has_joint
+            && changed(
+                &inputs.external_torque,
+                prev.as_ref().map(|p| &p.external_torque),
+            )
+        {
+            self.put(
+                Channel::Load,
+                ns,
+                &ExternalLoad {
+                    header: stamp(ns),
+                    joint: self.joints.clone(),
+                    torque: inputs.external_torque.clone(),
+                },
+            )?;
+        }
+        if !self.driven.is_empty() {
+            // Every tick: between schedule samples the motion is the carried-on extrapolation,
+            // so "unchanged from the last message" would not say what the tick applied.
+            let motion = (self.driven.iter()).map(|&j| {
+                (
+                    self.joints[j].clone(),
+                    inputs.joint_angle[j],
+                    inputs.joint_velocity[j],
+                )
+            });
+            self.put(
+                Channel::AppliedJointMotion,
+                ns,
+                &joint_motion_msg(stamp(ns), motion),
+            )?;
+        }
+        self.last = Some(inputs.clone());
+        Ok(())
+    }
+
+    /// The state after `tick` ticks (and the joint states, with a joint).
+    pub(super) fn state(&self, tick: u64, state: &StateSnapshot) -> Result<(), String> {
+        let ns = tick_ns(tick, self.rate_hz);
+        let (msg, js) = state_messages(
+            ns as i64,
+            self.model.name(),
+            tick,
+            &self.muscles,
+            &self.joints,
+            state,
+        );
+        self.put(Channel::State, ns, &msg)?;
+        if self.has_joint {
+            self.put(Channel::JointStates, ns, &js)?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn finish(self) -> Result<(), String> {
+        match self.rec.finish() {
+            RecorderState::Failed(e) => Err(e),
+            _ => Ok(()),
+        }
+    }
+}
