@@ -129,16 +129,15 @@ impl DiagPrev {
 }
 
 /// One `/diagnostics` message: the tick loop's status, the inputs' and the recorder's.
-pub(crate) fn diagnostics(
-    fqn: &str,
-    stats: &TickStats,
-    inputs: &InputStats,
-    params: &NodeParams,
-    publish_errors: u64,
+fn diagnostics(
+    src: &DiagSources<'_>,
     prev: &mut DiagPrev,
     recorder_status: DiagnosticStatus,
-    clock: ClockMode,
 ) -> DiagnosticArray {
+    let (fqn, stats, inputs) = (src.fqn, src.ticks, src.inputs);
+    let params = &src.shared.params();
+    let publish_errors = src.publish_errors.load(Ordering::Relaxed);
+    let clock = src.clock.mode();
     let rejected = inputs.total_rejected();
     let (period, new_rejected) = prev.advance(stats, rejected);
     let (level, message) = tick_level(stats, params, clock, &period);
@@ -395,14 +394,9 @@ pub(crate) async fn publish_task(
             None => record::Status::Disabled,
         };
         let mut msg = diagnostics(
-            src.fqn,
-            src.ticks,
-            src.inputs,
-            &src.shared.params(),
-            src.publish_errors.load(Ordering::Relaxed),
+            &src,
             &mut prev,
             record::diagnostic(src.fqn, src.startup_params, &rec_status),
-            src.clock.mode(),
         );
         msg.header.stamp = Time::from_nanos(src.clock.now_ns());
         if let Some(st) = msg.status.first() {
