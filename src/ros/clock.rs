@@ -3,8 +3,8 @@
 //! `real_time_factor` × real time and publishing `/clock`; `lockstep`, the node is the clock and
 //! advances only when asked (`~/step`). With `use_sim_time` and `clock` wall, the node follows
 //! an external `/clock` instead ([`ClockMode::Follow`]): each clock message advances it by the
-//! whole ticks it covers. Every stamp the node writes (states, `/diagnostics`, `/rosout`, the
-//! recording's log times) reads [`NodeClock::now_ns`].
+//! whole ticks it covers ([`ticks_covered`]). Every stamp the node writes (states,
+//! `/diagnostics`, `/rosout`, the recording's log times) reads [`NodeClock::now_ns`].
 
 use crate::time::{self, TimeBase};
 use std::sync::atomic::{AtomicI64, Ordering};
@@ -128,6 +128,63 @@ impl NodeClock {
                 tick_origin_ns: None,
             },
             _ => TimeBase::Simulated,
+        }
+    }
+}
+
+/// The ticks a clock at `ns` covers on `clock`: the largest k whose stamp is at or before `ns`
+/// (0 before the origin).
+pub fn ticks_covered(clock: TimeBase, ns: i64, rate_hz: f64) -> u64 {
+    let origin = clock.tick_origin_ns();
+    if ns <= origin {
+        return 0;
+    }
+    // The float estimate is within a tick of the answer; the stamps settle it exactly (a few
+    // corrections at most: bounded, so that no time, however large, can keep the loop here).
+    let mut k = ((ns - origin) as f64 * rate_hz / 1e9).floor() as u64;
+    for _ in 0..4 {
+        if k > 0 && clock.stamp_ns(k, rate_hz) > ns {
+            k -= 1;
+        }
+    }
+    for _ in 0..4 {
+        if clock.stamp_ns(k + 1, rate_hz) <= ns {
+            k += 1;
+        }
+    }
+    k
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The ticks a clock time covers: exactly those stamped at or before it, at rates whose
+    /// period is not a whole number of ns too.
+    #[test]
+    fn ticks_covered_are_those_stamped_at_or_before() {
+        for rate in [1000.0, 333.0, 2500.0, 7.0] {
+            for origin in [0, 5_000_000_000_123, 7] {
+                let clock = TimeBase::Wall {
+                    tick_origin_ns: origin,
+                };
+                assert_eq!(ticks_covered(clock, origin - 1, rate), 0);
+                // Up to the largest time a builtin_interfaces/Time holds (i32 seconds), and
+                // beyond: an answer, never a hang.
+                let top = clock
+                    .tick_of(i32::MAX as i64 * 1_000_000_000, rate)
+                    .unwrap()
+                    - 1;
+                assert!(ticks_covered(clock, i64::MAX, rate) > top);
+                for k in [0u64, 1, 2, 999, 1000, 123_457, top] {
+                    let at = clock.stamp_ns(k, rate);
+                    assert_eq!(ticks_covered(clock, at, rate), k, "{rate} {origin} {k}");
+                    assert_eq!(ticks_covered(clock, at + 1, rate), k);
+                    if k > 0 {
+                        assert_eq!(ticks_covered(clock, at - 1, rate), k - 1);
+                    }
+                }
+            }
         }
     }
 }

@@ -1,5 +1,6 @@
 //! The DDS side's set-up: the participant (discovery kept on this host unless asked otherwise)
-//! and the node's endpoints, its topics and the reset service, under the remap rules.
+//! and the node's endpoints under the remap rules: those the executor serves (input topics,
+//! services, `/diagnostics`) and those the publisher thread writes the tick loop's states to.
 
 use super::args;
 use super::clock::ClockMode;
@@ -123,28 +124,39 @@ pub(crate) struct EndpointNames {
     pub(crate) driven: Option<(String, String)>,
 }
 
-/// The node's topics and service.
+/// The node's topics and services.
 pub(crate) struct Endpoints {
+    pub(crate) served: Served,
+    pub(crate) published: Published,
+    pub(crate) names: EndpointNames,
+}
+
+/// What the executor serves: the inputs, the services and `/diagnostics`.
+pub(crate) struct Served {
     pub(crate) activation: Subscription<ActivationCommand>,
     pub(crate) activation_array: Subscription<Float64MultiArray>,
     /// `~/<muscle>/cmd_activation`: (muscle, subscription).
     pub(crate) muscle_commands: Vec<(String, Subscription<Float64>)>,
     pub(crate) load: Subscription<ExternalLoad>,
-    pub(crate) state: Publisher<ActuatorState>,
-    pub(crate) joint_states: Publisher<JointState>,
     pub(crate) diagnostics: Publisher<DiagnosticArray>,
     pub(crate) reset: Server<TriggerRequest, TriggerResponse>,
     /// `~/step`, the service and the fire-and-forget topic (answered in every clock mode).
     pub(crate) step: Server<StepRequest, StepResponse>,
     pub(crate) step_topic: Subscription<Int64>,
-    /// `/clock`, with a simulated clock.
-    pub(crate) clock: Option<Publisher<Clock>>,
     /// `/clock` to follow (`use_sim_time` with `clock` wall).
     pub(crate) clock_in: Option<Subscription<Clock>>,
-    /// With driven joints: their motion in, the muscles' torque on them out.
+    /// With driven joints: their motion in.
     pub(crate) joint_states_in: Option<Subscription<JointState>>,
+}
+
+/// What the publisher thread writes the tick loop's states and times to.
+pub(crate) struct Published {
+    pub(crate) state: Publisher<ActuatorState>,
+    pub(crate) joint_states: Publisher<JointState>,
+    /// `/clock`, with a simulated clock.
+    pub(crate) clock: Option<Publisher<Clock>>,
+    /// With driven joints: the muscles' torque on them.
     pub(crate) joint_efforts: Option<Publisher<Float64MultiArray>>,
-    pub(crate) names: EndpointNames,
 }
 
 /// Creates endpoints on one node under the set-up's namespace, name and remap rules.
@@ -317,20 +329,24 @@ impl Endpoints {
             None
         };
         Ok(Self {
-            activation,
-            activation_array,
-            muscle_commands,
-            load,
-            state,
-            joint_states,
-            diagnostics,
-            reset,
-            step,
-            step_topic,
-            clock,
-            clock_in,
-            joint_states_in,
-            joint_efforts,
+            served: Served {
+                activation,
+                activation_array,
+                muscle_commands,
+                load,
+                diagnostics,
+                reset,
+                step,
+                step_topic,
+                clock_in,
+                joint_states_in,
+            },
+            published: Published {
+                state,
+                joint_states,
+                clock,
+                joint_efforts,
+            },
             names: EndpointNames {
                 activation: activation_name,
                 activation_array: activation_array_name,

@@ -78,158 +78,237 @@ pub(crate) struct DiagPrev {
     clock_jumps: u64,
 }
 
-pub(crate) fn diagnostics(
-    fqn: &str,
-    stats: &TickStats,
-    inputs: &InputStats,
-    params: &NodeParams,
-    publish_errors: u64,
+/// The tick loop's figures of this period, beside the last period's.
+struct Period {
+    overruns: u64,
+    step_failures: u64,
+    clock_jumps: u64,
+    new_overruns: u64,
+    new_failures: u64,
+    /// No tick since the last period.
+    idle: bool,
+    /// `/clock` jumped since the last period.
+    jumped: bool,
+    rate_hz: f64,
+    driven_joints: u64,
+    /// Ticks since a driven joint's motion last arrived (`u64::MAX`: none yet).
+    motion_age: u64,
+}
+
+impl DiagPrev {
+    /// This period's figures against the last's (kept for the next), and the inputs rejected
+    /// since (`rejected` in all).
+    fn advance(&mut self, stats: &TickStats, rejected: u64) -> (Period, u64) {
+        let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
+        let overruns = ld(&stats.overruns);
+        let step_failures = ld(&stats.step_failures);
+        let ticks = ld(&stats.ticks);
+        let clock_jumps = ld(&stats.clock_jumps);
+        let period = Period {
+            overruns,
+            step_failures,
+            clock_jumps,
+            new_overruns: overruns - self.overruns.min(overruns),
+            new_failures: step_failures - self.step_failures.min(step_failures),
+            idle: ticks == self.ticks,
+            jumped: clock_jumps > self.clock_jumps,
+            rate_hz: stats.rate_hz(),
+            driven_joints: ld(&stats.driven_joints),
+            motion_age: ld(&stats.joint_motion_age_ticks),
+        };
+        let new_rejected = rejected - self.rejected.min(rejected);
+        *self = DiagPrev {
+            overruns,
+            rejected,
+            step_failures,
+            ticks,
+            clock_jumps,
+        };
+        (period, new_rejected)
+    }
+}
+
+/// One `/diagnostics` message: the tick loop's status, the inputs' and the recorder's.
+fn diagnostics(
+    src: &DiagSources<'_>,
     prev: &mut DiagPrev,
     recorder_status: DiagnosticStatus,
-    clock: ClockMode,
 ) -> DiagnosticArray {
-    let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
-    let (p50, p99, max) = stats.window();
-    let overruns = ld(&stats.overruns);
-    let step_failures = ld(&stats.step_failures);
+    let (fqn, stats, inputs) = (src.fqn, src.ticks, src.inputs);
+    let params = &src.shared.params();
+    let publish_errors = src.publish_errors.load(Ordering::Relaxed);
+    let clock = src.clock.mode();
     let rejected = inputs.total_rejected();
-    let new_overruns = overruns - prev.overruns.min(overruns);
-    let new_rejected = rejected - prev.rejected.min(rejected);
-    let new_failures = step_failures - prev.step_failures.min(step_failures);
-    let ticks = ld(&stats.ticks);
-    // A lockstep loop ticks only when asked, a loop following /clock only when the clock
-    // moves: no tick is no stall.
-    let idle = ticks == prev.ticks;
-    let stalled = idle && !clock.is_driven();
-    let clock_jumps = ld(&stats.clock_jumps);
-    let jumped = clock_jumps > prev.clock_jumps;
-    *prev = DiagPrev {
-        overruns,
-        rejected,
-        step_failures,
-        ticks,
-        clock_jumps,
-    };
-    let rate = stats.rate_hz();
-    let driven = ld(&stats.driven_joints);
-    let motion_age = ld(&stats.joint_motion_age_ticks);
-    let stale = driven > 0 && motion_age > params.joint_state_timeout_ticks.max(1) as u64;
-    let (level, message) = if jumped {
-        (
-            DiagnosticStatus::WARN,
-            format!(
-                "/clock jumped ({clock_jumps} so far): the actuator was reset and tick 0 \
-                 re-anchored at the new time (at tick {})",
-                ld(&stats.current_tick)
-            ),
-        )
-    } else if idle && !stalled {
-        (
-            DiagnosticStatus::OK,
-            if clock == ClockMode::Follow {
-                format!(
-                    "following /clock: waiting for it to move (at tick {})",
-                    ld(&stats.current_tick)
-                )
-            } else {
-                format!(
-                    "lockstep: waiting for ~/step (at tick {})",
-                    ld(&stats.current_tick)
-                )
-            },
-        )
-    } else if stalled {
-        (
-            DiagnosticStatus::ERROR,
-            format!(
-                "tick loop stalled: no tick in the last period (at tick {})",
-                ld(&stats.current_tick)
-            ),
-        )
-    } else if stale {
-        (
-            DiagnosticStatus::WARN,
-            if motion_age == u64::MAX {
-                format!(
-                    "driven joints: no JointState on ~/joint_states_in yet (at tick {})",
-                    ld(&stats.current_tick)
-                )
-            } else {
-                format!("driven joints: no JointState for {motion_age} ticks (their motion is extrapolated)")
-            },
-        )
-    } else if new_failures > 0 {
-        (
-            DiagnosticStatus::ERROR,
-            format!("a step failed: actuator reset ({new_failures} in the last period)"),
-        )
-    } else if new_overruns > 0 {
-        (
-            DiagnosticStatus::WARN,
-            format!("{new_overruns} ticks later than one period in the last period"),
-        )
-    } else {
-        (DiagnosticStatus::OK, format!("holding {rate} Hz"))
-    };
+    let (period, new_rejected) = prev.advance(stats, rejected);
+    let (level, message) = tick_level(stats, params, clock, &period);
     let tick_status = DiagnosticStatus {
         level,
         name: format!("{fqn}: tick loop"),
         message,
         hardware_id: fqn.into(),
-        values: vec![
-            kv("model", params.model.name()),
-            kv("rate_hz", rate),
-            kv("clock", clock.name()),
-            kv("driven_joints", driven),
-            kv(
-                "joint_state_age_ticks",
-                if motion_age == u64::MAX {
-                    "none yet".to_string()
-                } else {
-                    motion_age.to_string()
-                },
-            ),
-            kv(
-                "realtime_priority",
-                stats.realtime.load(Ordering::Relaxed).to_string(),
-            ),
-            kv("tick", ld(&stats.current_tick)),
-            kv("ticks_total", ld(&stats.ticks)),
-            kv("overruns", overruns),
-            kv("skipped_ticks", ld(&stats.skipped)),
-            kv("lateness_p50_us", format!("{:.1}", p50 / 1e3)),
-            kv("lateness_p99_us", format!("{:.1}", p99 / 1e3)),
-            kv("lateness_max_us", format!("{:.1}", max / 1e3)),
-            kv(
-                "lateness_max_total_us",
-                format!("{:.1}", ld(&stats.max_lateness_ns) as f64 / 1e3),
-            ),
-            kv(
-                "step_mean_us",
-                format!(
-                    "{:.2}",
-                    f64::from_bits(stats.window_step_ns.load(Ordering::Relaxed)) / 1e3
-                ),
-            ),
-            kv("states_dropped", ld(&stats.samples_dropped)),
-            kv("applied_inputs_dropped", ld(&stats.applied_dropped)),
-            kv("commands_dropped", ld(&stats.commands_dropped)),
-            kv("commands_deferred", ld(&stats.commands_deferred)),
-            kv("events_dropped", ld(&stats.events_dropped)),
-            kv("publish_errors", publish_errors),
-            kv("step_failures", step_failures),
-            kv("resets", ld(&stats.resets)),
-            kv("clock_jumps", clock_jumps),
-            kv("scheduled_inputs", ld(&stats.scheduled_pending)),
-            kv("scheduled_dropped", ld(&stats.scheduled_dropped)),
-        ],
+        values: tick_values(stats, params, clock, &period, publish_errors),
     };
+    DiagnosticArray {
+        header: Header {
+            stamp: Time::now(),
+            frame_id: String::new(),
+        },
+        status: vec![
+            tick_status,
+            input_status(fqn, inputs, rejected, new_rejected),
+            recorder_status,
+        ],
+    }
+}
+
+/// The tick loop's level and message, the first that holds of: `/clock` jumped; a driven loop
+/// (lockstep, following `/clock`) waiting, which is no stall; a stall (no tick in the period);
+/// driven joints without a recent joint state; a failed step; overruns; all well.
+fn tick_level(
+    stats: &TickStats,
+    params: &NodeParams,
+    clock: ClockMode,
+    p: &Period,
+) -> (u8, String) {
+    let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
+    let stalled = p.idle && !clock.is_driven();
+    let motion_age = p.motion_age;
+    let stale = p.driven_joints > 0 && motion_age > params.joint_state_timeout_ticks.max(1) as u64;
+    let tick = || ld(&stats.current_tick);
+    if p.jumped {
+        (
+            DiagnosticStatus::WARN,
+            format!(
+                "/clock jumped ({} so far): the actuator was reset and tick 0 re-anchored at the \
+                 new time (at tick {})",
+                p.clock_jumps,
+                tick()
+            ),
+        )
+    } else if p.idle && !stalled {
+        let message = if clock == ClockMode::Follow {
+            format!(
+                "following /clock: waiting for it to move (at tick {})",
+                tick()
+            )
+        } else {
+            format!("lockstep: waiting for ~/step (at tick {})", tick())
+        };
+        (DiagnosticStatus::OK, message)
+    } else if stalled {
+        (
+            DiagnosticStatus::ERROR,
+            format!(
+                "tick loop stalled: no tick in the last period (at tick {})",
+                tick()
+            ),
+        )
+    } else if stale {
+        let message = if motion_age == u64::MAX {
+            format!(
+                "driven joints: no JointState on ~/joint_states_in yet (at tick {})",
+                tick()
+            )
+        } else {
+            format!(
+                "driven joints: no JointState for {motion_age} ticks (their motion is extrapolated)"
+            )
+        };
+        (DiagnosticStatus::WARN, message)
+    } else if p.new_failures > 0 {
+        (
+            DiagnosticStatus::ERROR,
+            format!(
+                "a step failed: actuator reset ({} in the last period)",
+                p.new_failures
+            ),
+        )
+    } else if p.new_overruns > 0 {
+        (
+            DiagnosticStatus::WARN,
+            format!(
+                "{} ticks later than one period in the last period",
+                p.new_overruns
+            ),
+        )
+    } else {
+        (DiagnosticStatus::OK, format!("holding {} Hz", p.rate_hz))
+    }
+}
+
+/// The tick loop's figures, as `/diagnostics` key-values.
+fn tick_values(
+    stats: &TickStats,
+    params: &NodeParams,
+    clock: ClockMode,
+    p: &Period,
+    publish_errors: u64,
+) -> Vec<KeyValue> {
+    let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
+    let (p50, p99, max) = stats.window();
+    vec![
+        kv("model", params.model.name()),
+        kv("rate_hz", p.rate_hz),
+        kv("clock", clock.name()),
+        kv("driven_joints", p.driven_joints),
+        kv(
+            "joint_state_age_ticks",
+            if p.motion_age == u64::MAX {
+                "none yet".to_string()
+            } else {
+                p.motion_age.to_string()
+            },
+        ),
+        kv(
+            "realtime_priority",
+            stats.realtime.load(Ordering::Relaxed).to_string(),
+        ),
+        kv("tick", ld(&stats.current_tick)),
+        kv("ticks_total", ld(&stats.ticks)),
+        kv("overruns", p.overruns),
+        kv("skipped_ticks", ld(&stats.skipped)),
+        kv("lateness_p50_us", format!("{:.1}", p50 / 1e3)),
+        kv("lateness_p99_us", format!("{:.1}", p99 / 1e3)),
+        kv("lateness_max_us", format!("{:.1}", max / 1e3)),
+        kv(
+            "lateness_max_total_us",
+            format!("{:.1}", ld(&stats.max_lateness_ns) as f64 / 1e3),
+        ),
+        kv(
+            "step_mean_us",
+            format!(
+                "{:.2}",
+                f64::from_bits(stats.window_step_ns.load(Ordering::Relaxed)) / 1e3
+            ),
+        ),
+        kv("states_dropped", ld(&stats.samples_dropped)),
+        kv("applied_inputs_dropped", ld(&stats.applied_dropped)),
+        kv("commands_dropped", ld(&stats.commands_dropped)),
+        kv("commands_deferred", ld(&stats.commands_deferred)),
+        kv("events_dropped", ld(&stats.events_dropped)),
+        kv("publish_errors", publish_errors),
+        kv("step_failures", p.step_failures),
+        kv("resets", ld(&stats.resets)),
+        kv("clock_jumps", p.clock_jumps),
+        kv("scheduled_inputs", ld(&stats.scheduled_pending)),
+        kv("scheduled_dropped", ld(&stats.scheduled_dropped)),
+    ]
+}
+
+/// The inputs' status: a warning while commands are rejected (`new_rejected` in the period).
+fn input_status(
+    fqn: &str,
+    inputs: &InputStats,
+    rejected: u64,
+    new_rejected: u64,
+) -> DiagnosticStatus {
+    let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
     let last = inputs
         .last_problem
         .lock()
         .map(|s| s.clone())
         .unwrap_or_default();
-    let input_status = DiagnosticStatus {
+    DiagnosticStatus {
         level: if new_rejected > 0 {
             DiagnosticStatus::WARN
         } else {
@@ -265,13 +344,6 @@ pub(crate) fn diagnostics(
             kv("joint_states_rejected", ld(&inputs.joint_states_rejected)),
             kv("last_problem", last),
         ],
-    };
-    DiagnosticArray {
-        header: Header {
-            stamp: Time::now(),
-            frame_id: String::new(),
-        },
-        status: vec![tick_status, input_status, recorder_status],
     }
 }
 
@@ -322,14 +394,9 @@ pub(crate) async fn publish_task(
             None => record::Status::Disabled,
         };
         let mut msg = diagnostics(
-            src.fqn,
-            src.ticks,
-            src.inputs,
-            &src.shared.params(),
-            src.publish_errors.load(Ordering::Relaxed),
+            &src,
             &mut prev,
             record::diagnostic(src.fqn, src.startup_params, &rec_status),
-            src.clock.mode(),
         );
         msg.header.stamp = Time::from_nanos(src.clock.now_ns());
         if let Some(st) = msg.status.first() {

@@ -1,13 +1,23 @@
 //! The ROS 2 node (`muscle_actuator node`): README, "The ROS interface".
 //!
-//! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS:
+//! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS. Start-up:
 //! - [`args`]: the standard ROS 2 command-line arguments, name expansion and remapping;
-//! - [`params`]: the parameters and their rules; [`clock`]: wall, sim or lockstep time;
+//! - `setup`: what the command line asks of the node, resolved before DDS starts;
+//! - [`params`]: the parameters and their rules; `param_callbacks`: changes at run time;
+//! - [`clock`]: wall, sim or lockstep time, or following `/clock`;
+//! - [`dds`]: the participant and the node's endpoints.
+//!
+//! Running:
+//! - [`tick`]: the fixed-rate loop on its own thread (queues in and out, never waits on DDS);
+//! - `threads`: the tick loop, the publisher and the applied-inputs recorder, started and stopped
+//!   together;
+//! - `tasks`: the executor's tasks: the input topics, the services, the loop's events;
 //! - [`input`]: validation of incoming commands;
+//! - [`diagnostics`]: `/diagnostics`, once a second;
+//! - [`logging`]: stderr, `/rosout` and the recording's log;
 //! - [`record`]: the node's MCAP recording (off the tick thread);
-//! - [`tick`]: the fixed-rate loop on its own thread (channels in and out, never waits on DDS);
-//! - [`node`]: the DDS side (ros2-client on RustDDS): topics, services, parameters, diagnostics,
-//!   logging, signals.
+//! - `signals`: SIGINT and SIGTERM;
+//! - [`node`]: the node's main, which wires these together.
 
 pub mod args;
 pub mod clock;

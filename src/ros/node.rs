@@ -2,24 +2,27 @@
 //! executor, and the stop. Each piece lives in its own module; this one only wires them.
 
 use super::args::Severity;
-use super::clock::NodeClock;
-use super::dds::{Dds, EndpointNames, Endpoints};
+use super::clock::{ClockMode, NodeClock};
+use super::dds::{Dds, EndpointNames, Endpoints, Served};
 use super::diagnostics::{self, DiagSources, InputStats};
 use super::logging::{Logger, Reporter};
 use super::param_callbacks::Shared;
-use super::record::{self, NodeRecorder};
+use super::record::{self, NodeRecorder, RecordTx};
 use super::setup::{setup, Setup};
 use super::signals::StopSignals;
 use super::tasks::{self, InputContext};
 use super::threads::{self, ThreadInputs, Threads};
-use super::tick::{self, Pacing};
+use super::tick::{self, Event, Pacing};
+use crate::physics::model::ModelKind;
 use crate::recording::RecorderState;
 use futures::FutureExt;
-use ros2_client::{NodeName, NodeOptions, ParameterValue};
+use ros2_client::{NodeName, NodeOptions, ParameterValue, Spinner};
 use std::sync::atomic::Ordering;
+use std::sync::mpsc::Receiver;
 use std::sync::{Arc, OnceLock};
 
-/// Runs the node (see [`super::run_node`]).
+/// Runs the node (see [`super::run_node`]): the set-up, the DDS endpoints, the recording, the
+/// threads, the executor until a stop signal, and the stop.
 pub fn run(argv: &[String]) -> Result<(), String> {
     let Some(setup) = setup(argv)? else {
         return Ok(());
@@ -29,33 +32,12 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     let dds = Dds::start()?;
     let (cmd_tx, cmd_rx) = tick::command_channel();
     let shared = Arc::new(Shared::new(&setup.params, &actuator, cmd_tx));
-    let mut options = NodeOptions::new()
-        .enable_rosout(!setup.ros_args.disable_rosout)
-        .start_parameter_services(true);
-    if setup.use_sim_time {
-        // Reported by the parameter services as given (the store's default is false).
-        options = options.declare_parameter("use_sim_time", ParameterValue::Boolean(true));
-    }
-    let node_name = NodeName::new(&setup.namespace, &setup.name)
-        .map_err(|e| format!("invalid node name {}: {e:?}", setup.fqn))?;
-    let mut node = dds
-        .context
-        .new_node(node_name, shared.attach(options, &setup.params))
-        .map_err(|e| format!("cannot create node {}: {e:?}", setup.fqn))?;
+    let mut node = create_node(&setup, &dds, &shared)?;
     let clock = Arc::new(NodeClock::new(
         setup.params.clock.with_sim_time(setup.use_sim_time),
     ));
     let logger = logger(&setup, &node, &clock);
-    for note in &setup.ignored {
-        logger.debug(note);
-    }
-    if setup.use_sim_time && setup.params.clock.publishes_clock() {
-        logger.info(&format!(
-            "use_sim_time is true, but clock:={} makes this node the graph's clock: it \
-             publishes /clock and does not follow one",
-            setup.params.clock.name()
-        ));
-    }
+    log_notes(&setup, &logger);
     let endpoints = Endpoints::create(
         &mut node,
         &setup,
@@ -78,20 +60,13 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         tick_origin_ns,
         &logger,
     );
-    let rec = recorder.as_ref().map(NodeRecorder::tx);
-    signals.guard_recording(rec.as_ref().map(|r| r.sender.clone()));
-    if let Some(r) = &rec {
-        let _ = logger.recording.set(r.clone());
-    }
+    let rec = recording_tx(recorder.as_ref(), &signals, &logger);
     let (model, rate) = (actuator.model(), actuator.rate_hz());
     let (threads, events) = Threads::start(ThreadInputs {
         actuator,
         publish_every: setup.params.publish_every(),
         commands: cmd_rx,
-        state: endpoints.state,
-        joint_states: endpoints.joint_states,
-        clock: endpoints.clock,
-        efforts: endpoints.joint_efforts,
+        published: endpoints.published,
         rec: rec.clone(),
         tick_origin_ns,
         pacing: Pacing {
@@ -101,12 +76,84 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         },
     })?;
     shared.arm(&logger);
-    let n = &endpoints.names;
+    log_up(
+        &setup,
+        &dds,
+        &endpoints.names,
+        clock.mode(),
+        &logger,
+        model,
+        rate,
+    );
+    serve(
+        Executor {
+            setup: &setup,
+            served: &endpoints.served,
+            shared: &shared,
+            threads: &threads,
+            events: &events,
+            recorder: recorder.as_ref(),
+            recorder_error: &recorder_error,
+            clock: &clock,
+            logger: &logger,
+            rec: rec.clone(),
+            signals: &signals,
+        },
+        spinner,
+    );
+    stop(threads, recorder, rec, &signals, &logger)
+}
+
+/// The node on DDS, its parameter services started (`use_sim_time` declared when given).
+fn create_node(
+    setup: &Setup,
+    dds: &Dds,
+    shared: &Arc<Shared>,
+) -> Result<ros2_client::Node, String> {
+    let mut options = NodeOptions::new()
+        .enable_rosout(!setup.ros_args.disable_rosout)
+        .start_parameter_services(true);
+    if setup.use_sim_time {
+        // Reported by the parameter services as given (the store's default is false).
+        options = options.declare_parameter("use_sim_time", ParameterValue::Boolean(true));
+    }
+    let node_name = NodeName::new(&setup.namespace, &setup.name)
+        .map_err(|e| format!("invalid node name {}: {e:?}", setup.fqn))?;
+    dds.context
+        .new_node(node_name, shared.attach(options, &setup.params))
+        .map_err(|e| format!("cannot create node {}: {e:?}", setup.fqn))
+}
+
+/// What the set-up noted before the logger existed, and `use_sim_time` where the node is the
+/// clock itself.
+fn log_notes(setup: &Setup, logger: &Logger) {
+    for note in &setup.ignored {
+        logger.debug(note);
+    }
+    if setup.use_sim_time && setup.params.clock.publishes_clock() {
+        logger.info(&format!(
+            "use_sim_time is true, but clock:={} makes this node the graph's clock: it \
+             publishes /clock and does not follow one",
+            setup.params.clock.name()
+        ));
+    }
+}
+
+/// The line that says the node is up: model, rate, clock, DDS domain, topics and services.
+fn log_up(
+    setup: &Setup,
+    dds: &Dds,
+    n: &EndpointNames,
+    mode: ClockMode,
+    logger: &Logger,
+    model: ModelKind,
+    rate: f64,
+) {
     logger.info(&format!(
         "{} up: model {model}, {rate} Hz, clock {}, domain {}, discovery {}; topics {}, {} -> {}, \
          {}, /diagnostics; services {}, {}",
         setup.fqn,
-        clock.mode().name(),
+        mode.name(),
         dds.domain,
         if dds.local { "localhost" } else { "subnet" },
         n.activation,
@@ -116,59 +163,84 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         n.reset,
         n.step
     ));
+}
 
-    // The executor: spinner, inputs, service, diagnostics and events, until a stop signal.
-    let log = Reporter::new(logger.clone());
+/// What the executor runs on.
+struct Executor<'a> {
+    setup: &'a Setup,
+    served: &'a Served,
+    shared: &'a Shared,
+    threads: &'a Threads,
+    events: &'a Receiver<Event>,
+    recorder: Option<&'a NodeRecorder>,
+    recorder_error: &'a str,
+    clock: &'a NodeClock,
+    logger: &'a Logger,
+    rec: Option<RecordTx>,
+    signals: &'a StopSignals,
+}
+
+/// The executor: spinner, inputs, services, diagnostics and events, until a stop signal.
+fn serve(x: Executor<'_>, spinner: Spinner) {
+    let e = x.served;
+    let log = Reporter::new(x.logger.clone());
     let inputs = InputStats::default();
     let cx = InputContext {
-        shared: &shared,
+        shared: x.shared,
         stats: &inputs,
         log: &log,
-        rec: rec.clone(),
+        rec: x.rec.clone(),
     };
     let diag = DiagSources {
-        fqn: &setup.fqn,
-        ticks: &threads.stats,
+        fqn: &x.setup.fqn,
+        ticks: &x.threads.stats,
         inputs: &inputs,
-        shared: &shared,
-        publish_errors: &threads.publish_errors,
-        startup_params: &setup.params,
-        recorder: recorder.as_ref().map(|r| &r.recorder),
-        recorder_error: &recorder_error,
-        clock: &clock,
+        shared: x.shared,
+        publish_errors: &x.threads.publish_errors,
+        startup_params: &x.setup.params,
+        recorder: x.recorder.map(|r| &r.recorder),
+        recorder_error: x.recorder_error,
+        clock: x.clock,
     };
     // Biased: each wake polls the inputs before the step service, so that inputs received
     // before a step request take effect at its first tick.
-    let mode = clock.mode();
+    let mode = x.clock.mode();
     smol::block_on(async {
         futures::select_biased! {
-            _ = signals.requested.recv().fuse() => {},
-            _ = tasks::activation(&endpoints.activation, &cx).fuse() => {},
-            _ = tasks::activation_array(&endpoints.activation_array, &cx).fuse() => {},
-            _ = tasks::muscle_commands(&endpoints.muscle_commands, &cx).fuse() => {},
-            _ = tasks::load(&endpoints.load, &cx).fuse() => {},
-            _ = joint_states_in(endpoints.joint_states_in.as_ref(), &cx).fuse() => {},
-            _ = clock_in(endpoints.clock_in.as_ref(), &cx).fuse() => {},
-            _ = tasks::step_topic(&endpoints.step_topic, &cx, mode).fuse() => {},
-            _ = tasks::step(&endpoints.step, &shared, mode, &log).fuse() => {},
-            _ = tasks::reset(&endpoints.reset, &shared, &log).fuse() => {},
+            _ = x.signals.requested.recv().fuse() => {},
+            _ = tasks::activation(&e.activation, &cx).fuse() => {},
+            _ = tasks::activation_array(&e.activation_array, &cx).fuse() => {},
+            _ = tasks::muscle_commands(&e.muscle_commands, &cx).fuse() => {},
+            _ = tasks::load(&e.load, &cx).fuse() => {},
+            _ = joint_states_in(e.joint_states_in.as_ref(), &cx).fuse() => {},
+            _ = clock_in(e.clock_in.as_ref(), &cx).fuse() => {},
+            _ = tasks::step_topic(&e.step_topic, &cx, mode).fuse() => {},
+            _ = tasks::step(&e.step, x.shared, mode, &log).fuse() => {},
+            _ = tasks::reset(&e.reset, x.shared, &log).fuse() => {},
             res = spinner.spin().fuse() => {
                 if let Err(e) = res {
-                    logger.error(&format!("the node's spinner failed: {e:?}"));
+                    x.logger.error(&format!("the node's spinner failed: {e:?}"));
                 }
             },
-            _ = diagnostics::publish_task(diag, &endpoints.diagnostics, &log, rec.clone()).fuse() => {},
-            _ = tasks::events(&events, &threads.stats, &log, rec.as_ref()).fuse() => {},
+            _ = diagnostics::publish_task(diag, &e.diagnostics, &log, x.rec.clone()).fuse() => {},
+            _ = tasks::events(x.events, &x.threads.stats, &log, x.rec.as_ref()).fuse() => {},
         }
     });
+}
 
-    // The stop: the threads, then the recording (the summary line still goes into it).
-    let summary = threads.stop(&logger)?;
-    threads::log_summary(&logger, &summary);
-    drop(cx);
+/// The stop: the threads, then the recording (the summary line still goes into it).
+fn stop(
+    threads: Threads,
+    recorder: Option<NodeRecorder>,
+    rec: Option<RecordTx>,
+    signals: &StopSignals,
+    logger: &Logger,
+) -> Result<(), String> {
+    let summary = threads.stop(logger)?;
+    threads::log_summary(logger, &summary);
     drop(rec);
     if let Some(r) = recorder {
-        finish_recording(r, &logger);
+        finish_recording(r, logger);
     }
     signals.close();
     Ok(())
@@ -250,6 +322,21 @@ fn start_recording(
             (None, e)
         }
     }
+}
+
+/// The recording's sender, for the threads and tasks; an insisted stop (a second signal)
+/// finishes the recording through it, and the logger records its lines through it.
+fn recording_tx(
+    recorder: Option<&NodeRecorder>,
+    signals: &StopSignals,
+    logger: &Logger,
+) -> Option<RecordTx> {
+    let rec = recorder.map(NodeRecorder::tx);
+    signals.guard_recording(rec.as_ref().map(|r| r.sender.clone()));
+    if let Some(r) = &rec {
+        let _ = logger.recording.set(r.clone());
+    }
+    rec
 }
 
 /// Writes the recording's summary and says how it ended.

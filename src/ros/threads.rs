@@ -2,6 +2,7 @@
 //! recording) the thread that turns applied inputs into messages. Started together; stopped in
 //! order, the tick loop first, each ending when its input channel closes.
 
+use super::dds::Published;
 use super::logging::Logger;
 use super::record::{self, RecordTx};
 use super::tick::{
@@ -106,10 +107,7 @@ pub(crate) struct ThreadInputs {
     pub(crate) actuator: Actuator,
     pub(crate) publish_every: u64,
     pub(crate) commands: CommandReceiver,
-    pub(crate) state: Publisher<ActuatorState>,
-    pub(crate) joint_states: Publisher<JointState>,
-    pub(crate) clock: Option<Publisher<Clock>>,
-    pub(crate) efforts: Option<Publisher<Float64MultiArray>>,
+    pub(crate) published: Published,
     pub(crate) rec: Option<RecordTx>,
     /// The stamp of tick 0, ns (since the Unix epoch for the wall clock).
     pub(crate) tick_origin_ns: i64,
@@ -147,10 +145,10 @@ impl Threads {
         let (event_tx, event_rx) = mpsc::sync_channel::<Event>(EVENT_QUEUE);
         let publish_errors = Arc::new(AtomicU64::new(0));
         let outlets = Outlets {
-            state: t.state,
-            joint_states: t.joint_states,
-            clock: t.clock,
-            efforts: t.efforts,
+            state: t.published.state,
+            joint_states: t.published.joint_states,
+            clock: t.published.clock,
+            efforts: t.published.joint_efforts,
             errors: publish_errors.clone(),
             rec: t.rec.clone(),
         };
