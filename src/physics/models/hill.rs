@@ -5,8 +5,9 @@
 
 use crate::physics::contractile::calibration;
 use crate::physics::contractile::hill::{force_velocity, hill_force};
-use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepPolicy};
+use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec};
 use crate::physics::params::MuscleParams;
+use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
 /// The model's entry in [`crate::physics::model::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
@@ -18,10 +19,11 @@ pub static SPEC: ModelSpec = ModelSpec {
     // and tests/limb.rs print them).
     // A few sub-steps per transient tick: the fourth-order method took fewer but cost 3% more
     // (benches/limb.rs).
-    substeps: SubstepPolicy::Adaptive {
+    stepping: Stepping::Adaptive {
         tolerance: 5e-5,
-        fourth_order_transients: false,
+        max_substeps: DEFAULT_MAX_SUBSTEPS,
     },
+    fourth_order_transients: false,
     build,
 };
 
