@@ -345,7 +345,7 @@ mod tests {
     }
 
     /// Oversized strings are refused with an excerpt, never echoed whole (a parameter reply of
-    /// 70 kB silenced the parameter service for that client).
+    /// 70 kB silences the parameter service for that client).
     #[test]
     fn long_strings_are_refused_briefly() {
         let mut p = NodeParams::default();
