@@ -8,6 +8,7 @@
 //! - [`recording`]: rosbag2-compatible MCAP recordings (no physics).
 //! - [`runs`]: runs as recordings: `simulate --out`, replay and compare.
 
+pub mod cli;
 pub mod config;
 pub mod csv;
 pub mod figures;
@@ -18,3 +19,5 @@ pub mod recording;
 pub mod ros;
 pub mod runs;
 pub mod sim;
+#[cfg(test)]
+mod tests_fourth_model;

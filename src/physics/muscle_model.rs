@@ -86,6 +86,8 @@ pub struct ModelSpec {
     pub name: &'static str,
     /// A label for plots and tables.
     pub label: &'static str,
+    /// Its name within a sentence (figure summaries: "DM vs full Huxley").
+    pub short_label: &'static str,
     /// One line on what it is.
     pub summary: &'static str,
     /// How its ticks are sub-stepped by default; [`Stepping::Fixed`] for models with state

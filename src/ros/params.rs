@@ -68,7 +68,7 @@ pub struct NodeParams {
 impl Default for NodeParams {
     fn default() -> Self {
         Self {
-            model: ModelKind::HUXLEY,
+            model: ModelKind::DEFAULT,
             rate_hz: 1000.0,
             publish_rate_hz: 0.0,
             config: String::new(),

@@ -12,6 +12,7 @@ use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 pub static SPEC: ModelSpec = ModelSpec {
     name: "huxley",
     label: "Huxley (DM)",
+    short_label: "DM",
     summary: "Huxley cross-bridges, Distribution-Moment approximation (Q0, Q1, Q2)",
     // The stiff cross-bridge spring needs a tighter tolerance than Hill for the same margin of at
     // least 2 against the reference solver (tests/integrator_accuracy.rs, tests/limb.rs).

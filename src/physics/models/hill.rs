@@ -13,6 +13,7 @@ use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 pub static SPEC: ModelSpec = ModelSpec {
     name: "hill",
     label: "Hill",
+    short_label: "Hill",
     summary: "Hill-type: Fmax · a · f(l) · g(v)",
     // Chosen so that 1 kHz ticks (third-order ESDIRK sub-steps) meet the accuracy bounds against
     // the reference solver with a margin of at least 2 on every scenario (tests/integrator_accuracy.rs

@@ -15,6 +15,7 @@ use crate::physics::stepping::Stepping;
 pub static SPEC: ModelSpec = ModelSpec {
     name: "huxley-pde",
     label: "Huxley (full)",
+    short_label: "full Huxley",
     summary: "the full Huxley model, solved by characteristics (the reference)",
     stepping: Stepping::Fixed(20),
     fourth_order_transients: false,

@@ -15,7 +15,9 @@ pub use params_file::{
     yaml_to_param, MAX_FLOW_DEPTH, MAX_PARAMS_FILE_BYTES,
 };
 
+use super::params::NodeParams;
 use crate::config::excerpt;
+use crate::physics::model::ModelKind;
 use ros2_client::ParameterValue;
 use std::path::Path;
 
@@ -83,17 +85,26 @@ pub struct RosArgs {
     pub help: bool,
 }
 
-/// Usage text of `muscle_actuator node`.
-pub const USAGE: &str = "\
+/// Usage text of `muscle_actuator node`: the models from [`MODELS`](crate::physics::model::MODELS),
+/// the defaults from [`NodeParams::default`].
+pub fn usage() -> String {
+    let defaults = NodeParams::default();
+    format!(
+        "\
 usage: muscle_actuator node [--ros-args [-r __ns:=/NS] [-r __node:=NAME] [-r FROM:=TO]...
                              [-p NAME:=VALUE]... [--params-file FILE.yaml]...
                              [--log-level [LOGGER:=]LEVEL] [--]]
 
-parameters: model (hill|huxley|huxley-pde, default huxley), rate_hz (default 1000.0),
+parameters: model ({models}, default {model}), rate_hz (default {rate:?}),
             publish_rate_hz (0 = every tick), config (TOML file, \"\" = embedded default),
             record (bool), record_dir (string)
 environment: ROS_DOMAIN_ID (default 0); ROS_AUTOMATIC_DISCOVERY_RANGE=SUBNET to discover
-             beyond this host (default: loopback only)";
+             beyond this host (default: loopback only)",
+        models = ModelKind::names_joined("|", "|"),
+        model = defaults.model,
+        rate = defaults.rate_hz,
+    )
+}
 
 impl RosArgs {
     /// Parses everything after `node` on the command line. Parameter files are read here.
