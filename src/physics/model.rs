@@ -91,8 +91,8 @@ pub mod test_model {
         short_label: "Hill copy",
         summary: "the Hill element under another name (tests only)",
         stepping: Stepping::Adaptive {
-            tolerance: 1e-4,
-            max_substeps: 32,
+            tolerance: 5e-5,
+            max_substeps: 48,
         },
         fourth_order_transients: false,
         build,
