@@ -501,7 +501,7 @@ pub fn definition(type_name: &str) -> Option<&'static str> {
         .map(|(_, t)| *t)
 }
 
-/// The REP-2011 type hash (`RIHS01_...`) of `pkg/msg/Type`, computed from [`DEFINITIONS`]
+/// The REP-2016 type hash (`RIHS01_...`) of `pkg/msg/Type`, computed from [`DEFINITIONS`]
 /// (once per process), if it is one of them: the `topic_type_hash` of recordings.
 /// `tests/python/test_recording.py` checks it against the hash `rosbags` computes from the
 /// schemas embedded in a recording.
