@@ -242,18 +242,7 @@ fn simulate(
         None => sc.run(cfg, model, rate_hz, stepping)?,
     };
     if let Some(path) = csv {
-        let write = |out: &mut dyn std::io::Write| {
-            let mut buf = std::io::BufWriter::new(out);
-            crate::csv::write_csv(&run, &mut buf)
-        };
-        if path.as_os_str() == "-" {
-            write(&mut std::io::stdout().lock())
-        } else {
-            let mut f = std::fs::File::create(path)
-                .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-            write(&mut f)
-        }
-        .map_err(|e| format!("cannot write CSV {}: {e}", path.display()))?;
+        crate::csv::write_csv_to(&run, path)?;
     }
     let last = run.records.last().ok_or("the scenario produced no ticks")?;
     eprintln!(
