@@ -2,15 +2,15 @@
 # Demo: starts the node and runs the co-contraction sweep against it, on this host only
 # (inside a loopback-only network namespace when run as root).
 #
-#   launch-scripts/demo.sh [--model hill|huxley|huxley-pde] [--rate HZ]
+#   launch-scripts/demo.sh [--model NAME] [--rate HZ]      (models: `muscle_actuator models`)
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-model=huxley rate=1000
+model="" rate=1000  # no --model: the node's default model
 while [ $# -gt 0 ]; do
   case "$1" in
     --model) model="$2"; shift 2 ;;
     --rate) rate="$2"; shift 2 ;;
-    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,5p' "$0"; exit 0 ;;
     *) echo "demo.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Starts the node with a common configuration.
 #
-#   launch-scripts/run-node.sh [--ns /NS] [--name NAME] [--model hill|huxley|huxley-pde]
+#   launch-scripts/run-node.sh [--ns /NS] [--name NAME] [--model NAME]
 #                              [--rate HZ] [--publish-rate HZ] [--config arm|FILE.toml]
 #                              [--domain ID] [--subnet] [-- more ROS arguments]
 #
+# The models are those `muscle_actuator models` lists (the node's default without --model).
 # Discovery stays on this host unless --subnet is given. The binary is $MUSCLE_ACTUATOR_BIN, or
 # the newer of target/release and target/debug under $CARGO_TARGET_DIR or target/ (built with
 # `cargo build` if neither exists).
@@ -23,7 +24,7 @@ while [ $# -gt 0 ]; do
     --domain) export ROS_DOMAIN_ID="$2"; shift 2 ;;
     --subnet) export ROS_AUTOMATIC_DISCOVERY_RANGE=SUBNET; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
     *) echo "run-node.sh: unknown option $1 (try --help)" >&2; exit 2 ;;
   esac
 done

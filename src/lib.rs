@@ -11,10 +11,12 @@
 //! - [`csv`]: a run as CSV (`simulate --csv`, `export`).
 //! - [`figures`]: the paper's figures reproduced (`figures`).
 //! - [`ros`]: the ROS 2 node (`node`).
+//! - [`cli`]: the command line (`src/main.rs` calls [`cli::main`]).
 //! - [`time`]: the time base of a run (ticks ↔ stamps), now, ISO 8601 dates (neutral).
 //! - [`text`]: user text as messages quote it: excerpts, one-line messages (neutral).
 //! - [`files`]: bounded reading of the files a user names (neutral).
 
+pub mod cli;
 pub mod config;
 pub mod csv;
 pub mod figures;
@@ -28,3 +30,6 @@ pub mod runs;
 pub mod sim;
 pub mod text;
 pub mod time;
+
+#[cfg(test)]
+mod tests_fourth_model;

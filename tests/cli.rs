@@ -1,6 +1,8 @@
 //! The command line on bad input: one clear line naming what is wrong, a non-zero exit, never a
-//! panic (exit code 101). And the CSV it writes: header and rows as documented.
+//! panic (exit code 101). And the CSV it writes: header and rows as documented, the columns
+//! those of the message definitions (`msg/msg/*.msg`).
 
+use muscle_actuator::physics::model::ModelKind;
 use std::path::PathBuf;
 use std::process::Output;
 
@@ -14,6 +16,21 @@ fn tmp(name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
+}
+
+/// The fields of `msg/msg/NAME.msg`, (type, name) in order, constants left out.
+fn msg_fields(name: &str) -> Vec<(String, String)> {
+    let path = format!("{}/msg/msg/{name}.msg", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty() && !l.contains('='))
+        .map(|l| {
+            let (ty, name) = l.split_once(char::is_whitespace).unwrap();
+            (ty.to_string(), name.trim().to_string())
+        })
+        .collect()
 }
 
 fn assert_clean_failure(o: &Output, needles: &[&str]) {
@@ -131,7 +148,7 @@ fn unknown_model_is_named() {
         .args(["simulate", "pulse", "--model", "hil"])
         .output()
         .unwrap();
-    assert_clean_failure(&o, &["hil", "hill, huxley, huxley-pde"]);
+    assert_clean_failure(&o, &["hil", &ModelKind::names()]);
 }
 
 #[test]
@@ -189,18 +206,28 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&out).unwrap();
     let mut lines = text.lines();
-    let header = lines.next().unwrap();
-    assert_eq!(
-        header,
-        "time,name,excitation,activation,force,ce_force,pe_force,fiber_length,fiber_velocity,\
-         tendon_length,stiffness,mtu_stiffness,q0,q1,q2,tendon_energy,fiber_energy,\
-         crossbridge_energy,elbow.position,elbow.velocity,elbow.torque,elbow.external_torque,\
-         elbow.stiffness"
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    // `time`, `name`, the muscle's fields after its name, then the per-joint arrays of the
+    // joint (the stiffness matrix is not per joint).
+    let mut columns = vec!["time".to_string(), "name".to_string()];
+    columns.extend(
+        msg_fields("MuscleState")
+            .into_iter()
+            .filter(|(ty, _)| ty == "float64")
+            .map(|(_, name)| name),
     );
+    columns.extend(
+        msg_fields("ActuatorState")
+            .into_iter()
+            .filter(|(ty, name)| ty == "float64[]" && name != "stiffness_matrix")
+            .map(|(_, name)| format!("elbow.{name}")),
+    );
+    assert_eq!(header, columns);
+    let position = header.iter().position(|c| *c == "elbow.position").unwrap();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     // 1.5 s at 1 kHz: the initial state and 1500 ticks, two muscles each.
     assert_eq!(rows.len(), 2 * 1501);
-    assert!(rows.iter().all(|r| r.len() == 23));
+    assert!(rows.iter().all(|r| r.len() == columns.len()));
     assert_eq!(rows[0][1], "flexor");
     assert_eq!(rows[1][1], "extensor");
     // The flexor pulse flexes the joint: positive angle at 0.5 s.
@@ -208,5 +235,8 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
         .iter()
         .find(|r| r[0] == "0.5" && r[1] == "flexor")
         .unwrap();
-    assert!(at_half[18].parse::<f64>().unwrap() > 0.01, "{at_half:?}");
+    assert!(
+        at_half[position].parse::<f64>().unwrap() > 0.01,
+        "{at_half:?}"
+    );
 }

@@ -624,15 +624,20 @@ fn messages_document_units_and_model_names() {
         }
     }
     let text = std::fs::read_to_string(msg_dir().join("ActuatorState.msg")).unwrap();
-    let mut constants: Vec<String> = text
+    let constants: Vec<(String, String)> = text
         .lines()
         .filter_map(|l| l.strip_prefix("string MODEL_"))
-        .map(|l| l.split_once('=').unwrap().1.trim_matches('"').to_string())
+        .map(|l| {
+            let (name, value) = l.split_once('=').unwrap();
+            (name.to_string(), value.trim_matches('"').to_string())
+        })
         .collect();
-    let mut models: Vec<String> = muscle_actuator::physics::model::ModelKind::all()
-        .map(|m| m.name().to_string())
+    // One constant per entry of MODELS, in its order, named after the model.
+    let models: Vec<(String, String)> = muscle_actuator::physics::model::ModelKind::all()
+        .map(|m| {
+            let name = m.name().to_ascii_uppercase().replace('-', "_");
+            (name, m.name().to_string())
+        })
         .collect();
-    constants.sort();
-    models.sort();
     assert_eq!(constants, models);
 }

@@ -34,7 +34,6 @@ pub mod validate;
 
 use crate::physics::params::ParamError;
 /// For src/main.rs, which quotes warnings with it; the text helpers are [`crate::text`]'s.
-pub use crate::text::excerpt;
 pub use parse::BUILT_IN;
 pub use schema::{
     ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_PATH_PRESTRETCH, DEFAULT_RADIUS,

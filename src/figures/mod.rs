@@ -10,34 +10,34 @@ use crate::physics::contractile::distribution_moment::steady_curve;
 use crate::physics::contractile::hill::force_velocity;
 use crate::physics::contractile::huxley_exact::steady_q1;
 use crate::physics::model::ModelKind;
+use crate::physics::params::MuscleParams;
 use crate::sim::scenario::{Run, Scenario};
 use crate::sim::simulation::default_stepping;
+use crate::sim::MuscleSnapshot;
 use plot::{write_chart, Chart, Series};
 use plotters::style::RGBColor;
 use std::fmt::Write as _;
 use std::path::Path;
 
-const HILL_COLOR: RGBColor = RGBColor(0xd6, 0x27, 0x28);
-const DM_COLOR: RGBColor = RGBColor(0x1f, 0x77, 0xb4);
-const PDE_COLOR: RGBColor = RGBColor(0x2c, 0xa0, 0x2c);
+const RED: RGBColor = RGBColor(0xd6, 0x27, 0x28);
+const BLUE: RGBColor = RGBColor(0x1f, 0x77, 0xb4);
+const GREEN: RGBColor = RGBColor(0x2c, 0xa0, 0x2c);
 
-/// A colour per model, in the order of the model list.
+/// The models' colours, by their position in [`MODELS`](crate::physics::model::MODELS)
+/// (repeating after the sixth).
 const PALETTE: [RGBColor; 6] = [
-    HILL_COLOR,
-    DM_COLOR,
-    PDE_COLOR,
+    RED,
+    BLUE,
+    GREEN,
     RGBColor(0x94, 0x67, 0xbd),
     RGBColor(0xff, 0x7f, 0x0e),
     RGBColor(0x8c, 0x56, 0x4b),
 ];
 
+/// A model's colour: its position in the model list.
 fn color(model: ModelKind) -> RGBColor {
     let i = ModelKind::all().position(|m| m == model).unwrap_or(0);
     PALETTE[i % PALETTE.len()]
-}
-
-fn label(model: ModelKind) -> &'static str {
-    model.label()
 }
 
 fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String> {
@@ -45,7 +45,7 @@ fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String
     sc.run(cfg, model, 1000.0, default_stepping(model))
 }
 
-fn series(run: &Run, f: impl Fn(&crate::sim::MuscleSnapshot) -> f64) -> Vec<(f64, f64)> {
+fn series(run: &Run, f: impl Fn(&MuscleSnapshot) -> f64) -> Vec<(f64, f64)> {
     run.records
         .iter()
         .map(|r| (r.time, f(&r.muscles[0])))
@@ -53,7 +53,7 @@ fn series(run: &Run, f: impl Fn(&crate::sim::MuscleSnapshot) -> f64) -> Vec<(f64
 }
 
 /// Value of the first muscle's signal at time t (nearest tick).
-fn at(run: &Run, t: f64, f: impl Fn(&crate::sim::MuscleSnapshot) -> f64) -> f64 {
+fn at(run: &Run, t: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
     let i = ((t * run.rate_hz).round() as usize).min(run.records.len() - 1);
     f(&run.records[i].muscles[0])
 }
@@ -67,7 +67,7 @@ fn rise_time(run: &Run, start: f64, plateau_t: f64, frac: f64) -> f64 {
         .map_or(f64::NAN, |r| r.time - start)
 }
 
-fn rms_and_max(a: &Run, b: &Run, f: impl Fn(&crate::sim::MuscleSnapshot) -> f64) -> (f64, f64) {
+fn rms_and_max(a: &Run, b: &Run, f: impl Fn(&MuscleSnapshot) -> f64) -> (f64, f64) {
     let (mut sq, mut max, mut n) = (0.0, 0.0f64, 0usize);
     for (ra, rb) in a.records.iter().zip(&b.records) {
         let d = f(&ra.muscles[0]) - f(&rb.muscles[0]);
@@ -79,7 +79,7 @@ fn rms_and_max(a: &Run, b: &Run, f: impl Fn(&crate::sim::MuscleSnapshot) -> f64)
 }
 
 /// Swing (max - min) of a signal over [t0, t1].
-fn swing(run: &Run, t0: f64, t1: f64, f: impl Fn(&crate::sim::MuscleSnapshot) -> f64) -> f64 {
+fn swing(run: &Run, t0: f64, t1: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
     let vals = run
         .records
         .iter()
@@ -94,19 +94,29 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let cfg = ActuatorConfig::default();
     let mut summary = String::from("# Figures: the numbers they show\n\n");
+    pulse_figures(dir, &cfg, &mut summary)?;
+    energy_figures(dir, &cfg, &mut summary)?;
+    force_velocity_figure(dir, &cfg, &mut summary)?;
+    std::fs::write(dir.join("summary.md"), &summary)
+        .map_err(|e| format!("cannot write {}: {e}", dir.join("summary.md").display()))?;
+    print!("{summary}");
+    Ok(())
+}
 
-    // Figs. 4 and 5: the pulse, three models.
+/// Figs. 4 and 5 and the stiffness under the pulse, every model; their table and the
+/// differences between neighbours in the model list.
+fn pulse_figures(dir: &Path, cfg: &ActuatorConfig, summary: &mut String) -> Result<(), String> {
     let pulse: Vec<(ModelKind, Run)> = ModelKind::all()
-        .map(|m| run("pulse", m, &cfg).map(|r| (m, r)))
+        .map(|m| run("pulse", m, cfg).map(|r| (m, r)))
         .collect::<Result<_, _>>()?;
-    let chart = |title, y_label, f: &dyn Fn(&crate::sim::MuscleSnapshot) -> f64| Chart {
+    let chart = |title, y_label, f: &dyn Fn(&MuscleSnapshot) -> f64| Chart {
         title,
         x_label: "time (s)",
         y_label,
         series: pulse
             .iter()
             .map(|(m, r)| Series {
-                label: label(*m),
+                label: m.label(),
                 color: color(*m),
                 points: series(r, f),
                 dashed: false,
@@ -140,14 +150,20 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
             &|m| m.stiffness,
         ),
     )?;
+    pulse_table(&pulse, summary);
+    pulse_differences(&pulse, summary);
+    Ok(())
+}
 
+/// The pulse's numbers per model.
+fn pulse_table(pulse: &[(ModelKind, Run)], summary: &mut String) {
     let _ = writeln!(
         summary,
         "## Pulse (Figs. 4-5): clamped MTU, excitation 1 from 1 s to 2 s\n"
     );
     let _ = writeln!(summary, "| model | F_CE at 1.9 s (N) | fibre shortening (mm) | 90% rise time (ms) | force 50 ms after release (N) |");
     let _ = writeln!(summary, "|---|---|---|---|---|");
-    for (m, r) in &pulse {
+    for (m, r) in pulse {
         let _ = writeln!(
             summary,
             "| {} | {:.1} | {:.3} | {:.1} | {:.1} |",
@@ -158,27 +174,40 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
             at(r, 2.05, |s| s.ce_force),
         );
     }
-    let by = |k: ModelKind| {
-        &pulse
-            .iter()
-            .find(|(m, _)| *m == k)
-            .expect("all models run")
-            .1
-    };
-    let (rms, max) = rms_and_max(by(ModelKind::HUXLEY), by(ModelKind::HUXLEY_PDE), |s| {
-        s.ce_force
-    });
-    let (rms_l, max_l) = rms_and_max(by(ModelKind::HUXLEY), by(ModelKind::HUXLEY_PDE), |s| {
-        s.fiber_length
-    });
-    let _ = writeln!(summary, "\nDM vs full Huxley over the pulse: F_CE RMS {rms:.1} N, max {max:.1} N; l_m RMS {:.3} mm, max {:.3} mm.", rms_l * 1e3, max_l * 1e3);
-    let (rms, max) = rms_and_max(by(ModelKind::HILL), by(ModelKind::HUXLEY), |s| s.ce_force);
-    let _ = writeln!(
-        summary,
-        "Hill vs DM over the pulse: F_CE RMS {rms:.1} N, max {max:.1} N.\n"
-    );
+}
 
-    // Fig. 6: energies under a sinusoidal pull, 10 Hz and 100 Hz.
+/// Each model against the next one in the list (from the simplest to the reference), the pair
+/// that ends at the reference first: the contractile force, and for that pair the fibre length
+/// too.
+fn pulse_differences(pulse: &[(ModelKind, Run)], summary: &mut String) {
+    summary.push('\n');
+    for (k, pair) in pulse.windows(2).rev().enumerate() {
+        let [(ma, a), (mb, b)] = pair else {
+            continue;
+        };
+        let (sa, sb) = (ma.spec().short_label, mb.spec().short_label);
+        let (rms, max) = rms_and_max(a, b, |s| s.ce_force);
+        let _ = write!(
+            summary,
+            "{sa} vs {sb} over the pulse: F_CE RMS {rms:.1} N, max {max:.1} N"
+        );
+        if k == 0 {
+            let (rms, max) = rms_and_max(a, b, |s| s.fiber_length);
+            let _ = write!(
+                summary,
+                "; l_m RMS {:.3} mm, max {:.3} mm",
+                rms * 1e3,
+                max * 1e3
+            );
+        }
+        summary.push_str(".\n");
+    }
+    summary.push('\n');
+}
+
+/// Fig. 6: the energies under a sinusoidal pull at 10 Hz and 100 Hz (the Hill model: the
+/// passive muscle is the same in every model).
+fn energy_figures(dir: &Path, cfg: &ActuatorConfig, summary: &mut String) -> Result<(), String> {
     let _ = writeln!(
         summary,
         "## Energy (Fig. 6): passive muscle, tendon pulled by 150 + 150 sin(2πft) N\n"
@@ -187,7 +216,7 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     let _ = writeln!(summary, "| f | tendon swing (J) | parallel element swing (J) | total (tendon + PE) swing (J) | tendon share |");
     let _ = writeln!(summary, "|---|---|---|---|---|");
     for (name, f) in [("energy-10hz", 10.0), ("energy-100hz", 100.0)] {
-        let r = run(name, ModelKind::HILL, &cfg)?;
+        let r = run(name, ModelKind::HILL, cfg)?;
         write_chart(
             dir,
             &format!("fig6_{}", name.replace('-', "_")),
@@ -198,13 +227,13 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
                 series: vec![
                     Series {
                         label: "tendon",
-                        color: DM_COLOR,
+                        color: BLUE,
                         points: series(&r, |m| m.tendon_energy),
                         dashed: false,
                     },
                     Series {
                         label: "tendon + parallel element",
-                        color: HILL_COLOR,
+                        color: RED,
                         points: series(&r, |m| m.tendon_energy + m.fiber_energy),
                         dashed: false,
                     },
@@ -220,9 +249,13 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
             100.0 * t_swing / (t_swing + pe_swing)
         );
     }
+    Ok(())
+}
 
-    // Steady force–velocity curves.
-    let p = &cfg.muscles[0].params;
+/// The steady force–velocity curves at full activation and optimal length, F / Fmax against
+/// v_s / vmax from -1 to 1: Hill's g(v) (docs/model.md §3), the Distribution-Moment steady states
+/// (§6) and the exact Huxley ones (§7), on one grid.
+fn steady_curves(p: &MuscleParams) -> Result<[Vec<(f64, f64)>; 3], String> {
     let dm = calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
     let ex = calibrate_exact(p);
     let shortening: Vec<f64> = (0..=50).map(|i| i as f64 / 50.0).collect();
@@ -258,6 +291,17 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
             )
         })
         .collect();
+    Ok([hill_points, dm_points, exact_points])
+}
+
+/// The steady force–velocity figure ([`steady_curves`]), each curve in its model's colour, and
+/// how far the Distribution-Moment curve is from the exact one.
+fn force_velocity_figure(
+    dir: &Path,
+    cfg: &ActuatorConfig,
+    summary: &mut String,
+) -> Result<(), String> {
+    let [hill_points, dm_points, exact_points] = steady_curves(&cfg.muscles[0].params)?;
     write_chart(
         dir,
         "force_velocity",
@@ -267,20 +311,20 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
             y_label: "F / Fmax",
             series: vec![
                 Series {
-                    label: "Hill",
-                    color: HILL_COLOR,
+                    label: ModelKind::HILL.label(),
+                    color: color(ModelKind::HILL),
                     points: hill_points,
                     dashed: true,
                 },
                 Series {
-                    label: "Huxley (DM)",
-                    color: DM_COLOR,
+                    label: ModelKind::HUXLEY.label(),
+                    color: color(ModelKind::HUXLEY),
                     points: dm_points.clone(),
                     dashed: false,
                 },
                 Series {
                     label: "Huxley (exact)",
-                    color: PDE_COLOR,
+                    color: color(ModelKind::HUXLEY_PDE),
                     points: exact_points.clone(),
                     dashed: false,
                 },
@@ -301,8 +345,5 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
         dev(1e-9, 1.0),
         dev(-1.0, -1e-9)
     );
-    std::fs::write(dir.join("summary.md"), &summary)
-        .map_err(|e| format!("cannot write {}: {e}", dir.join("summary.md").display()))?;
-    print!("{summary}");
     Ok(())
 }

@@ -5,6 +5,7 @@
 use crate::physics::contractile::force_length::{force_length, force_length_slope};
 use crate::physics::model::ModelKind;
 use crate::physics::muscle_model::{CeInputs, ContractileModel};
+use crate::physics::observables::MuscleSnapshot;
 use crate::physics::parallel_element::{damper_force, parallel_spring};
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
@@ -23,29 +24,6 @@ pub struct Mtu {
     pub parallel: ExpLinearSpring,
     /// The contractile element.
     pub ce: Box<dyn ContractileModel>,
-}
-
-/// Everything observable about one MTU at one instant.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct MtuOutputs {
-    /// Tendon force, N.
-    pub tendon_force: f64,
-    /// Contractile-element force, N.
-    pub ce_force: f64,
-    /// Parallel spring force, N.
-    pub pe_force: f64,
-    /// Tendon length, m.
-    pub tendon_length: f64,
-    /// Contractile-element stiffness, N/m.
-    pub ce_stiffness: f64,
-    /// MTU stiffness (fibre in series with tendon), N/m.
-    pub mtu_stiffness: f64,
-    /// Tendon strain energy, J.
-    pub tendon_energy: f64,
-    /// Parallel-element strain energy, J.
-    pub fibre_energy: f64,
-    /// Cross-bridge elastic energy, J.
-    pub crossbridge_energy: f64,
 }
 
 impl Mtu {
@@ -110,21 +88,30 @@ impl Mtu {
         self.ce.state_scales(&mut out[2..]);
     }
 
-    /// All outputs at muscle state `s = [l_m, v, x...]`, tendon length l_t and activation a.
-    pub fn outputs(&self, activation: f64, s: &[f64], l_t: f64) -> MtuOutputs {
+    /// Everything observable about this MTU at muscle state `s = [l_m, v, x...]`, tendon length
+    /// l_t, excitation u and activation a; the force is the tendon's, F_SE(l_t).
+    pub fn outputs(&self, excitation: f64, activation: f64, s: &[f64], l_t: f64) -> MuscleSnapshot {
         let (l_m, v, x) = (s[0], s[1], &s[2..]);
         let ce = self.ce_inputs(activation, l_m, v);
         let ce_stiffness = self.ce.stiffness(&ce, x);
         let k_m = fibre_stiffness(ce_stiffness, self.parallel.stiffness(l_m));
-        MtuOutputs {
-            tendon_force: self.tendon.force(l_t),
+        let [q0, q1, q2] = self.ce.moments(x);
+        MuscleSnapshot {
+            excitation,
+            activation,
+            force: self.tendon.force(l_t),
             ce_force: self.ce.force(&ce, x),
             pe_force: self.parallel.force(l_m),
+            fiber_length: l_m,
+            fiber_velocity: v,
             tendon_length: l_t,
-            ce_stiffness,
+            stiffness: ce_stiffness,
             mtu_stiffness: series_stiffness(k_m, self.tendon.stiffness(l_t)),
+            q0,
+            q1,
+            q2,
             tendon_energy: self.tendon.energy(l_t),
-            fibre_energy: self.parallel.energy(l_m),
+            fiber_energy: self.parallel.energy(l_m),
             crossbridge_energy: self.ce.energy(x),
         }
     }

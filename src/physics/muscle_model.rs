@@ -1,6 +1,6 @@
 //! The interface every contractile-element model implements (docs/model.md §3, §6, §7).
 //!
-//! A model is one file in `physics/models/` plus one line in [`crate::physics::models::MODELS`].
+//! A model is one file in `physics/models/` plus one line in [`crate::physics::model::MODELS`].
 //! It supplies, for one muscle:
 //! - its calibration (the `build` function of its [`ModelSpec`], from the muscle's parameters);
 //! - the size of its own state (0 for Hill, Q0..Q2 for the Huxley models) and their scales;
@@ -13,6 +13,7 @@
 //! `physics::mtu` and `physics::plant`.
 
 use crate::physics::params::MuscleParams;
+use crate::physics::stepping::Stepping;
 use std::fmt;
 
 /// What the contractile element sees at one instant.
@@ -26,23 +27,6 @@ pub struct CeInputs {
     pub fibre_velocity: f64,
     /// Filament overlap factor λ(l_m) = f(l_m) (the force–length curve), dimensionless.
     pub overlap: f64,
-}
-
-/// How a model wants its ticks divided into implicit sub-steps.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SubstepPolicy {
-    /// Chosen by the local error estimate, each sub-step's error below `tolerance` times the
-    /// state's scales.
-    Adaptive {
-        /// Relative local error tolerance.
-        tolerance: f64,
-        /// Whether the ticks whose state moves fast (sub-steps shorter than the tick) take the
-        /// fourth-order method rather than the third-order one (docs/model.md §10;
-        /// measured per model with `benches/limb.rs`).
-        fourth_order_transients: bool,
-    },
-    /// A fixed number of equal sub-steps per tick (models with state outside the ODE).
-    Fixed(usize),
 }
 
 /// The motion of one fibre over a sub-step, for [`ContractileModel::after_substep`].
@@ -102,15 +86,22 @@ pub struct ModelSpec {
     pub name: &'static str,
     /// A label for plots and tables.
     pub label: &'static str,
+    /// Its name within a sentence (figure summaries: "DM vs full Huxley").
+    pub short_label: &'static str,
     /// One line on what it is.
     pub summary: &'static str,
-    /// How its ticks are sub-stepped by default.
-    pub substeps: SubstepPolicy,
+    /// How its ticks are sub-stepped by default; [`Stepping::Fixed`] for models with state
+    /// outside the ODE.
+    pub stepping: Stepping,
+    /// Whether, with adaptive sub-steps, the ticks whose state moves fast (sub-steps shorter
+    /// than the tick) take the fourth-order method rather than the third-order one
+    /// (docs/model.md §10; measured per model with `benches/limb.rs`).
+    pub fourth_order_transients: bool,
     /// Its calibration: the model for one muscle with these parameters.
     pub build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, String>,
 }
 
-/// A model: a reference to its entry in [`crate::physics::models::MODELS`]. Compared by name.
+/// A model: a reference to its entry in [`crate::physics::model::MODELS`]. Compared by name.
 #[derive(Clone, Copy)]
 pub struct ModelKind(pub &'static ModelSpec);
 
@@ -129,7 +120,7 @@ impl ModelKind {
     }
     /// Whether its whole state is an ODE (adaptive sub-steps, an ODE reference solution exists).
     pub fn is_ode(self) -> bool {
-        matches!(self.0.substeps, SubstepPolicy::Adaptive { .. })
+        self.0.stepping.is_adaptive()
     }
     /// Builds the contractile element of one muscle.
     pub fn build(self, params: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {

@@ -18,7 +18,8 @@
 
 use crate::physics::joint;
 use crate::physics::model::ModelKind;
-use crate::physics::mtu::{Mtu, MtuOutputs};
+use crate::physics::mtu::Mtu;
+use crate::physics::observables::MuscleSnapshot;
 use crate::physics::params::JointParams;
 use crate::physics::stiffness::add_muscle_joint_stiffness;
 use crate::physics::topology::{Anchor, Span, Topology};
@@ -145,11 +146,6 @@ impl Plant {
             Anchor::Path { spans, .. } => spans,
             Anchor::ForceDriven => &[],
         }
-    }
-
-    /// Muscle i's cross-bridge moments (zeros for models without bonds).
-    pub fn moments(&self, y: &[f64], i: usize) -> [f64; 3] {
-        self.mtus[i].ce.moments(&self.muscle_state(y, i)[2..])
     }
 
     /// Muscle i's path length `L_i(θ)`, m (None for a force-driven tendon).
@@ -280,12 +276,13 @@ impl Plant {
         }
     }
 
-    /// Muscle i's observable outputs.
-    pub fn outputs(&self, y: &[f64], act: &[f64], inputs: &Inputs, i: usize) -> MtuOutputs {
+    /// Muscle i's observables.
+    pub fn outputs(&self, y: &[f64], act: &[f64], inputs: &Inputs, i: usize) -> MuscleSnapshot {
         let l_t = self.tendon_length(y, i, inputs);
-        let mut out = self.mtus[i].outputs(act[i], self.muscle_state(y, i), l_t);
+        let u = inputs.excitation[i];
+        let mut out = self.mtus[i].outputs(u, act[i], self.muscle_state(y, i), l_t);
         if matches!(self.anchors[i], Anchor::ForceDriven) {
-            out.tendon_force = inputs.tendon_force[i].max(0.0);
+            out.force = inputs.tendon_force[i].max(0.0);
         }
         out
     }

@@ -29,7 +29,7 @@ pub mod node;
 mod param_callbacks;
 pub mod params;
 pub mod record;
-mod setup;
+pub(crate) mod setup;
 mod signals;
 mod tasks;
 mod threads;

@@ -68,7 +68,7 @@ pub struct NodeParams {
 impl Default for NodeParams {
     fn default() -> Self {
         Self {
-            model: ModelKind::HUXLEY,
+            model: ModelKind::DEFAULT,
             rate_hz: 1000.0,
             publish_rate_hz: 0.0,
             config: String::new(),
@@ -111,39 +111,8 @@ impl NodeParams {
     /// checking its rules but not the whole (see [`NodeParams::build`]).
     /// `lenient` (start-up values from `-p` and files) also accepts an integer for a double.
     pub fn set(&mut self, name: &str, value: &ParameterValue, lenient: bool) -> Result<(), String> {
-        let as_f64 = |v: &ParameterValue| -> Result<f64, String> {
-            match v {
-                ParameterValue::Double(d) => Ok(*d),
-                ParameterValue::Integer(i) if lenient => Ok(*i as f64),
-                other => Err(format!(
-                    "parameter {name:?} must be a double (e.g. 1000.0), got {}",
-                    describe(other)
-                )),
-            }
-        };
-        let as_string = |v: &ParameterValue| -> Result<String, String> {
-            match v {
-                ParameterValue::String(s) => {
-                    let (limit, too_long) = if name == MODEL || name == CLOCK {
-                        ("64 characters", s.chars().count() > MAX_NAME_CHARS)
-                    } else {
-                        ("4096 bytes", s.len() > MAX_PATH_BYTES)
-                    };
-                    if too_long {
-                        return Err(format!(
-                            "parameter {name:?} is too long ({} bytes, at most {limit}): {}",
-                            s.len(),
-                            excerpt(s)
-                        ));
-                    }
-                    Ok(s.clone())
-                }
-                other => Err(format!(
-                    "parameter {name:?} must be a string, got {}",
-                    describe(other)
-                )),
-            }
-        };
+        let as_f64 = |v: &ParameterValue| double(name, v, lenient);
+        let as_string = |v: &ParameterValue| string(name, v);
         match name {
             MODEL => {
                 let s = as_string(value)?;
@@ -255,6 +224,44 @@ pub fn publish_every(rate_hz: f64, publish_rate_hz: f64) -> u64 {
     }
 }
 
+/// A double parameter's value; `lenient` also accepts an integer.
+fn double(name: &str, v: &ParameterValue, lenient: bool) -> Result<f64, String> {
+    match v {
+        ParameterValue::Double(d) => Ok(*d),
+        ParameterValue::Integer(i) if lenient => Ok(*i as f64),
+        other => Err(format!(
+            "parameter {name:?} must be a double (e.g. 1000.0), got {}",
+            describe(other)
+        )),
+    }
+}
+
+/// A string parameter's value: a name ([`MODEL`], [`CLOCK`]) of at most [`MAX_NAME_CHARS`]
+/// characters, a path of at most [`MAX_PATH_BYTES`] bytes.
+fn string(name: &str, v: &ParameterValue) -> Result<String, String> {
+    match v {
+        ParameterValue::String(s) => {
+            let (limit, too_long) = if name == MODEL || name == CLOCK {
+                ("64 characters", s.chars().count() > MAX_NAME_CHARS)
+            } else {
+                ("4096 bytes", s.len() > MAX_PATH_BYTES)
+            };
+            if too_long {
+                return Err(format!(
+                    "parameter {name:?} is too long ({} bytes, at most {limit}): {}",
+                    s.len(),
+                    excerpt(s)
+                ));
+            }
+            Ok(s.clone())
+        }
+        other => Err(format!(
+            "parameter {name:?} must be a string, got {}",
+            describe(other)
+        )),
+    }
+}
+
 fn describe(v: &ParameterValue) -> String {
     match v {
         ParameterValue::NotSet => "nothing (not set)".into(),
@@ -345,7 +352,7 @@ mod tests {
     }
 
     /// Oversized strings are refused with an excerpt, never echoed whole (a parameter reply of
-    /// 70 kB silenced the parameter service for that client).
+    /// 70 kB silences the parameter service for that client).
     #[test]
     fn long_strings_are_refused_briefly() {
         let mut p = NodeParams::default();

@@ -25,7 +25,7 @@ pub(crate) struct Setup {
 pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
     let ros_args = RosArgs::parse(argv)?;
     if ros_args.help {
-        println!("{}", args::USAGE);
+        println!("{}", args::usage());
         return Ok(None);
     }
     let namespace = ros_args.namespace.clone().unwrap_or_else(|| "/".into());

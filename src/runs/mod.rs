@@ -20,7 +20,6 @@ pub mod simulate;
 pub mod writer;
 
 /// For src/ros/tick.rs, which names them here; the time base is [`crate::time`]'s.
-pub use crate::time::{tick_ns, TimeBase};
 pub use channels::{
     channel, Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
     APPLIED_JOINT_MOTION_SUFFIX, APPLIED_JOINT_MOTION_TOPIC, APPLIED_LOAD_SUFFIX,

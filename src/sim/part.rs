@@ -6,10 +6,10 @@ use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
 use crate::integrator::{esdirk::Esdirk, tableau::Tableau};
 use crate::integrator::{OdeSystem, Stats};
 use crate::physics::activation::activation_after;
-use crate::physics::muscle_model::{SubstepMotion, SubstepPolicy};
+use crate::physics::muscle_model::SubstepMotion;
 use crate::physics::plant::{Inputs, Plant};
+use crate::physics::stepping::Stepping;
 use crate::sim::jacobian::{self, JacobianScratch, PlantSystem};
-use crate::sim::simulation::Stepping;
 use std::cell::RefCell;
 
 /// The activations at one time within the tick (Newton iterates at one stage time many times),
@@ -114,20 +114,14 @@ impl Part {
                 a: vec![0.0; m],
                 scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
             }),
-            stepper: match (stepping, plant.model.spec().substeps) {
+            stepper: match stepping {
                 // Third order for ticks one step covers, fourth while the state moves fast, for
-                // the models that gain from it (their `SubstepPolicy` says so).
-                (
-                    Stepping::Adaptive { .. },
-                    SubstepPolicy::Adaptive {
-                        fourth_order_transients: true,
-                        ..
-                    },
-                ) => {
+                // the models that gain from it (their `ModelSpec` says so).
+                Stepping::Adaptive { .. } if plant.model.spec().fourth_order_transients => {
                     Esdirk::new(n, matrix, Tableau::ark324()).with_high_order(Tableau::esdirk436())
                 }
-                (Stepping::Adaptive { .. }, _) => Esdirk::new(n, matrix, Tableau::ark324()),
-                (Stepping::Fixed(_), _) => Esdirk::new(n, matrix, Tableau::trbdf2()),
+                Stepping::Adaptive { .. } => Esdirk::new(n, matrix, Tableau::ark324()),
+                Stepping::Fixed(_) => Esdirk::new(n, matrix, Tableau::trbdf2()),
             },
             y: vec![0.0; n],
             h: 0.0,

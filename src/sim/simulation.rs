@@ -6,69 +6,18 @@
 
 use crate::integrator::Stats;
 use crate::physics::model::ModelKind;
-use crate::physics::muscle_model::SubstepPolicy;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::part::Part;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 
-/// How a tick is divided into implicit sub-steps.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Stepping {
-    /// Sub-steps chosen by the local error estimate: each below `tolerance` times the state's
-    /// scales, at most `max_substeps` per tick.
-    Adaptive {
-        /// Relative local error tolerance.
-        tolerance: f64,
-        /// Most sub-steps per tick.
-        max_substeps: usize,
-    },
-    /// A fixed number of equal sub-steps per tick (models with state outside the ODE).
-    Fixed(usize),
-}
+pub use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS, MAX_SUBSTEPS};
 
-/// Most adaptive sub-steps per tick by default.
-pub const DEFAULT_MAX_SUBSTEPS: usize = 64;
 /// Highest tick rate, Hz (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;
-/// Most sub-steps per tick, fixed or adaptive (a sanity bound).
-pub const MAX_SUBSTEPS: usize = 10_000;
 
-impl Stepping {
-    /// Its rules: 1 to [`MAX_SUBSTEPS`] sub-steps, an adaptive tolerance finite and > 0.
-    pub fn check(&self) -> Result<(), String> {
-        let (what, n) = match *self {
-            Stepping::Fixed(n) => ("substeps", n),
-            Stepping::Adaptive {
-                tolerance,
-                max_substeps,
-            } => {
-                if !(tolerance.is_finite() && tolerance > 0.0) {
-                    return Err(format!(
-                        "invalid tolerance = {tolerance}: must be a finite number > 0"
-                    ));
-                }
-                ("max_substeps", max_substeps)
-            }
-        };
-        if (1..=MAX_SUBSTEPS).contains(&n) {
-            Ok(())
-        } else {
-            Err(format!(
-                "invalid {what} = {n}: must be between 1 and {MAX_SUBSTEPS}"
-            ))
-        }
-    }
-}
-
-/// The default stepping of a model (its [`SubstepPolicy`]).
+/// The default stepping of a model (its [`ModelSpec::stepping`](crate::physics::muscle_model::ModelSpec::stepping)).
 pub fn default_stepping(model: ModelKind) -> Stepping {
-    match model.spec().substeps {
-        SubstepPolicy::Adaptive { tolerance, .. } => Stepping::Adaptive {
-            tolerance,
-            max_substeps: DEFAULT_MAX_SUBSTEPS,
-        },
-        SubstepPolicy::Fixed(n) => Stepping::Fixed(n),
-    }
+    model.spec().stepping
 }
 
 /// A tick that could not be computed; the simulation is left as it was before the tick.
@@ -109,7 +58,7 @@ impl Simulation {
             ));
         }
         stepping.check()?;
-        if matches!(stepping, Stepping::Adaptive { .. }) && !plant.model.is_ode() {
+        if stepping.is_adaptive() && !plant.model.is_ode() {
             return Err(format!(
                 "the {} model needs a fixed number of sub-steps",
                 plant.model
@@ -248,28 +197,8 @@ impl Simulation {
 
     /// Muscle i's published state.
     pub fn muscle_snapshot(&self, i: usize) -> MuscleSnapshot {
-        let y = &self.y;
-        let o = self.plant.offset(i);
-        let out = self.plant.outputs(y, &self.activation, &self.inputs, i);
-        let q = self.plant.moments(y, i);
-        MuscleSnapshot {
-            excitation: self.inputs.excitation[i],
-            activation: self.activation[i],
-            force: out.tendon_force,
-            ce_force: out.ce_force,
-            pe_force: out.pe_force,
-            fiber_length: y[o],
-            fiber_velocity: y[o + 1],
-            tendon_length: out.tendon_length,
-            stiffness: out.ce_stiffness,
-            mtu_stiffness: out.mtu_stiffness,
-            q0: q[0],
-            q1: q[1],
-            q2: q[2],
-            tendon_energy: out.tendon_energy,
-            fiber_energy: out.fibre_energy,
-            crossbridge_energy: out.crossbridge_energy,
-        }
+        self.plant
+            .outputs(&self.y, &self.activation, &self.inputs, i)
     }
 
     /// Fills `out` with the published state (its vectors keep their storage).

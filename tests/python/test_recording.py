@@ -19,18 +19,16 @@ from mcap.reader import make_reader
 from mcap.stream_reader import StreamReader
 from mcap.records import Channel, Chunk, Message
 from mcap_ros2.decoder import DecoderFactory
-from muscle_actuator_msgs.msg import ActuatorState
+from muscle_actuator_msgs.msg import ActuatorState, MuscleState
 from rosbags.highlevel import AnyReader
 from sensor_msgs.msg import JointState
 
 from helpers import NodeProcess, doctor, wait_until
 
-MUSCLE_FIELDS = [
-    "excitation", "activation", "force", "ce_force", "pe_force", "fiber_length",
-    "fiber_velocity", "tendon_length", "stiffness", "mtu_stiffness", "q0", "q1", "q2",
-    "tendon_energy", "fiber_energy", "crossbridge_energy",
-]
-STATE_ARRAYS = ["position", "velocity", "torque", "external_torque", "stiffness", "stiffness_matrix"]
+# The field lists of the message definitions: a muscle's numbers, and the per-joint arrays and
+# the stiffness matrix of a state.
+MUSCLE_FIELDS = [f for f, t in MuscleState.get_fields_and_field_types().items() if t == "double"]
+STATE_ARRAYS = [f for f, t in ActuatorState.get_fields_and_field_types().items() if t == "sequence<double>"]
 
 
 def decode_mcap(path):
@@ -55,7 +53,7 @@ def decode_rosbags(path):
             for ch in make_reader(f).get_summary().channels.values():
                 schema = next(c for c in reader.connections if c.topic == ch.topic).msgtype
                 assert ch.metadata["topic_type_hash"] == reader.typestore.hash_rihs01(schema), (
-                    f"update TYPE_HASHES in src/msgs.rs: {schema} is "
+                    f"src/msgs/type_hash.rs computes another hash: {schema} is "
                     f"{reader.typestore.hash_rihs01(schema)}"
                 )
         for conn, t, raw in reader.messages():

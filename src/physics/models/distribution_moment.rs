@@ -4,22 +4,25 @@
 
 use crate::physics::contractile::calibration::{self, CrossBridgeScale};
 use crate::physics::contractile::distribution_moment::moment_rates;
-use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepPolicy};
+use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec};
 use crate::physics::params::MuscleParams;
+use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
 /// The model's entry in [`crate::physics::model::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
     name: "huxley",
     label: "Huxley (DM)",
+    short_label: "DM",
     summary: "Huxley cross-bridges, Distribution-Moment approximation (Q0, Q1, Q2)",
     // The stiff cross-bridge spring needs a tighter tolerance than Hill for the same margin of at
     // least 2 against the reference solver (tests/integrator_accuracy.rs, tests/limb.rs).
     // After an excitation step: 2.65 sub-steps per tick with the fourth-order method, 6.15
     // without (benches/limb.rs).
-    substeps: SubstepPolicy::Adaptive {
+    stepping: Stepping::Adaptive {
         tolerance: 2e-5,
-        fourth_order_transients: true,
+        max_substeps: DEFAULT_MAX_SUBSTEPS,
     },
+    fourth_order_transients: true,
     build,
 };
 

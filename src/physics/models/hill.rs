@@ -5,23 +5,26 @@
 
 use crate::physics::contractile::calibration;
 use crate::physics::contractile::hill::{force_velocity, hill_force};
-use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepPolicy};
+use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec};
 use crate::physics::params::MuscleParams;
+use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
 /// The model's entry in [`crate::physics::model::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
     name: "hill",
     label: "Hill",
+    short_label: "Hill",
     summary: "Hill-type: Fmax · a · f(l) · g(v)",
     // Chosen so that 1 kHz ticks (third-order ESDIRK sub-steps) meet the accuracy bounds against
     // the reference solver with a margin of at least 2 on every scenario (tests/integrator_accuracy.rs
     // and tests/limb.rs print them).
     // A few sub-steps per transient tick: the fourth-order method took fewer but cost 3% more
     // (benches/limb.rs).
-    substeps: SubstepPolicy::Adaptive {
+    stepping: Stepping::Adaptive {
         tolerance: 5e-5,
-        fourth_order_transients: false,
+        max_substeps: DEFAULT_MAX_SUBSTEPS,
     },
+    fourth_order_transients: false,
     build,
 };
 

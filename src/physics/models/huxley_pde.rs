@@ -7,17 +7,18 @@
 
 use crate::physics::contractile::calibration::{self, CrossBridgeScale};
 use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
-use crate::physics::muscle_model::{
-    CeInputs, ContractileModel, ModelSpec, SubstepMotion, SubstepPolicy,
-};
+use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepMotion};
 use crate::physics::params::MuscleParams;
+use crate::physics::stepping::Stepping;
 
 /// The model's entry in [`crate::physics::model::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
     name: "huxley-pde",
     label: "Huxley (full)",
+    short_label: "full Huxley",
     summary: "the full Huxley model, solved by characteristics (the reference)",
-    substeps: SubstepPolicy::Fixed(20),
+    stepping: Stepping::Fixed(20),
+    fourth_order_transients: false,
     build,
 };
 

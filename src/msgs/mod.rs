@@ -5,6 +5,9 @@
 //! `muscle_actuator_msgs` mirrors `msg/*.msg` field for field (`tests/msg_definitions.rs` checks
 //! it); the standard types mirror their kilted definitions.
 
+mod sha256;
+pub mod type_hash;
+
 use crate::sim::snapshot::{
     JointSnapshot, MuscleSnapshot, StateSnapshot, JOINT_FIELD_COUNT, MUSCLE_FIELD_COUNT,
 };
@@ -13,6 +16,7 @@ use ros2_client::Message;
 use serde::de::{self, SeqAccess, Visitor};
 use serde::ser::SerializeStruct;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::sync::OnceLock;
 
 /// `std_msgs/msg/Header`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -429,19 +433,19 @@ impl Message for TriggerResponse {}
 pub const DEFINITIONS: &[(&str, &str)] = &[
     (
         "muscle_actuator_msgs/msg/ActivationCommand",
-        include_str!("../msg/msg/ActivationCommand.msg"),
+        include_str!("../../msg/msg/ActivationCommand.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/ExternalLoad",
-        include_str!("../msg/msg/ExternalLoad.msg"),
+        include_str!("../../msg/msg/ExternalLoad.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/MuscleState",
-        include_str!("../msg/msg/MuscleState.msg"),
+        include_str!("../../msg/msg/MuscleState.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/ActuatorState",
-        include_str!("../msg/msg/ActuatorState.msg"),
+        include_str!("../../msg/msg/ActuatorState.msg"),
     ),
     (
         "std_msgs/msg/Header",
@@ -497,49 +501,95 @@ pub fn definition(type_name: &str) -> Option<&'static str> {
         .map(|(_, t)| *t)
 }
 
-/// REP-2016 type hashes (`RIHS01_...`) of the recorded types, for `topic_type_hash` in
-/// recordings. They follow from the definitions above; `tests/python/test_recording.py` checks
-/// them against the hash `rosbags` computes from the schemas embedded in a recording (update
-/// them from its failure message when a `.msg` file changes).
-pub const TYPE_HASHES: &[(&str, &str)] = &[
-    (
-        "muscle_actuator_msgs/msg/ActivationCommand",
-        "RIHS01_ce7fb9cd9d358cb8c05032e923e09d976928fe6ef1b58367d2e8d7cd4053ab73",
-    ),
-    (
-        "muscle_actuator_msgs/msg/ExternalLoad",
-        "RIHS01_47f5dd3d3840d4448236aa191a63b0fc7c5098b0e170b47e0473684948ddb16f",
-    ),
-    (
-        "muscle_actuator_msgs/msg/ActuatorState",
-        "RIHS01_cc98e166df36e153a97b7b0724f2f7253e3ec4182662c9b4fd309ab254ab79eb",
-    ),
-    (
-        "sensor_msgs/msg/JointState",
-        "RIHS01_a13ee3a330e346c9d87b5aa18d24e11690752bd33a0350f11c5882bc9179260e",
-    ),
-    (
-        "std_msgs/msg/Float64",
-        "RIHS01_705ba9c3d1a09df43737eb67095534de36fd426c0587779bda2bc51fe790182a",
-    ),
-    (
-        "std_msgs/msg/Float64MultiArray",
-        "RIHS01_1025ddc6b9552d191f89ef1a8d2f60f3d373e28b283d8891ddcc974e8c55397f",
-    ),
-    (
-        "diagnostic_msgs/msg/DiagnosticArray",
-        "RIHS01_5a8a36efb05fb25070fa0fb3810290c0e6cd4862b54a8fb975a1ee8dc55a333e",
-    ),
-    (
-        "rcl_interfaces/msg/Log",
-        "RIHS01_e28ce254ca8abc06abf92773b74602cdbf116ed34fbaf294fb9f81da9f318eac",
-    ),
-];
-
-/// The type hash of `pkg/msg/Type`, if known.
+/// The REP-2016 type hash (`RIHS01_...`) of `pkg/msg/Type`, computed from [`DEFINITIONS`]
+/// (once per process), if it is one of them: the `topic_type_hash` of recordings.
+/// `tests/python/test_recording.py` checks it against the hash `rosbags` computes from the
+/// schemas embedded in a recording.
 pub fn type_hash(type_name: &str) -> Option<&'static str> {
-    TYPE_HASHES
+    static HASHES: OnceLock<Vec<(&'static str, Option<String>)>> = OnceLock::new();
+    HASHES
+        .get_or_init(|| {
+            DEFINITIONS
+                .iter()
+                .map(|(n, _)| (*n, type_hash::rihs01(n, definition).ok()))
+                .collect()
+        })
         .iter()
         .find(|(n, _)| *n == type_name)
-        .map(|(_, h)| *h)
+        .and_then(|(_, h)| h.as_deref())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The hashes `rosbags` (`Typestore.hash_rihs01`) gives the recorded types, and ROS 2 kilted
+    /// for the standard ones.
+    #[test]
+    fn type_hashes_are_those_of_ros() {
+        for (name, hash) in [
+            (
+                "muscle_actuator_msgs/msg/ActivationCommand",
+                "RIHS01_ce7fb9cd9d358cb8c05032e923e09d976928fe6ef1b58367d2e8d7cd4053ab73",
+            ),
+            (
+                "muscle_actuator_msgs/msg/ExternalLoad",
+                "RIHS01_47f5dd3d3840d4448236aa191a63b0fc7c5098b0e170b47e0473684948ddb16f",
+            ),
+            (
+                "muscle_actuator_msgs/msg/ActuatorState",
+                "RIHS01_cc98e166df36e153a97b7b0724f2f7253e3ec4182662c9b4fd309ab254ab79eb",
+            ),
+            (
+                "sensor_msgs/msg/JointState",
+                "RIHS01_a13ee3a330e346c9d87b5aa18d24e11690752bd33a0350f11c5882bc9179260e",
+            ),
+            (
+                "std_msgs/msg/Float64",
+                "RIHS01_705ba9c3d1a09df43737eb67095534de36fd426c0587779bda2bc51fe790182a",
+            ),
+            (
+                "std_msgs/msg/Float64MultiArray",
+                "RIHS01_1025ddc6b9552d191f89ef1a8d2f60f3d373e28b283d8891ddcc974e8c55397f",
+            ),
+            (
+                "diagnostic_msgs/msg/DiagnosticArray",
+                "RIHS01_5a8a36efb05fb25070fa0fb3810290c0e6cd4862b54a8fb975a1ee8dc55a333e",
+            ),
+            (
+                "rcl_interfaces/msg/Log",
+                "RIHS01_e28ce254ca8abc06abf92773b74602cdbf116ed34fbaf294fb9f81da9f318eac",
+            ),
+        ] {
+            assert_eq!(type_hash(name), Some(hash), "{name}");
+        }
+        assert_eq!(type_hash("std_msgs/msg/Nothing"), None);
+    }
+
+    /// The description of a type with every kind of field, written as rosidl writes it.
+    #[test]
+    fn type_description_json_layout() {
+        let defs = |n: &str| match n {
+            "p/msg/A" => Some("# c\nint8 K=1\nstring<=4 s # x\nB[2] b\nfloat64[<=3] f\nbyte[] o\n"),
+            "p/msg/B" => Some(""),
+            _ => None,
+        };
+        let field = |name: &str, id: u8, cap: u64, scap: u64, nested: &str| {
+            format!(
+                "{{\"name\": \"{name}\", \"type\": {{\"type_id\": {id}, \"capacity\": {cap}, \
+                 \"string_capacity\": {scap}, \"nested_type_name\": \"{nested}\"}}}}"
+            )
+        };
+        let want = format!(
+            "{{\"type_description\": {{\"type_name\": \"p/msg/A\", \"fields\": [{}, {}, {}, {}]}}, \
+             \"referenced_type_descriptions\": [{{\"type_name\": \"p/msg/B\", \"fields\": [{}]}}]}}",
+            field("s", 21, 0, 4, ""),
+            field("b", 49, 2, 0, "p/msg/B"),
+            field("f", 107, 3, 0, ""),
+            field("o", 160, 0, 0, ""),
+            field("structure_needs_at_least_one_member", 3, 0, 0, ""),
+        );
+        assert_eq!(type_hash::type_description_json("p/msg/A", defs), Ok(want));
+        assert!(type_hash::type_description_json("p/msg/C", defs).is_err());
+    }
 }

@@ -1,0 +1,317 @@
+//! The `muscle_actuator` command line: the offline commands (simulate, replay, compare, recover,
+//! export, figures, models) and the node. Model names, the default model and the default
+//! sub-stepping in its help come from [`MODELS`](crate::physics::model::MODELS).
+
+use crate::config::ActuatorConfig;
+use crate::physics::model::{join, ModelKind, UnknownModel};
+use crate::physics::stepping::Stepping;
+use crate::runs::limits;
+use crate::sim::scenario::Scenario;
+use crate::sim::simulation::default_stepping;
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "muscle_actuator",
+    version,
+    about = "Muscle actuators driving any limb: Hill and Huxley (Distribution-Moment) models, as a ROS 2 node and offline"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Run a scenario offline (no DDS); record it to MCAP (--out) and/or CSV (--csv).
+    Simulate {
+        /// A built-in scenario (pulse, energy-10hz, energy-100hz) or a scenario file (.toml).
+        scenario: String,
+        #[arg(long, default_value = ModelKind::DEFAULT.name(), help = model_help())]
+        model: String,
+        /// Limb configuration: a built-in name (elbow, arm) or a file (TOML); default: elbow.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Tick rate, Hz.
+        #[arg(long, default_value_t = 1000.0)]
+        rate_hz: f64,
+        #[arg(long, help = substeps_help())]
+        substeps: Option<usize>,
+        /// CSV output file ('-' for standard output).
+        #[arg(long)]
+        csv: Option<PathBuf>,
+        /// MCAP recording (rosbag2-compatible) of the run.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Feed the recorded inputs of a run through a model, tick by tick, and record the result.
+    Replay {
+        /// The recording (.mcap).
+        input: PathBuf,
+        /// Contractile model (default: the recorded one).
+        #[arg(long)]
+        model: Option<String>,
+        /// Output recording (.mcap).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Compare two recorded runs: RMS and max differences, peak timing, rise times.
+    Compare {
+        a: PathBuf,
+        b: PathBuf,
+        /// Overlay plot of the forces (PNG; an SVG is written beside it).
+        #[arg(long)]
+        plot: Option<PathBuf>,
+        /// JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Rewrite a recording cut by a crash (no summary) as a complete, indexed MCAP file holding
+    /// everything readable in it.
+    Recover {
+        /// The damaged recording (.mcap).
+        input: PathBuf,
+        /// The recovered recording (.mcap; not the input).
+        output: PathBuf,
+    },
+    /// Write a recording's states as CSV: the columns of `simulate --csv`, one row per recorded
+    /// state per muscle.
+    Export {
+        /// The recording (.mcap).
+        input: PathBuf,
+        /// CSV output file ('-' for standard output).
+        #[arg(long)]
+        csv: PathBuf,
+    },
+    /// Run the ROS 2 node; everything after `node` goes to it (`--ros-args ...`, see `node --help`).
+    #[command(disable_help_flag = true)]
+    Node {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Reproduce the paper's Figs. 4-6 and the force-velocity comparison as PNG and SVG.
+    Figures {
+        /// Output directory.
+        #[arg(long, default_value = "figures")]
+        out: PathBuf,
+    },
+    /// List the contractile models: name and what it is, one a line.
+    Models,
+}
+
+/// Help of `simulate --model`.
+fn model_help() -> String {
+    format!(
+        "Contractile model: {}",
+        ModelKind::names_joined(", ", " or ")
+    )
+}
+
+/// Help of `simulate --substeps`: each model's default stepping.
+fn substeps_help() -> String {
+    let adaptive = ModelKind::all().filter(|m| m.spec().stepping.is_adaptive());
+    let mut defaults = vec![format!(
+        "adaptive for {}",
+        join(adaptive.map(|m| m.name()), ", ", " and ")
+    )];
+    for m in ModelKind::all() {
+        if let Stepping::Fixed(n) = m.spec().stepping {
+            defaults.push(format!("{n} for {m}"));
+        }
+    }
+    format!(
+        "Fixed number of implicit (TR-BDF2) sub-steps per tick (default: {})",
+        defaults.join(", ")
+    )
+}
+
+/// The `models` listing: each model's name and summary, the default marked.
+pub fn models_listing() -> String {
+    let width = ModelKind::all().map(|m| m.name().len()).max().unwrap_or(0);
+    let mut out = String::new();
+    for m in ModelKind::all() {
+        let mark = if m == ModelKind::DEFAULT {
+            " [default]"
+        } else {
+            ""
+        };
+        out.push_str(&format!(
+            "{:width$}  {}{mark}\n",
+            m.name(),
+            m.spec().summary
+        ));
+    }
+    out
+}
+
+fn parse_model(name: &str) -> Result<ModelKind, String> {
+    name.parse().map_err(|e: UnknownModel| e.to_string())
+}
+
+fn load_config(path: &Option<PathBuf>) -> Result<ActuatorConfig, String> {
+    let cfg = match path {
+        Some(p) => ActuatorConfig::resolve(&p.to_string_lossy()).map_err(|e| e.to_string())?,
+        None => ActuatorConfig::default(),
+    };
+    for w in cfg.warnings() {
+        eprintln!("warning: {w}");
+    }
+    Ok(cfg)
+}
+
+/// Runs one parsed command.
+pub fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Simulate {
+            scenario,
+            model,
+            config,
+            rate_hz,
+            substeps,
+            csv,
+            out,
+        } => simulate(
+            &scenario,
+            &model,
+            &config,
+            rate_hz,
+            substeps,
+            csv.as_deref(),
+            out.as_deref(),
+        ),
+        Command::Replay { input, model, out } => {
+            let model = model.as_deref().map(parse_model).transpose()?;
+            replay(&input, model, &out)
+        }
+        Command::Compare { a, b, plot, json } => compare(&a, &b, plot.as_deref(), json),
+        Command::Recover { input, output } => {
+            let r = crate::recording::recover::recover(&input, &output)?;
+            if let Some(w) = &r.stopped_early {
+                eprintln!(
+                    "warning: {} is truncated (no summary); reading stopped: {}",
+                    input.display(),
+                    crate::text::excerpt(w)
+                );
+            }
+            eprintln!("{}", r.line(&input, &output));
+            Ok(())
+        }
+        Command::Export { input, csv } => {
+            let s = crate::runs::export::export_csv(&input, &csv)?;
+            eprintln!(
+                "exported {} states of {} muscles from {}",
+                s.states,
+                s.muscles,
+                input.display()
+            );
+            Ok(())
+        }
+        Command::Figures { out } => crate::figures::write_all(&out),
+        Command::Models => {
+            print!("{}", models_listing());
+            Ok(())
+        }
+        Command::Node { args } => crate::ros::run_node(args),
+    }
+}
+
+/// `simulate`: the scenario run offline, recorded to MCAP and/or written as CSV.
+fn simulate(
+    scenario: &str,
+    model: &str,
+    config: &Option<PathBuf>,
+    rate_hz: f64,
+    substeps: Option<usize>,
+    csv: Option<&Path>,
+    out: Option<&Path>,
+) -> Result<(), String> {
+    limits::check_rate_hz("--rate-hz", rate_hz)?;
+    if let Some(n) = substeps {
+        limits::check_substeps("--substeps", n)?;
+    }
+    let model = parse_model(model)?;
+    let cfg = &load_config(config)?;
+    let sc = Scenario::resolve(scenario, &cfg.muscles[0].params)?;
+    let stepping = substeps
+        .map(Stepping::Fixed)
+        .unwrap_or(default_stepping(model));
+    let run = match out {
+        Some(path) => crate::runs::simulate_to_mcap(&sc, cfg, model, rate_hz, stepping, path)?,
+        None => sc.run(cfg, model, rate_hz, stepping)?,
+    };
+    if let Some(path) = csv {
+        crate::csv::write_csv_to(&run, path)?;
+    }
+    let last = run.records.last().ok_or("the scenario produced no ticks")?;
+    eprintln!(
+        "{}: {} ticks of {} at {} Hz; final tendon force {:.3} N, fibre length {:.6} m",
+        run.scenario,
+        run.records.len() - 1,
+        run.model,
+        run.rate_hz,
+        last.muscles[0].force,
+        last.muscles[0].fiber_length
+    );
+    Ok(())
+}
+
+/// `replay`: the recorded inputs through a model (the recorded one unless named).
+fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<(), String> {
+    let s = crate::runs::replay(input, model, out)?;
+    if let Some(w) = &s.warning {
+        eprintln!("warning: {w}");
+    }
+    if s.compared > 0 {
+        eprintln!(
+            "replayed {} ticks with {}: {} of {} recorded states reproduced bit for bit{}",
+            s.ticks,
+            s.model,
+            s.identical,
+            s.compared,
+            s.first_difference
+                .map(|t| format!(" (first difference at tick {t})"))
+                .unwrap_or_default()
+        );
+    } else {
+        eprintln!(
+            "replayed {} ticks with {} into {}",
+            s.ticks,
+            s.model,
+            out.display()
+        );
+    }
+    if s.identical < s.compared {
+        return Err("the replay did not reproduce the recorded states".into());
+    }
+    Ok(())
+}
+
+/// `compare`: two recordings as a table or JSON, with an optional overlay plot.
+fn compare(a: &Path, b: &Path, plot: Option<&Path>, json: bool) -> Result<(), String> {
+    let c = crate::runs::compare::compare_files(a, b, plot)?;
+    for w in &c.warnings {
+        eprintln!("warning: {w}");
+    }
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&c).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", c.table());
+    }
+    Ok(())
+}
+
+/// Parses the command line, runs the command, reports an error as one line.
+pub fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
