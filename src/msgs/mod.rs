@@ -5,7 +5,6 @@
 //! `muscle_actuator_msgs` mirrors `msg/*.msg` field for field (`tests/msg_definitions.rs` checks
 //! it); the standard types mirror their kilted definitions.
 
-mod sha256;
 pub mod type_hash;
 
 use crate::sim::snapshot::{

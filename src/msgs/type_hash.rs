@@ -3,7 +3,7 @@
 //! `rosidl_generator_type_description` writes it (`json.dumps` with `", "` and `": "`, no
 //! default values, the referenced types sorted by name).
 
-use super::sha256::sha256;
+use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -192,7 +192,7 @@ pub fn rihs01(
     type_name: &str,
     definition: impl Fn(&str) -> Option<&'static str>,
 ) -> Result<String, String> {
-    let digest = sha256(type_description_json(type_name, definition)?.as_bytes());
+    let digest = Sha256::digest(type_description_json(type_name, definition)?.as_bytes());
     let mut out = String::from("RIHS01_");
     for b in digest {
         let _ = write!(out, "{b:02x}");
