@@ -1,11 +1,10 @@
 //! Time integration: the implicit stepper used on every tick (a third-order ESDIRK over an
-//! iteration matrix that may exploit the system's structure), and the adaptive explicit
-//! reference solver the tests and accuracy reports compare it with.
+//! iteration matrix that may exploit the system's structure). The adaptive explicit reference
+//! solver the tests compare it with is test support (tests/common/reference.rs).
 
 pub mod arrowhead;
 pub mod dense;
 pub mod esdirk;
-pub mod reference;
 
 /// A first-order ODE system `dy/dt = f(t, y)`.
 pub trait OdeSystem {
