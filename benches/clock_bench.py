@@ -17,17 +17,17 @@ import signal
 import statistics
 import subprocess
 import sys
-import threading
 import time
 
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "python"))
 
 import rclpy  # noqa: E402
-from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy  # noqa: E402
 from muscle_actuator_msgs.msg import ActuatorState  # noqa: E402
 from muscle_actuator_msgs.srv import Step  # noqa: E402
 from rosgraph_msgs.msg import Clock  # noqa: E402
+from spun import SpunNode  # noqa: E402
 
 RELIABLE = QoSProfile(reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST, depth=10)
 BEST_EFFORT = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, history=HistoryPolicy.KEEP_LAST, depth=10)
@@ -56,26 +56,6 @@ def pct(xs, q):
     return xs[min(len(xs) - 1, max(0, int(round(q * (len(xs) - 1)))))]
 
 
-class Spun:
-    def __init__(self, name):
-        self.node = rclpy.create_node(name)
-        self.ex = SingleThreadedExecutor()
-        self.ex.add_node(self.node)
-        self.stop = False
-        self.t = threading.Thread(target=self._spin, daemon=True)
-        self.t.start()
-
-    def _spin(self):
-        while not self.stop:
-            self.ex.spin_once(timeout_sec=0.05)
-
-    def close(self):
-        self.stop = True
-        self.t.join()
-        self.ex.remove_node(self.node)
-        self.node.destroy_node()
-
-
 def node(bin_, ns, *params):
     args = [bin_, "node", "--ros-args", "-r", f"__ns:={ns}", "-p", "record:=false"]
     for p in params:
@@ -94,7 +74,7 @@ def wait(pred, what, timeout=30.0):
 def sim_rtf(bin_, model, publish, duration, qos):
     ns = f"/bench_sim_{model}_{str(publish).replace('.', '_')}"
     proc = node(bin_, ns, "clock:=sim", f"model:={model}", f"publish_rate_hz:={publish}")
-    peer = Spun("bench_sim_peer")
+    peer = SpunNode("bench_sim_peer")
     last = {"clock": None, "states": 0}
     peer.node.create_subscription(Clock, "/clock", lambda m: last.__setitem__("clock", m.clock), CLOCK_QOS)
 
@@ -133,7 +113,7 @@ def round_trips(client, n):
 def lockstep_rtt(bin_, steps):
     proc = node(bin_, "/bench_lock", "clock:=lockstep", "model:=huxley")
     server = subprocess.Popen([sys.executable, __file__, "--step-server", "--bin", "-"])
-    peer = Spun("bench_lock_peer")
+    peer = SpunNode("bench_lock_peer")
     try:
         ours = peer.node.create_client(Step, "/bench_lock/muscle_actuator/step")
         theirs = peer.node.create_client(Step, "/bench/step")

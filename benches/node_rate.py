@@ -20,11 +20,12 @@ import threading
 import time
 
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "python"))
 
 import rclpy  # noqa: E402
-from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rclpy.qos import QoSProfile, ReliabilityPolicy, HistoryPolicy  # noqa: E402
 from muscle_actuator_msgs.msg import ActivationCommand, ActuatorState  # noqa: E402
+from spun import SpunNode  # noqa: E402
 
 QOS = QoSProfile(reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST, depth=100)
 
@@ -106,7 +107,8 @@ def thread_cpu_seconds(pid, name):
 
 def run_client(a, node_proc, echo_proc):
     rclpy.init()
-    node = rclpy.create_node("bench_client")
+    peer = SpunNode("bench_client")
+    node = peer.node
     lock = threading.Lock()
     pending = {}  # excitation value -> send time (commands to the node)
     echo_pending = {}  # sequence -> send time
@@ -133,10 +135,6 @@ def run_client(a, node_proc, echo_proc):
     node.create_subscription(ActivationCommand, "/bench/echo_out", on_echo, QOS)
     cmd = node.create_publisher(ActivationCommand, "/bench/muscle_actuator/activation", QOS)
     echo_pub = node.create_publisher(ActivationCommand, "/bench/echo_in", QOS)
-    ex = SingleThreadedExecutor()
-    ex.add_node(node)
-    spinner = threading.Thread(target=ex.spin, daemon=True)
-    spinner.start()
 
     def wait(pred, what, timeout=30.0):
         end = time.monotonic() + timeout
@@ -182,9 +180,7 @@ def run_client(a, node_proc, echo_proc):
     _, err = node_proc.communicate(timeout=10)
     echo_proc.kill()  # rclpy.spin does not return on SIGTERM
     echo_proc.wait(timeout=10)
-    ex.shutdown()
-    spinner.join(timeout=5)
-    node.destroy_node()
+    peer.close()
     rclpy.try_shutdown()
     tick = {}
     for line in err.splitlines():

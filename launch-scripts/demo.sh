@@ -14,11 +14,12 @@ while [ $# -gt 0 ]; do
     *) echo "demo.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
-if [ -z "${MUSCLE_ACTUATOR_DEMO_INNER:-}" ] && [ "$(id -u)" = 0 ] && unshare -n true 2>/dev/null; then
+source "$ROOT/scripts/lib.sh"
+if [ -z "${MUSCLE_ACTUATOR_DEMO_INNER:-}" ] && netns_available; then
   export MUSCLE_ACTUATOR_DEMO_INNER=1
   exec unshare -n bash -c 'ip link set lo up && exec "$@"' bash "$0" --model "$model" --rate "$rate"
 fi
-VENV="$("$ROOT/scripts/py-env.sh" | tail -n 1)"
+VENV="$(python_env)"
 export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST
 export ROS_DOMAIN_ID="${ROS_DOMAIN_ID:-42}"
 "$ROOT/launch-scripts/run-node.sh" --ns /demo --model "$model" --rate "$rate" --publish-rate 100 \

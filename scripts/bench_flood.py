@@ -25,12 +25,13 @@ import time
 
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
 os.environ.pop("ROS_LOCALHOST_ONLY", None)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "python"))
 
 import rclpy  # noqa: E402
-from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rclpy.qos import QoSProfile, ReliabilityPolicy, HistoryPolicy, DurabilityPolicy  # noqa: E402
 from muscle_actuator_msgs.msg import ActivationCommand, ExternalLoad  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
+from spun import SpunNode  # noqa: E402
 
 NS = "/flood"
 FQN = NS + "/muscle_actuator"
@@ -260,12 +261,8 @@ def main():
     a.record_dir = tempfile.mkdtemp(prefix="bench_flood_")
 
     rclpy.init()
-    node = rclpy.create_node("bench_flood")
-    diag = Diag(node)
-    ex = SingleThreadedExecutor()
-    ex.add_node(node)
-    spinner = threading.Thread(target=ex.spin, daemon=True)
-    spinner.start()
+    peer = SpunNode("bench_flood")
+    diag = Diag(peer.node)
 
     print(f"# bench_flood: {a.bin}")
     print(f"# model {a.model}, 1 kHz, recording {a.record}; windows of {a.duration:.0f} s x {a.runs}; "
@@ -300,9 +297,7 @@ def main():
     if a.json:
         with open(a.json, "w") as f:
             json.dump(results, f, indent=2)
-    ex.shutdown()
-    spinner.join(timeout=5)
-    node.destroy_node()
+    peer.close()
     rclpy.try_shutdown()
 
 

@@ -2,14 +2,18 @@
 # Every test of the project, on a fresh machine or an old one (idempotent, reuses what is built):
 #   1. the Rust tests: unit, integration (physics against closed forms, the adaptive reference
 #      solver, conservation laws; the CLI), and the benchmarks compiled and run once in test mode;
-#   2. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
+#   2. the structure checks of src/ (scripts/check-structure.py: file sizes, function lengths,
+#      import cycles);
+#   3. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
 #      a loopback-only network namespace (scripts/test-ros.sh; it creates .venv and builds the
 #      message package for rclpy on first use);
-#   3. the demo of the README, which must end cleanly.
+#   4. the demo of the README, which must end cleanly.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 echo "== Rust tests" >&2
 cargo test --all-targets
+echo "== Structure checks (scripts/check-structure.py)" >&2
+python3 scripts/check-structure.py
 echo "== ROS 2 tests (rclpy peer)" >&2
 MUSCLE_ACTUATOR_BUILT=1 bash scripts/test-ros.sh -q
 echo "== Demo (launch-scripts/demo.sh: the node and an rclpy co-contraction sweep)" >&2

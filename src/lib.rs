@@ -1,8 +1,7 @@
 //! muscle_actuator: muscle actuators (Hill and Huxley models) driving any limb, for ROS 2.
 //!
 //! - [`physics`]: the mathematics of docs/model.md, no I/O.
-//! - [`integrator`]: the fixed-tick implicit stepper, its tableaux, and the adaptive reference
-//!   solver.
+//! - [`integrator`]: the fixed-tick implicit stepper, its tableaux and iteration matrices.
 //! - [`sim`]: the actuator stepped tick by tick (the facade the node and the CLI use).
 //! - [`config`]: the configuration file: schema, the antagonistic-pair form, parsing, validation.
 //! - [`msgs`]: the ROS 2 message types and a tick's state as messages (no DDS).

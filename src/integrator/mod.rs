@@ -1,16 +1,15 @@
 //! Time integration: the implicit stepper used on every tick (ESDIRK methods of second to fourth
-//! order over an iteration matrix that may exploit the system's structure), and the adaptive
-//! explicit reference solver the tests and accuracy reports compare it with.
+//! order over an iteration matrix that may exploit the system's structure). The adaptive
+//! explicit reference solver the tests compare it with is test support
+//! (tests/common/reference.rs).
 //!
 //! - [`esdirk`]: the stepper (stages, simplified Newton, sub-step control).
 //! - [`tableau`]: its tableaux, TR-BDF2, ARK3(2)4L[2]SA and ESDIRK4(3)6L[2]SA.
 //! - [`dense`], [`arrowhead`]: iteration matrices, general and for the plant's structure.
-//! - [`reference`]: the adaptive explicit reference solver.
 
 pub mod arrowhead;
 pub mod dense;
 pub mod esdirk;
-pub mod reference;
 pub mod tableau;
 
 /// A first-order ODE system `dy/dt = f(t, y)`.

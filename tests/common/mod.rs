@@ -1,8 +1,9 @@
 //! Shared helpers of the Rust tests: the adaptive reference solution of a scenario.
 #![allow(dead_code)]
 
+mod reference;
+
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::integrator::reference;
 use muscle_actuator::physics::activation::activation_rate;
 use muscle_actuator::physics::model::ModelKind;
 use muscle_actuator::sim::scenario::{Record, Scenario};

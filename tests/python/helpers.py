@@ -10,9 +10,6 @@ import threading
 import time
 from pathlib import Path
 
-import rclpy
-from rclpy.executors import SingleThreadedExecutor
-from rclpy.node import Node
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import QoSProfile, ReliabilityPolicy, HistoryPolicy, DurabilityPolicy
 
@@ -21,6 +18,8 @@ from sensor_msgs.msg import JointState
 from diagnostic_msgs.msg import DiagnosticArray
 from rcl_interfaces.msg import Log
 from std_srvs.srv import Trigger
+
+from spun import SpunNode
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -168,42 +167,15 @@ class Inbox:
         return wait_until(find, timeout, what=what)
 
 
-class Peer:
-    """An rclpy node on its own executor thread."""
+class Peer(SpunNode):
+    """An rclpy node on its own executor thread, with the publishers, subscriptions and clients
+    of the tests."""
 
     def __init__(self, name):
-        self.node = Node(name)
-        self.executor = SingleThreadedExecutor()
-        self.executor.add_node(self.node)
-        self._stop = False
-        self.errors = []
-        self.thread = threading.Thread(target=self._spin, daemon=True)
-        self.thread.start()
+        super().__init__(name)
         self.subs = []
         self.pubs = {}
         self.clients = {}
-
-    def _spin(self):
-        # An exception in one spin (a callback's, or rclpy's own) must not end the thread: every
-        # later answer of the module would then time out far from the cause. It is kept, spinning
-        # goes on, and `await_future` and `call` name it when an answer does not come.
-        while not self._stop and rclpy.ok():
-            try:
-                self.executor.spin_once(timeout_sec=0.05)
-            except Exception as e:
-                if self._stop:
-                    return
-                if len(self.errors) < 20:
-                    self.errors.append(repr(e)[:300])
-
-    def _what(self, what):
-        return f"{what} (peer spin errors: {self.errors})" if self.errors else what
-
-    def close(self):
-        self._stop = True
-        self.thread.join(timeout=5)
-        self.executor.remove_node(self.node)
-        self.node.destroy_node()
 
     # --- graph -------------------------------------------------------------------------------
     def wait_for_node(self, name, namespace, timeout=DISCOVERY_TIMEOUT):

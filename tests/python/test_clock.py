@@ -4,20 +4,16 @@ advances only on `~/step`, and a closed-loop rclpy controller gets the same traj
 time."""
 
 import math
-import threading
 import time
 
 import pytest
-import rclpy
-from rclpy.executors import SingleThreadedExecutor
-from rclpy.node import Node
-from rclpy.parameter import Parameter
 from std_msgs.msg import Int64
 from muscle_actuator_msgs.msg import ActuatorState
 from muscle_actuator_msgs.srv import Step
 from std_srvs.srv import Trigger
 
 from helpers import SERVICE_TIMEOUT, reliable, wait_until
+from spun import SpunNode
 
 RATE = 1000.0
 
@@ -30,35 +26,6 @@ def tick_stamp(tick, rate=RATE):
     return round(tick * 1e9 / rate)
 
 
-class SimTimeNode:
-    """An rclpy node with use_sim_time, on its own executor thread."""
-
-    def __init__(self, name):
-        self.node = Node(name, parameter_overrides=[Parameter("use_sim_time", value=True)])
-        self.executor = SingleThreadedExecutor()
-        self.executor.add_node(self.node)
-        self._stop = False
-        self.thread = threading.Thread(target=self._spin, daemon=True)
-        self.thread.start()
-
-    def _spin(self):
-        while not self._stop and rclpy.ok():
-            try:
-                self.executor.spin_once(timeout_sec=0.05)
-            except Exception:  # shutting down
-                if self._stop:
-                    return
-
-    def now_ns(self):
-        return self.node.get_clock().now().nanoseconds
-
-    def close(self):
-        self._stop = True
-        self.thread.join(timeout=5)
-        self.executor.remove_node(self.node)
-        self.node.destroy_node()
-
-
 @pytest.fixture(scope="module")
 def sim_node(node_factory):
     return node_factory(
@@ -68,7 +35,7 @@ def sim_node(node_factory):
 
 
 def test_sim_is_the_graphs_clock_and_runs_ahead_of_the_wall(peer, sim_node):
-    follower = SimTimeNode("t_sim_follower")
+    follower = SpunNode("t_sim_follower", use_sim_time=True)
     try:
         wait_until(lambda: follower.now_ns() > 0, 15.0, what="the follower's clock to start")
         a_sim, a_wall = follower.now_ns(), time.monotonic()

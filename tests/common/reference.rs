@@ -1,6 +1,7 @@
-//! The tight-tolerance adaptive reference: Dormand–Prince 8(5,3) from the `ode_solvers` crate,
-//! an explicit method entirely independent of the implicit tick stepper. It integrates in scaled
-//! variables (y / scale) so that one tolerance fits every component.
+//! The tight-tolerance adaptive reference of the tests: Dormand–Prince 8(5,3) from the
+//! `ode_solvers` crate (a dev-dependency), an explicit method entirely independent of the
+//! implicit tick stepper. It integrates in scaled variables (y / scale) so that one tolerance
+//! fits every component.
 
 use ode_solvers::dop_shared::OutputType;
 use ode_solvers::{DVector, Dop853, System};

@@ -1,0 +1,5 @@
+//! right uses the bottom layer only.
+
+use crate::base::Unit;
+
+pub struct Right(pub Unit);
