@@ -142,6 +142,54 @@ pub fn qos_yaml(reliable: bool, transient_local: bool, depth: u32) -> String {
     )
 }
 
+/// Creates the file (and its directory) with its channels and `metadata` records written and
+/// flushed: the MCAP writer and the channel ids, in the order of `channels`.
+fn open_writer(
+    path: &Path,
+    channels: &[ChannelSpec],
+    metadata: &[(String, BTreeMap<String, String>)],
+    options: &RecorderOptions,
+) -> Result<(McapWriter, Vec<u16>), String> {
+    let what = |e: &dyn std::fmt::Display| format!("recording {}: {e}", path.display());
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| what(&e))?;
+    }
+    let file = File::create(path).map_err(|e| what(&e))?;
+    let mut writer = mcap::WriteOptions::new()
+        .profile("ros2")
+        .library(format!("muscle_actuator {}", env!("CARGO_PKG_VERSION")))
+        .compression(Some(mcap::Compression::Zstd))
+        .compression_level(options.compression_level)
+        .chunk_size(Some(options.chunk_size))
+        .create(BufWriter::with_capacity(1 << 16, file))
+        .map_err(|e| what(&e))?;
+    let mut ids = Vec::with_capacity(channels.len());
+    for c in channels {
+        let schema_id = writer
+            .add_schema(&c.type_name, "ros2msg", c.schema.as_bytes())
+            .map_err(|e| what(&e))?;
+        let mut meta = BTreeMap::new();
+        meta.insert("offered_qos_profiles".to_string(), c.qos_yaml.clone());
+        if let Some(h) = &c.type_hash {
+            meta.insert("topic_type_hash".to_string(), h.clone());
+        }
+        let id = writer
+            .add_channel(schema_id, &c.topic, "cdr", &meta)
+            .map_err(|e| what(&e))?;
+        ids.push(id);
+    }
+    for (name, map) in metadata {
+        writer
+            .write_metadata(&mcap::records::Metadata {
+                name: name.clone(),
+                metadata: map.clone(),
+            })
+            .map_err(|e| what(&e))?;
+    }
+    writer.flush().map_err(|e| what(&e))?;
+    Ok((writer, ids))
+}
+
 impl Recorder {
     /// Creates the file (and its directory) and starts the writer thread. `metadata` records are
     /// written first (so that a crash keeps them). Errors (cannot create, cannot write) come back
@@ -152,43 +200,7 @@ impl Recorder {
         metadata: Vec<(String, BTreeMap<String, String>)>,
         options: RecorderOptions,
     ) -> Result<Recorder, String> {
-        let what = |e: &dyn std::fmt::Display| format!("recording {}: {e}", path.display());
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| what(&e))?;
-        }
-        let file = File::create(path).map_err(|e| what(&e))?;
-        let mut writer = mcap::WriteOptions::new()
-            .profile("ros2")
-            .library(format!("muscle_actuator {}", env!("CARGO_PKG_VERSION")))
-            .compression(Some(mcap::Compression::Zstd))
-            .compression_level(options.compression_level)
-            .chunk_size(Some(options.chunk_size))
-            .create(BufWriter::with_capacity(1 << 16, file))
-            .map_err(|e| what(&e))?;
-        let mut ids = Vec::with_capacity(channels.len());
-        for c in &channels {
-            let schema_id = writer
-                .add_schema(&c.type_name, "ros2msg", c.schema.as_bytes())
-                .map_err(|e| what(&e))?;
-            let mut meta = BTreeMap::new();
-            meta.insert("offered_qos_profiles".to_string(), c.qos_yaml.clone());
-            if let Some(h) = &c.type_hash {
-                meta.insert("topic_type_hash".to_string(), h.clone());
-            }
-            let id = writer
-                .add_channel(schema_id, &c.topic, "cdr", &meta)
-                .map_err(|e| what(&e))?;
-            ids.push(id);
-        }
-        for (name, map) in &metadata {
-            writer
-                .write_metadata(&mcap::records::Metadata {
-                    name: name.clone(),
-                    metadata: map.clone(),
-                })
-                .map_err(|e| what(&e))?;
-        }
-        writer.flush().map_err(|e| what(&e))?;
+        let (writer, ids) = open_writer(path, &channels, &metadata, &options)?;
         let stats = Arc::new(RecorderStats {
             path: path.to_path_buf(),
             written: AtomicU64::new(0),
@@ -203,66 +215,17 @@ impl Recorder {
         let thread = std::thread::Builder::new()
             .name("recorder".into())
             .spawn(move || {
-                let mut w = Worker {
+                let counts = vec![0; channels.len()];
+                Worker {
                     writer: Some(writer),
                     ids,
                     channels,
-                    counts: Vec::new(),
+                    counts,
                     first: u64::MAX,
                     last: 0,
                     stats: st,
-                };
-                w.counts = vec![0; w.channels.len()];
-                let mut last_flush = Instant::now();
-                let mut dirty = false;
-                loop {
-                    let wait = options.flush_interval.saturating_sub(last_flush.elapsed());
-                    match rx.recv_timeout(wait) {
-                        Ok(Item::Message {
-                            channel,
-                            log_time,
-                            publish_time,
-                            data,
-                        }) => {
-                            w.stats
-                                .queued_bytes
-                                .fetch_sub(data.len(), Ordering::Relaxed);
-                            if w.write(channel, log_time, publish_time, &data).is_err() {
-                                break;
-                            }
-                            dirty = true;
-                        }
-                        Ok(Item::Metadata(m)) => {
-                            if w.write_metadata(&m).is_err() {
-                                break;
-                            }
-                            dirty = true;
-                        }
-                        Ok(Item::Finish) | Err(RecvTimeoutError::Disconnected) => {
-                            w.finish();
-                            return;
-                        }
-                        Err(RecvTimeoutError::Timeout) => {}
-                    }
-                    if dirty && last_flush.elapsed() >= options.flush_interval {
-                        if w.flush().is_err() {
-                            break;
-                        }
-                        dirty = false;
-                        last_flush = Instant::now();
-                    } else if !dirty {
-                        last_flush = Instant::now();
-                    }
                 }
-                // Failed: drain and count what still arrives until the handle goes away.
-                while let Ok(item) = rx.recv() {
-                    match item {
-                        Item::Message { .. } | Item::Metadata(_) => {
-                            w.stats.dropped.fetch_add(1, Ordering::Relaxed);
-                        }
-                        Item::Finish => return,
-                    }
-                }
+                .run(rx, options.flush_interval)
             })
             .map_err(|e| format!("cannot start the recorder thread: {e}"))?;
         Ok(Recorder {
@@ -430,6 +393,61 @@ struct Worker {
 }
 
 impl Worker {
+    /// Writes what arrives on `rx`, flushing at most every `flush_interval`, until the handle
+    /// finishes or goes away; after a failed write, drains and counts what still arrives.
+    fn run(mut self, rx: mpsc::Receiver<Item>, flush_interval: Duration) {
+        let mut last_flush = Instant::now();
+        let mut dirty = false;
+        loop {
+            let wait = flush_interval.saturating_sub(last_flush.elapsed());
+            match rx.recv_timeout(wait) {
+                Ok(Item::Message {
+                    channel,
+                    log_time,
+                    publish_time,
+                    data,
+                }) => {
+                    self.stats
+                        .queued_bytes
+                        .fetch_sub(data.len(), Ordering::Relaxed);
+                    if self.write(channel, log_time, publish_time, &data).is_err() {
+                        break;
+                    }
+                    dirty = true;
+                }
+                Ok(Item::Metadata(m)) => {
+                    if self.write_metadata(&m).is_err() {
+                        break;
+                    }
+                    dirty = true;
+                }
+                Ok(Item::Finish) | Err(RecvTimeoutError::Disconnected) => {
+                    self.finish();
+                    return;
+                }
+                Err(RecvTimeoutError::Timeout) => {}
+            }
+            if dirty && last_flush.elapsed() >= flush_interval {
+                if self.flush().is_err() {
+                    break;
+                }
+                dirty = false;
+                last_flush = Instant::now();
+            } else if !dirty {
+                last_flush = Instant::now();
+            }
+        }
+        // Failed: drain and count what still arrives until the handle goes away.
+        while let Ok(item) = rx.recv() {
+            match item {
+                Item::Message { .. } | Item::Metadata(_) => {
+                    self.stats.dropped.fetch_add(1, Ordering::Relaxed);
+                }
+                Item::Finish => return,
+            }
+        }
+    }
+
     fn fail(&mut self, what: &str, e: impl std::error::Error) {
         // The whole chain: the mcap error alone hides the OS reason (e.g. "No space left").
         let mut text = e.to_string();

@@ -3,11 +3,11 @@
 //! services, `/diagnostics`) and those the publisher thread writes the tick loop's states to.
 
 use super::args;
+use super::args::DEFAULT_NODE_NAME;
 use super::clock::ClockMode;
 use super::input;
 use super::logging::Logger;
 use super::setup::Setup;
-use super::DEFAULT_NODE_NAME;
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::msgs::{
     Clock, DiagnosticArray, Float64, Float64MultiArray, Int64, JointState, StepRequest,

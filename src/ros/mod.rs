@@ -35,8 +35,7 @@ mod tasks;
 mod threads;
 pub mod tick;
 
-/// The node's name unless remapped with `-r __node:=...`.
-pub const DEFAULT_NODE_NAME: &str = "muscle_actuator";
+pub use args::DEFAULT_NODE_NAME;
 
 /// Runs the node until SIGINT/SIGTERM. `args` is everything after `node` on the command line
 /// (`--ros-args ...`). Errors (bad argument, bad parameter, DDS set-up) come back as one line.

@@ -2,9 +2,9 @@
 //! parameters (defaults, then `--params-file`, then `-p`, as rcl applies them) and the other ROS
 //! arguments.
 
+use super::args::DEFAULT_NODE_NAME;
 use super::args::{self, RosArgs};
 use super::params::{self, NodeParams};
-use super::DEFAULT_NODE_NAME;
 
 /// Everything the node needs, resolved from the command line before DDS starts.
 #[derive(Debug)]

@@ -4,7 +4,7 @@
 //! the run's muscles and joints; inputs in tick order with one value per name.
 
 use super::limits::MAX_RECORDED_TICKS;
-use super::{LoadedRun, RunMeta};
+use super::RunMeta;
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use crate::text::excerpt;
@@ -14,16 +14,8 @@ use crate::text::excerpt;
 const SPAN_SLACK_FACTOR: f64 = 1.25;
 const SPAN_SLACK_S: f64 = 1.0;
 
-/// Every check below, on a decoded run whose messages span `recorded_span_s` seconds of log
-/// time.
-pub fn check_run(run: &LoadedRun, recorded_span_s: f64) -> Result<(), String> {
-    check_states(&run.meta, &run.states)?;
-    check_inputs("activation", &run.activations)?;
-    check_inputs("external load", &run.loads)?;
-    check_length(&run.meta, &run.states, recorded_span_s)
-}
-
-fn check_states(meta: &RunMeta, states: &[ActuatorState]) -> Result<(), String> {
+/// States whose ticks only grow, finite, naming the run's muscles and joints.
+pub(super) fn check_states(meta: &RunMeta, states: &[ActuatorState]) -> Result<(), String> {
     for w in states.windows(2) {
         if w[1].tick <= w[0].tick {
             return Err(format!(
@@ -84,7 +76,11 @@ fn finite(v: f64) -> Result<(), String> {
     }
 }
 
-fn check_inputs(what: &str, inputs: &[(u64, Vec<String>, Vec<f64>)]) -> Result<(), String> {
+/// Inputs in tick order with one value per name.
+pub(super) fn check_inputs(
+    what: &str,
+    inputs: &[(u64, Vec<String>, Vec<f64>)],
+) -> Result<(), String> {
     for w in inputs.windows(2) {
         if w[1].0 < w[0].0 {
             return Err(format!(
@@ -110,7 +106,7 @@ fn check_inputs(what: &str, inputs: &[(u64, Vec<String>, Vec<f64>)]) -> Result<(
 
 /// The last tick within [`MAX_RECORDED_TICKS`], and its simulated time (from tick 0) within the
 /// time the recording's messages span.
-fn check_length(
+pub(super) fn check_length(
     meta: &RunMeta,
     states: &[ActuatorState],
     recorded_span_s: f64,

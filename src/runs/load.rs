@@ -79,11 +79,20 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
         let on = |e: String| format!("message on {}: {e}", excerpt(&m.topic));
         run.take(m, &applied).map_err(on)?;
     }
-    checks::check_run(&run, recorded_span_s(rec))?;
+    run.check(recorded_span_s(rec))?;
     Ok(run)
 }
 
 impl LoadedRun {
+    /// Every check of [`checks`], on a decoded run whose messages span `recorded_span_s` seconds
+    /// of log time.
+    fn check(&self, recorded_span_s: f64) -> Result<(), String> {
+        checks::check_states(&self.meta, &self.states)?;
+        checks::check_inputs("activation", &self.activations)?;
+        checks::check_inputs("external load", &self.loads)?;
+        checks::check_length(&self.meta, &self.states, recorded_span_s)
+    }
+
     /// Decodes one message of ours and keeps what replay uses of it.
     fn take(&mut self, m: &RawMessage, applied: &AppliedTopics) -> Result<(), String> {
         if m.encoding != "cdr" || m.schema_encoding != "ros2msg" {

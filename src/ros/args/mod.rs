@@ -7,8 +7,8 @@ mod names;
 mod params_file;
 
 pub use names::{
-    check_name, check_node_name, expand, normalise_namespace, resolve, Remap, MAX_NAMESPACE_CHARS,
-    MAX_NODE_NAME_CHARS, MAX_TOPIC_NAME_CHARS,
+    check_name, check_node_name, expand, normalise_namespace, resolve, Remap, DEFAULT_NODE_NAME,
+    MAX_NAMESPACE_CHARS, MAX_NODE_NAME_CHARS, MAX_TOPIC_NAME_CHARS,
 };
 pub use params_file::{
     check_flow_depth, node_key_matches, parse_param_rule, parse_params_yaml, read_params_file,
@@ -217,7 +217,7 @@ impl RosArgs {
         // A node-prefixed __ns/__node rule applies only to a node of that name; ours is the
         // default name unless renamed, so compare with the default.
         match node {
-            Some(n) if n != super::DEFAULT_NODE_NAME => {}
+            Some(n) if n != DEFAULT_NODE_NAME => {}
             _ => apply(self),
         }
     }

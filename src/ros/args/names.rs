@@ -2,6 +2,9 @@
 //! `rcl_validate_*` and `rcl_remap_*`): the rules of node names, namespaces, topic and service
 //! names, their expansion to absolute names, and remapping.
 
+/// The node's name unless remapped with `-r __node:=...`.
+pub const DEFAULT_NODE_NAME: &str = "muscle_actuator";
+
 /// Longest node name, characters (rmw's `RMW_NODE_NAME_MAX_NAME_LENGTH`).
 pub const MAX_NODE_NAME_CHARS: usize = 255;
 /// Longest namespace, characters (rmw's `RMW_NAMESPACE_MAX_LENGTH`: 247 - 2).
