@@ -15,9 +15,13 @@
 //! otherwise. Velocities follow docs/model.md: `v` lengthens the fibre, `v_s = -v` shortens it;
 //! work rates count work done by the contractile element on its load, positive when shortening.
 
+pub mod bhargava;
 pub mod bridge_flux;
 pub mod bridge_power;
 pub mod huxley_steady;
+pub mod phenomenological;
+pub mod probe;
+pub mod umberger;
 
 #[cfg(test)]
 mod tests;

@@ -2,7 +2,9 @@
 //! distributions they integrate, OpenSim's published probe values, hand-computed cases.
 
 mod flux;
+mod hand;
 mod huxley;
+mod opensim;
 mod power;
 mod quadrature;
 
