@@ -21,6 +21,7 @@ pub mod bridge_power;
 pub mod huxley_steady;
 pub mod phenomenological;
 pub mod probe;
+pub mod steady;
 pub mod umberger;
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ mod huxley;
 mod opensim;
 mod power;
 mod quadrature;
+mod steady;
 
 use crate::physics::contractile::crossbridge::Rates;
 
