@@ -2,6 +2,7 @@
 
 pub mod activation;
 pub mod contractile;
+pub mod energetics;
 pub mod joint;
 pub mod model;
 pub mod models;

@@ -1,0 +1,28 @@
+//! Muscle energetics (docs/model.md §11): what a muscle spends, in two families of models.
+//!
+//! - **Cross-bridge energetics** of the Huxley models (Huxley 1957): each detachment splits one
+//!   ATP, so the ATP rate is the detachment flux of the bond distribution ([`bridge_flux`]: the
+//!   Distribution-Moment closure in closed form, the full model's grid by quadrature), and the
+//!   heat comes from its own two sources, the free energy not stored as strain when a bridge
+//!   attaches and the strain a bridge still holds when it detaches ([`bridge_power`]). The
+//!   steady states of Huxley (1957) in closed form are in [`huxley_steady`].
+//! - **Phenomenological heat rates** for any model: Umberger (2010), with the options of Uchida
+//!   et al. (2016), and Bhargava et al. (2004), as OpenSim's metabolic probes compute them
+//!   ([`probe`], [`umberger`], [`bhargava`]; the selection in [`phenomenological`]).
+//!
+//! [`steady`] puts both together for isovelocity steady states at full activation and optimal
+//! length. Every function is stateless; units are SI (W, J, mol/s, N, m/s) unless a name says
+//! otherwise. Velocities follow docs/model.md: `v` lengthens the fibre, `v_s = -v` shortens it;
+//! work rates count work done by the contractile element on its load, positive when shortening.
+
+pub mod bhargava;
+pub mod bridge_flux;
+pub mod bridge_power;
+pub mod huxley_steady;
+pub mod phenomenological;
+pub mod probe;
+pub mod steady;
+pub mod umberger;
+
+#[cfg(test)]
+mod tests;

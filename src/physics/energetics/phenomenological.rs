@@ -1,0 +1,25 @@
+//! The phenomenological energy model a run selects (docs/model.md §11.4): Umberger (2010)
+//! or Bhargava et al. (2004), each with its options.
+
+use crate::physics::energetics::bhargava::{self, BhargavaOptions};
+use crate::physics::energetics::probe::{ProbeInputs, ProbeMuscle, ProbeRates};
+use crate::physics::energetics::umberger::{self, UmbergerOptions};
+
+/// A phenomenological energy model, selectable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PhenomenologicalModel {
+    /// Umberger (2010), options as given (OpenSim's defaults: Uchida et al. 2016).
+    Umberger(UmbergerOptions),
+    /// Bhargava et al. (2004), options as given (OpenSim's defaults).
+    Bhargava(BhargavaOptions),
+}
+
+impl PhenomenologicalModel {
+    /// Its rates for one muscle at one instant.
+    pub fn rates(&self, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
+        match self {
+            Self::Umberger(o) => umberger::umberger_rates(o, m, x),
+            Self::Bhargava(o) => bhargava::bhargava_rates(o, m, x),
+        }
+    }
+}

@@ -1,0 +1,133 @@
+//! What the phenomenological heat-rate models share (docs/model.md §11.4), as OpenSim's
+//! metabolic probes (opensim-core, `Umberger2010MuscleMetabolicsProbe`,
+//! `Bhargava2004MuscleMetabolicsProbe`) compute them: the muscle mass, fibre recruitment, the
+//! inputs read from the muscle, the parts of the result, and the two clamps.
+
+use crate::physics::params::MuscleParams;
+use std::f64::consts::FRAC_PI_2;
+
+/// Specific tension σ of mammalian muscle, Pa (OpenSim's default).
+pub const SPECIFIC_TENSION_PA: f64 = 0.25e6;
+/// Density ρ of mammalian muscle, kg/m³ (OpenSim's default).
+pub const MUSCLE_DENSITY_KG_M3: f64 = 1059.7;
+/// Share of slow-twitch fibres r when none is given (OpenSim's default).
+pub const SLOW_TWITCH_RATIO: f64 = 0.5;
+/// Least heat rate of an active muscle, W/kg (Umberger et al. 2003, p. 104).
+pub const MIN_HEAT_RATE_W_KG: f64 = 1.0;
+
+/// Muscle mass from its force and fibre length, `(Fmax / σ) ρ lopt`, kg: the volume of muscle
+/// whose cross-section gives Fmax at specific tension σ, times density (OpenSim's probes).
+pub fn muscle_mass_kg(f_max_n: f64, l_opt_m: f64, sigma_pa: f64, rho_kg_m3: f64) -> f64 {
+    f_max_n / sigma_pa * rho_kg_m3 * l_opt_m
+}
+
+/// Bhargava et al. (2004) recruitment: the excitations of the slow- and fast-twitch fibres,
+/// `(r sin(π u/2), (1 - r)(1 - cos(π u/2)))`: slow fibres first.
+pub fn recruitment(excitation: f64, slow_twitch_ratio: f64) -> (f64, f64) {
+    let x = FRAC_PI_2 * excitation;
+    (
+        slow_twitch_ratio * x.sin(),
+        (1.0 - slow_twitch_ratio) * (1.0 - x.cos()),
+    )
+}
+
+/// One muscle's constants for a probe.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProbeMuscle {
+    /// Mass the rates per kg apply to, kg.
+    pub mass_kg: f64,
+    /// Maximum isometric force Fmax, N.
+    pub f_max_n: f64,
+    /// Optimal fibre length lopt, m.
+    pub l_opt_m: f64,
+    /// Maximum shortening velocity, lopt/s.
+    pub v_max_lopt_s: f64,
+    /// Share of slow-twitch fibres r, [0, 1].
+    pub slow_twitch_ratio: f64,
+}
+
+impl ProbeMuscle {
+    /// The muscle of `p` with OpenSim's mass `(Fmax / σ) ρ lopt` (σ, ρ their defaults) and
+    /// slow-twitch share r.
+    pub fn opensim(p: &MuscleParams, slow_twitch_ratio: f64) -> Self {
+        Self {
+            mass_kg: muscle_mass_kg(p.f_max, p.l_opt, SPECIFIC_TENSION_PA, MUSCLE_DENSITY_KG_M3),
+            f_max_n: p.f_max,
+            l_opt_m: p.l_opt,
+            v_max_lopt_s: p.v_max / p.l_opt,
+            slow_twitch_ratio,
+        }
+    }
+}
+
+/// What a probe reads from the muscle at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProbeInputs {
+    /// Excitation u, [0, 1].
+    pub excitation: f64,
+    /// Activation a, [0, 1].
+    pub activation: f64,
+    /// Normalised fibre length `l_m / lopt`.
+    pub fibre_length_norm: f64,
+    /// Active force–length factor f(l_m) (OpenSim's F_iso multiplier).
+    pub force_length: f64,
+    /// Fibre lengthening velocity v, m/s.
+    pub fibre_velocity_m_s: f64,
+    /// Active fibre force F_CE, N.
+    pub active_force_n: f64,
+    /// Passive fibre force (parallel element), N.
+    pub passive_force_n: f64,
+}
+
+/// A probe's metabolic power and its parts, W.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ProbeRates {
+    /// Activation and maintenance heat (with the least-heat floor's increase, if any).
+    pub activation_maintenance_w: f64,
+    /// Shortening / lengthening heat (with the non-negative-total increase, if any).
+    pub shortening_w: f64,
+    /// Mechanical work rate of the contractile element, positive when shortening.
+    pub work_w: f64,
+}
+
+impl ProbeRates {
+    /// Heat rate, W.
+    pub fn heat_w(&self) -> f64 {
+        self.activation_maintenance_w + self.shortening_w
+    }
+    /// Metabolic power, heat plus work, W.
+    pub fn total_w(&self) -> f64 {
+        self.heat_w() + self.work_w
+    }
+}
+
+/// OpenSim's `forbid_negative_total_power`: the shortening heat rises so that the total is not
+/// negative (Uchida et al. 2016).
+pub fn forbid_negative_total(mut r: ProbeRates) -> ProbeRates {
+    let total = r.total_w();
+    if total < 0.0 {
+        r.shortening_w -= total;
+    }
+    r
+}
+
+/// The least-heat floor: heat below `MIN_HEAT_RATE_W_KG · mass` is raised to it (Umberger et
+/// al. 2003, p. 104). The increase counts as activation and maintenance heat, the part that
+/// does not depend on velocity.
+pub fn floor_heat(mut r: ProbeRates, mass_kg: f64) -> ProbeRates {
+    let least = MIN_HEAT_RATE_W_KG * mass_kg;
+    let heat = r.heat_w();
+    if heat < least {
+        r.activation_maintenance_w += least - heat;
+    }
+    r
+}
+
+/// The work rate term `-F_CE v` when `include_negative` or shortening, else 0, W.
+pub fn probe_work_w(active_force_n: f64, v_m_s: f64, include_negative: bool) -> f64 {
+    if include_negative || v_m_s <= 0.0 {
+        -active_force_n * v_m_s
+    } else {
+        0.0
+    }
+}
