@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Simulated-time benchmark (README, "Time"):
+"""Simulated-time benchmark (docs/time.md):
 
 1. `clock:=sim` as fast as it can: the real-time factor (simulated over wall-clock seconds, read
    from /clock by an rclpy subscriber over DURATION s) for Hill and DM, with ~/state published

@@ -7,7 +7,7 @@
 # with benches/previous/limb_separate.rs dropped in as its benches/limb_previous.rs, in the same
 # CARGO_TARGET_DIR so the dependencies are shared), runs them RUNS times interleaved, and prints
 # per case the best (least) µs per two-muscle actuator of each, their ratio (previous / this:
-# above 1 means this program is cheaper), and the summary figures of the README's Speed section.
+# above 1 means this program is cheaper), and the summary figures of docs/benchmarks.md.
 # LIMB_MODELS and LIMB_CASES (benches/limb.rs) restrict both. Prints the load average before and
 # after: on a shared machine compare only ratios measured in one run.
 set -euo pipefail

@@ -7,7 +7,7 @@
 #   3. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
 #      a loopback-only network namespace (scripts/test-ros.sh; it creates .venv and builds the
 #      message package for rclpy on first use);
-#   4. the demo of the README, which must end cleanly.
+#   4. the demo of docs/testing.md, which must end cleanly.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 echo "== Rust tests" >&2

@@ -158,7 +158,7 @@ mod tests {
     use super::*;
 
     /// One muscle of the pair, without spans: it replaces the default muscle of its name, and
-    /// everything else keeps its default (the rule the README states).
+    /// everything else keeps its default (the rule docs/configuration.md states).
     #[test]
     fn a_single_pair_muscle_replaces_its_namesake() {
         let default = ActuatorConfig::default();

@@ -1,4 +1,4 @@
-//! Recordings: rosbag2-compatible MCAP files (README, "Recordings").
+//! Recordings: rosbag2-compatible MCAP files (docs/recordings.md).
 //!
 //! This module knows ROS 2 message encodings and the MCAP container, nothing of the physics:
 //! - [`schema`]: `ros2msg` schema texts with their dependencies appended;

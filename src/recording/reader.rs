@@ -3,7 +3,7 @@
 //!
 //! Nothing in the file is trusted. Only a regular file of at most [`MAX_RECORDING_BYTES`] is
 //! read; every record's strings are checked to fit in it before the `mcap` crate parses it
-//! ([`lengths`]); no record, and no chunk once decompressed, may be larger than the file; the
+//! (`lengths.rs`); no record, and no chunk once decompressed, may be larger than the file; the
 //! messages held may total at most [`MAX_MESSAGE_BYTES`] (a small file of compressed zeros
 //! cannot fill the memory).
 //!

@@ -1,4 +1,4 @@
-//! The node's clock (parameter `clock`, README "Time"): `wall`, ticks paced by the wall clock
+//! The node's clock (parameter `clock`, docs/time.md): `wall`, ticks paced by the wall clock
 //! and stamped with it; `sim`, the node is the graph's clock, stepping as fast as it can or at
 //! `real_time_factor` × real time and publishing `/clock`; `lockstep`, the node is the clock and
 //! advances only when asked (`~/step`). With `use_sim_time` and `clock` wall, the node follows

@@ -1,4 +1,4 @@
-//! Validation of incoming commands (README, "Hostile input"): a command with unknown names,
+//! Validation of incoming commands (docs/robustness.md): a command with unknown names,
 //! mismatched array lengths, or NaN/infinite values is rejected whole; excitations outside
 //! [0, 1] are clamped and reported. Pure functions: no DDS here.
 

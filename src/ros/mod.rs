@@ -1,4 +1,4 @@
-//! The ROS 2 node (`muscle_actuator node`): README, "The ROS interface".
+//! The ROS 2 node (`muscle_actuator node`): docs/ros-interface.md.
 //!
 //! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS. Start-up:
 //! - [`args`]: the standard ROS 2 command-line arguments, name expansion and remapping;

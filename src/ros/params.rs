@@ -1,4 +1,4 @@
-//! The node's parameters (README, "The ROS interface"): their defaults, types and validation.
+//! The node's parameters (docs/ros-interface.md): their defaults, types and validation.
 
 use super::clock::ClockMode;
 use crate::physics::model::ModelKind;

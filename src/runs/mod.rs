@@ -1,6 +1,6 @@
 //! Runs as recordings: the channels of a run file ([`channels`]), its `muscle_actuator` metadata
 //! record ([`metadata`]), `simulate --out` ([`simulate`], written by [`writer`]), reading a run
-//! back ([`load`], checked by [`checks`] within [`limits`]), [`replay`], [`compare`] and
+//! back ([`load`], checked by [`checks`] within [`limits`]), [`replay`](mod@replay), [`compare`] and
 //! [`export`].
 //!
 //! One time base per recording, named in the metadata ([`crate::time`]). Offline runs carry

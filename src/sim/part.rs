@@ -87,7 +87,7 @@ pub struct Part {
     a0: Vec<f64>,
     lm_before: Vec<f64>,
     memo: RefCell<ActivationMemo>,
-    /// The ESDIRK stepper: ARK3(2)4L[2]SA (third order) for adaptive sub-steps, TR-BDF2 (second
+    /// The ESDIRK stepper: ARK3(2)4L\[2\]SA (third order) for adaptive sub-steps, TR-BDF2 (second
     /// order) for fixed ones.
     stepper: Esdirk<ArrowheadMatrix>,
 }

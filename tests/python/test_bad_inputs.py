@@ -1,4 +1,4 @@
-"""Bad input gets a clear answer and loses nothing (README, "Hostile input"): unknown names, mismatched
+"""Bad input gets a clear answer and loses nothing (docs/robustness.md): unknown names, mismatched
 lengths, NaN/inf are rejected whole and counted; excitations outside [0, 1] are clamped and
 reported; the last valid command stays in force; the node keeps its rate meanwhile."""
 

@@ -1,4 +1,4 @@
-"""Simulated time (README, "Time"): with `clock:=sim` the node is the graph's clock, faster than
+"""Simulated time (docs/time.md): with `clock:=sim` the node is the graph's clock, faster than
 the wall clock, and an rclpy node with use_sim_time follows its /clock; with `clock:=lockstep` it
 advances only on `~/step`, and a closed-loop rclpy controller gets the same trajectory every
 time."""

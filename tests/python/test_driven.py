@@ -1,4 +1,4 @@
-"""Driven joints (README, "Configuration" and "The ROS interface"): a robot simulator owns the
+"""Driven joints (docs/configuration.md, docs/ros-interface.md): a robot simulator owns the
 elbow and plays its motion on ~/joint_states_in; the node steps the muscles for that motion and
 publishes their net torque on ~/joint_efforts. Driven in lockstep, the efforts match `simulate`
 of the same motion offline; bad joint states are refused and a silent simulator is reported."""

@@ -1,4 +1,4 @@
-"""Following an external clock (README, "Time"): with `use_sim_time:=true` and `clock` wall, an
+"""Following an external clock (docs/time.md): with `use_sim_time:=true` and `clock` wall, an
 rclpy /clock publisher drives the node. Each clock message advances it by the whole ticks it
 covers, stamped with that clock; a paused clock pauses ~/state; a clock that jumps back resets
 the actuator with a report, and the node goes on from the new time. The recording's ticks are

@@ -43,7 +43,7 @@ def test_topics_and_types(peer, node, watch):
     sub_names = {n for n, _ in subs}
     assert {f"{NS}/muscle_actuator/state", f"{NS}/joint_states", "/diagnostics"} <= pub_names
     assert {f"{NS}/muscle_actuator/activation", f"{NS}/muscle_actuator/external_load"} <= sub_names
-    # QoS of the inputs: reliable (README, "The ROS interface"), so rclpy's default publishers are matched.
+    # QoS of the inputs: reliable (docs/ros-interface.md), so rclpy's default publishers are matched.
     info = peer.node.get_subscriptions_info_by_topic(f"{NS}/muscle_actuator/activation")
     assert info, "no subscription info"
     assert all(i.qos_profile.reliability.name == "RELIABLE" for i in info)

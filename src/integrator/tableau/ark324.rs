@@ -1,11 +1,11 @@
-//! ARK3(2)4L[2]SA, implicit part (Kennedy & Carpenter 2003, "Additive Runge–Kutta schemes for
+//! ARK3(2)4L\[2\]SA, implicit part (Kennedy & Carpenter 2003, "Additive Runge–Kutta schemes for
 //! convection–diffusion–reaction equations", Appl. Numer. Math. 44; SUNDIALS'
 //! `ARKODE_ARK324L2SA_DIRK_4_2_3`).
 
 use super::{Tableau, MAX_STAGES};
 
 impl Tableau {
-    /// ARK3(2)4L[2]SA, implicit part: third order, L-stable, stiffly accurate, three implicit
+    /// ARK3(2)4L\[2\]SA, implicit part: third order, L-stable, stiffly accurate, three implicit
     /// stages, an embedded second-order solution.
     pub fn ark324() -> Self {
         let g = 1767732205903.0 / 4055673282236.0;

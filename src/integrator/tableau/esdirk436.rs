@@ -1,11 +1,11 @@
-//! ESDIRK4(3)6L[2]SA (Kennedy & Carpenter 2016, NASA/TM-2016-219173, "Diagonally implicit
+//! ESDIRK4(3)6L\[2\]SA (Kennedy & Carpenter 2016, NASA/TM-2016-219173, "Diagonally implicit
 //! Runge–Kutta methods for ordinary differential equations. A review"; SUNDIALS'
 //! `ARKODE_ESDIRK436L2SA_6_3_4`).
 
 use super::{Tableau, MAX_STAGES};
 
 impl Tableau {
-    /// ESDIRK4(3)6L[2]SA (Kennedy & Carpenter 2016, table of the method of that name): fourth
+    /// ESDIRK4(3)6L\[2\]SA (Kennedy & Carpenter 2016, table of the method of that name): fourth
     /// order, L-stable, stiffly accurate, five implicit stages with γ = 1/4, an embedded
     /// third-order solution. The coefficients as SUNDIALS gives them
     /// (`src/arkode/arkode_butcher_dirk.def`, `ARKODE_ESDIRK436L2SA_6_3_4`): a_i0 from the row
@@ -60,7 +60,7 @@ mod tests {
     use super::super::order_conditions::{a_times, assert_order, assert_row_sums, dot, weights};
     use super::*;
 
-    /// ESDIRK4(3)6L[2]SA's order conditions: fourth order for the method (all eight trees),
+    /// ESDIRK4(3)6L\[2\]SA's order conditions: fourth order for the method (all eight trees),
     /// third for the embedding, and the stages' row sums.
     #[test]
     fn esdirk436_meets_its_order_conditions() {

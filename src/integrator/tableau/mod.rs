@@ -1,6 +1,6 @@
 //! Stiffly accurate ESDIRK tableaux with an embedded method, as the stepper
-//! ([`super::esdirk`]) takes them: TR-BDF2 ([`trbdf2`]), ARK3(2)4L[2]SA's implicit part
-//! ([`ark324`]) and ESDIRK4(3)6L[2]SA ([`esdirk436`]).
+//! ([`super::esdirk`]) takes them: TR-BDF2 ([`trbdf2`]), ARK3(2)4L\[2\]SA's implicit part
+//! ([`ark324`]) and ESDIRK4(3)6L\[2\]SA ([`esdirk436`]).
 
 // Index loops over the coefficient arrays read as the tableaux are printed in their sources.
 #![allow(clippy::needless_range_loop)]

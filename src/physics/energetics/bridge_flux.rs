@@ -3,7 +3,9 @@
 //! With `n(ξ, t)` the bound fraction and `r = a λ` the attachment factor, eq. (9)'s right-hand
 //! side splits into attachment `f (r - n)` and detachment `g n`. Their ξ^k-weighted integrals,
 //!
-//!     A_k = ∫ ξ^k f(ξ) (r - n) dξ = r β_k - ∫ ξ^k f n dξ,     D_k = ∫ ξ^k g(ξ) n dξ,
+//! ```text
+//! A_k = ∫ ξ^k f(ξ) (r - n) dξ = r β_k - ∫ ξ^k f n dξ,     D_k = ∫ ξ^k g(ξ) n dξ,
+//! ```
 //!
 //! give the rate of new bonds (A_0), of broken bonds (D_0: one ATP each, Huxley 1957) and the
 //! strain they carry in and out (A_2, D_2, in units of the bridge energy at ξ = 1). Together

@@ -4,8 +4,10 @@
 //! At constant shortening rate u (h/s; negative when lengthening) and attachment factor r, with
 //! `N = f1/(f1 + g1)` and `φ = (f1 + g1)/(2|u|)`, the steady bound fraction is
 //!
-//!     shortening:  n = r N (1 - e^{-φ(1-ξ²)}) on [0, 1],  n(0) e^{g2 ξ/u} for ξ < 0,  0 beyond 1
-//!     lengthening: n = r N (1 - e^{-φ ξ²}) on [0, 1],      n(1) e^{-g1 (ξ²-1)/(2|u|)} beyond 1
+//! ```text
+//! shortening:  n = r N (1 - e^{-φ(1-ξ²)}) on [0, 1],  n(0) e^{g2 ξ/u} for ξ < 0,  0 beyond 1
+//! lengthening: n = r N (1 - e^{-φ ξ²}) on [0, 1],      n(1) e^{-g1 (ξ²-1)/(2|u|)} beyond 1
+//! ```
 //!
 //! and the fluxes of `energetics::bridge_flux` follow by integration. In a steady state
 //! attachment balances detachment, `A_0 = D_0`, and the strain balance of eq. (12) for Q2 reads

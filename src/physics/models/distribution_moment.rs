@@ -16,8 +16,9 @@ pub static SPEC: ModelSpec = ModelSpec {
     summary: "Huxley cross-bridges, Distribution-Moment approximation (Q0, Q1, Q2)",
     // The stiff cross-bridge spring needs a tighter tolerance than Hill for the same margin of at
     // least 2 against the reference solver (tests/integrator_accuracy.rs, tests/limb.rs).
-    // After an excitation step: 2.65 sub-steps per tick with the fourth-order method, 6.15
-    // without (benches/limb.rs).
+    // Its transients ring on the cross-bridge and tendon springs and take several sub-steps per
+    // tick: the fourth-order method makes them longer and fewer (docs/integration.md; the sub-steps
+    // per tick are in the `cargo bench --bench limb` table).
     stepping: Stepping::Adaptive {
         tolerance: 2e-5,
         max_substeps: DEFAULT_MAX_SUBSTEPS,

@@ -18,8 +18,8 @@ pub static SPEC: ModelSpec = ModelSpec {
     // Chosen so that 1 kHz ticks (third-order ESDIRK sub-steps) meet the accuracy bounds against
     // the reference solver with a margin of at least 2 on every scenario (tests/integrator_accuracy.rs
     // and tests/limb.rs print them).
-    // A few sub-steps per transient tick: the fourth-order method took fewer but cost 3% more
-    // (benches/limb.rs).
+    // Its transients take few sub-steps per tick, too few for the fourth-order method's longer
+    // sub-steps to pay for its extra stages (docs/integration.md).
     stepping: Stepping::Adaptive {
         tolerance: 5e-5,
         max_substeps: DEFAULT_MAX_SUBSTEPS,

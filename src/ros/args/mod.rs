@@ -1,7 +1,7 @@
 //! The standard ROS 2 command-line arguments, as `rcl` reads them (rcl's `arguments.c`):
 //! `--ros-args -r __ns:=/ns -r __node:=name -r from:=to -p name:=value --params-file f.yaml
-//! --log-level [logger:=]level [--]`. Parameter values and files follow [`params_file`];
-//! names, namespaces and remapping follow [`names`].
+//! --log-level [logger:=]level [--]`. Parameter values and files follow `params_file.rs`;
+//! names, namespaces and remapping follow `names.rs`.
 
 mod names;
 mod params_file;

@@ -21,7 +21,7 @@ pub struct Remap {
     pub to: String,
 }
 
-/// Checks a node name: one token (see [`check_token`]) of at most 255 characters.
+/// Checks a node name: one token (see `check_token`) of at most 255 characters.
 pub fn check_node_name(n: &str) -> Result<(), String> {
     if n.chars().count() > MAX_NODE_NAME_CHARS {
         return Err(format!(

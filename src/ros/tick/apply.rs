@@ -1,6 +1,6 @@
 //! The commands applied at a tick boundary ([`TickLoop::apply`]), and the three resets: on
 //! request, after a failed step, and on a `/clock` jump, each back to the initial state with
-//! every input cleared and tick 0 re-anchored (README, "Time").
+//! every input cleared and tick 0 re-anchored (docs/time.md).
 //!
 //! Following `/clock`: the first clock time anchors tick 0 there; each later one lets the loop
 //! step the whole ticks it covers ([`ticks_covered`]); a clock that goes back, or forward by more

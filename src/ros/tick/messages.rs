@@ -1,6 +1,6 @@
 //! What the tick loop and the node's other threads pass each other: [`Command`]s in (applied at
 //! the next tick boundary), [`Output`]s and [`Event`]s out (states and times to publish, lines
-//! to log), and the [`Applied`] inputs for the recording (README, "The ROS interface").
+//! to log), and the [`Applied`] inputs for the recording (docs/ros-interface.md).
 
 use crate::physics::model::ModelKind;
 use crate::sim::{Actuator, StateSnapshot};

@@ -1,4 +1,4 @@
-//! The fixed-rate tick loop, on its own thread (README, "The ROS interface" and "Time"). It owns
+//! The fixed-rate tick loop, on its own thread (docs/ros-interface.md, docs/time.md). It owns
 //! the actuator; everything else talks to it through queues, so it never waits for DDS: commands
 //! queue in a bounded [`command_channel`] and are applied at the next tick boundary, samples go
 //! out through a bounded channel (dropped and counted when the publisher falls behind), events

@@ -1,4 +1,4 @@
-//! How the loop paces its ticks ([`Pacing`], README "Time"). A paced loop (`wall`, and `sim`
+//! How the loop paces its ticks ([`Pacing`], docs/time.md). A paced loop (`wall`, and `sim`
 //! with a `real_time_factor`) ticks against absolute [`Deadlines`]: tick n of a schedule is due
 //! at its origin + n × pace, so that a late tick does not delay the ones after it. A tick that
 //! wakes more than one pace after its deadline is an overrun; more than [`RESYNC_PERIODS`] paces

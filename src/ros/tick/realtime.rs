@@ -3,7 +3,7 @@
 //! timer's expiry by the default 50 µs to coalesce wake-ups), and, for a loop with deadlines to
 //! meet, a request for `SCHED_FIFO` (sched(7)), granted to root or with CAP_SYS_NICE or an
 //! `RLIMIT_RTPRIO` limit. Only the wall clock asks for it: a simulated clock running flat out
-//! under SCHED_FIFO would starve the node's other threads (README, "Time").
+//! under SCHED_FIFO would starve the node's other threads (docs/time.md).
 
 /// Lowers this thread's timer slack so that sleeps end close to their deadline (Linux).
 pub(super) fn tighten_timer_slack() {

@@ -1,4 +1,4 @@
-//! Inputs stamped ahead (README, "Time"): with a simulated clock, an input whose header stamp
+//! Inputs stamped ahead (docs/time.md): with a simulated clock, an input whose header stamp
 //! lies ahead of the node's time, by at most [`SCHEDULE_HORIZON_S`], waits for the first tick
 //! stamped at or after it (ros2_control's trajectory controller reads `header.stamp` so), in
 //! stamp order whatever the order of arrival; inputs stamped alike keep their order of arrival.

@@ -1,6 +1,6 @@
 //! The loop itself: a [`TickLoop`] holds the actuator and everything the loop keeps from one
 //! tick to the next; [`TickLoop::run`] turns it, each turn in this order (the order the node's
-//! stamps, applied inputs and replays depend on, README "Recordings" and "Time"):
+//! stamps, applied inputs and replays depend on, docs/recordings.md and docs/time.md):
 //! 1. take the commands that arrived, and the inputs whose stamp has come
 //!    ([`TickLoop::take_commands`]);
 //! 2. apply them, in that order ([`TickLoop::apply`], in `apply.rs`);
