@@ -96,13 +96,25 @@ usage: muscle_actuator node [--ros-args [-r __ns:=/NS] [-r __node:=NAME] [-r FRO
                              [--log-level [LOGGER:=]LEVEL] [--]]
 
 parameters: model ({models}, default {model}), rate_hz (default {rate:?}),
-            publish_rate_hz (0 = every tick), config (TOML file, \"\" = embedded default),
-            record (bool), record_dir (string)
+            publish_rate_hz (0 = every tick), config ({configs} or a TOML file,
+            \"\" = elbow), record (bool, default {record}), record_dir (default {record_dir:?}),
+            clock (wall|sim|lockstep, default wall), real_time_factor (sim; 0 = as fast as
+            it goes), clock_rate_hz (/clock per simulated second, default {clock_rate:?}),
+            joint_state_timeout_ticks (default {timeout}), use_sim_time (follow /clock)
 environment: ROS_DOMAIN_ID (default 0); ROS_AUTOMATIC_DISCOVERY_RANGE=SUBNET to discover
              beyond this host (default: loopback only)",
         models = ModelKind::names_joined("|", "|"),
         model = defaults.model,
         rate = defaults.rate_hz,
+        configs = crate::config::BUILT_IN
+            .iter()
+            .map(|(name, _)| *name)
+            .collect::<Vec<_>>()
+            .join("|"),
+        record = defaults.record,
+        record_dir = defaults.record_dir,
+        clock_rate = defaults.clock_rate_hz,
+        timeout = defaults.joint_state_timeout_ticks,
     )
 }
 
