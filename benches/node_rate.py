@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Node-rate benchmark (issue 3): the node at 1 kHz for DURATION s, publishing ~/state every
-tick, with an rclpy client commanding at 100 Hz. Reports the node's tick lateness p50/p99/max
-and missed ticks (from the node's own summary at exit), and the command-to-state latency seen
-by the client, beside an rclpy-to-rclpy echo round trip measured in the same run.
+"""Node-rate benchmark (docs/benchmarks.md, "The node"): the node at 1 kHz for DURATION s,
+publishing ~/state every tick, with an rclpy client commanding at 100 Hz. Reports the node's
+tick lateness p50/p99/max and missed ticks (from the node's own summary at exit), and the
+command-to-state latency seen by the client, beside an rclpy-to-rclpy echo round trip measured
+in the same run.
 
 Run through benches/node_rate.sh (builds, sets up the venv, loopback-only network namespace).
 """

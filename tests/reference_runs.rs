@@ -1,11 +1,10 @@
-//! The default `elbow` still gives the results of the two-muscle program it grew from: the CSVs
-//! in `tests/reference/` were written by that program (`simulate SCENARIO --model M --csv`) for
-//! the pulse, energy and joint scenarios and every model. Today's runs reproduce them within the
-//! accuracy bounds of docs/model.md §10 (force 1e-3 Fmax, length 1e-6 m); the deviations are
-//! printed per file. (The commit that restructured the program into limbs kept the same stepper
-//! and checked them to rounding: bit for bit with one muscle, 1e-12 of each column's range for
-//! the lengths and angle of the joint scenario. The block-arrowhead stepper that followed solves
-//! the same equations with another Jacobian, so only the accuracy bounds remain.)
+//! The default `elbow` gives the results of the two-muscle program it grew from
+//! (docs/validation.md, "The program this grew from"): the CSVs in `tests/reference/` were
+//! written by that program (`simulate SCENARIO --model M --csv`) for the pulse, energy and joint
+//! scenarios and every model. This program reproduces them within the accuracy bounds of
+//! docs/model.md §10 (force 1e-3 Fmax, length 1e-6 m), not to rounding: its block-arrowhead
+//! stepper solves the same equations with another Jacobian (docs/model.md §8b). The deviations
+//! are printed per file.
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
@@ -45,7 +44,8 @@ fn numbers(v: &[String]) -> Vec<f64> {
     v.iter().map(|x| x.parse().expect("a number")).collect()
 }
 
-/// The reference's column names mapped to today's (the joint columns are named by joint now).
+/// The reference's column names mapped to this program's: the reference's `joint_*` columns
+/// are named by joint here (`elbow.*`).
 fn today_name(reference: &str) -> String {
     match reference.strip_prefix("joint_") {
         Some(field) => format!("elbow.{field}"),

@@ -227,8 +227,9 @@ fn random_valid_input_sequences_step_to_the_end() {
 
 /// A relaxed muscle stretched fast: the flexor fully excited for 5 s, relaxed for 0.3 s, excited
 /// for 0.4 s and relaxed again while the extensor (0.15) and a -0.5 N m load swing the joint into
-/// extension. Its moments fall to the integrator's noise (Q0 ≈ -2e-11 with Q1 ≈ 1e-7) and the DM
-/// closure's old guard, a switch at Q0 = 1e-12, made the solver fail at tick 5937.
+/// extension. Its moments fall to the integrator's noise (Q0 ≈ -2e-11 with Q1 ≈ 1e-7), where the
+/// DM closure must be continuous as Q0 crosses zero (docs/model.md §6, "Guards"): with a guard
+/// that switches at Q0 = 1e-12 the solver fails at tick 5937.
 #[test]
 fn a_relaxed_muscle_stretched_fast_steps_with_every_model() {
     let cfg = ActuatorConfig::default();

@@ -1,6 +1,7 @@
 //! `benches/limb.rs --separate` adapted to the API of commit dcf2021, the two-muscle program
-//! (TR-BDF2, dense 12 × 12 matrix) the speed bars of issue 7 are ratios to. It is not built
-//! here: `benches/previous.sh` drops it into a worktree of dcf2021 as `benches/limb_previous.rs`.
+//! (TR-BDF2, dense 12 × 12 matrix) that docs/benchmarks.md ("Cost against the number of
+//! muscles") compares this one with. It is not built here: `benches/previous.sh` drops it into a
+//! worktree of dcf2021 as `benches/limb_previous.rs`.
 //!
 //! The same cases, loads, seeds, repetitions and output columns as `benches/limb.rs`: k
 //! separate default actuators (k = 1, 3, 10, 25; 2k muscles), Hill and DM; steady

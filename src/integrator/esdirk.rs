@@ -7,11 +7,11 @@
 //! Which tableau: TR-BDF2 (second order) for fixed sub-steps; for adaptive sub-steps the
 //! implicit part of ARK3(2)4L\[2\]SA (third order), whose sub-steps in the transients, where the
 //! fibre mass rings on the tendon and cross-bridge springs, are longer than a second-order
-//! method's at the same accuracy; and, while the state moves so fast that one step barely covers
-//! a call's span, ESDIRK4(3)6L\[2\]SA (fourth order, five implicit stages;
-//! [`Esdirk::with_high_order`]), which takes fewer sub-steps and evaluations there. Quiet ticks,
-//! one step each, stay on the three-stage method (docs/integration.md; the measurements are in
-//! docs/benchmarks.md).
+//! method's at the same accuracy; and, for a call whose carried step is shorter than
+//! `HIGH_BELOW` (1.5) times its span (the state moves fast), ESDIRK4(3)6L\[2\]SA (fourth order,
+//! five implicit stages, Kennedy & Carpenter 2016; [`Esdirk::with_high_order`]), which takes
+//! fewer sub-steps and evaluations there. Quiet ticks, one step each, stay on the three-stage
+//! method (docs/integration.md, "Methods"; the work per tick in docs/benchmarks.md).
 //!
 //! The tick loop needs a stepper that is allocation-free and bit-deterministic, keeps its
 //! Jacobian across ticks, and lets the linear algebra exploit the plant's structure (the

@@ -93,9 +93,10 @@ pub struct ModelSpec {
     /// How its ticks are sub-stepped by default; [`Stepping::Fixed`] for models with state
     /// outside the ODE.
     pub stepping: Stepping,
-    /// Whether, with adaptive sub-steps, the ticks whose state moves fast (sub-steps shorter
-    /// than the tick) take the fourth-order method rather than the third-order one
-    /// (docs/model.md §10; measured per model with `benches/limb.rs`).
+    /// Whether, with adaptive sub-steps, the ticks whose state moves fast (a carried sub-step
+    /// shorter than 1.5 ticks, `HIGH_BELOW` in `integrator/esdirk.rs`) take the fourth-order
+    /// method rather than the third-order one (docs/model.md §10, docs/integration.md
+    /// "Methods"; the work per tick is printed by `cargo bench --bench limb`).
     pub fourth_order_transients: bool,
     /// Its calibration: the model for one muscle with these parameters.
     pub build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, String>,
