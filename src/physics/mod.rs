@@ -1,4 +1,19 @@
 //! The muscle physics (docs/model.md): pure functions and plain state, no I/O.
+//!
+//! - [`params`]: the parameters and their defaults (§1, §6, §8);
+//! - [`activation`]: excitation to activation (§2);
+//! - [`contractile`]: the contractile elements' mathematics (§3, §6, §7); [`muscle_model`]: the
+//!   interface a model implements; [`models`]: the models, one file each; [`model`]: [`MODELS`],
+//!   the one place where they are named;
+//! - [`spring`], [`tendon`], [`parallel_element`]: the passive elements (§4);
+//! - [`mtu`]: one muscle–tendon unit (§5); [`moment_arm`], [`joint`], [`topology`]: the limb
+//!   (§8, §8b); [`plant`]: the whole limb as one ODE (§5, §8b);
+//! - [`stiffness`]: fibre, muscle–tendon and joint stiffness (§8); [`observables`]: the fields
+//!   observable about a muscle and a joint;
+//! - [`stepping`]: how a tick is divided into sub-steps (§10);
+//! - [`energetics`]: what a muscle spends, cross-bridge and phenomenological models (§11).
+//!
+//! [`MODELS`]: model::MODELS
 
 pub mod activation;
 pub mod contractile;

@@ -19,7 +19,8 @@ pub mod replay;
 pub mod simulate;
 pub mod writer;
 
-/// For src/ros/tick.rs, which names them here; the time base is [`crate::time`]'s.
+/// The channels of a run, for the node ([`crate::ros`]) and the tests, which name them from here;
+/// the time base is [`crate::time`]'s.
 pub use channels::{
     channel, Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
     APPLIED_JOINT_MOTION_SUFFIX, APPLIED_JOINT_MOTION_TOPIC, APPLIED_LOAD_SUFFIX,

@@ -1,5 +1,13 @@
 //! The simulation: a plant stepped tick by tick with inputs held over each tick, the actuator
 //! facade the node uses, and the offline scenarios. It knows nothing of ROS, files or threads.
+//!
+//! - [`simulation`]: a plant stepped at a fixed tick, inputs held over each tick;
+//! - [`part`]: one independent part of a limb with its own stepper; [`jacobian`]: the plant's
+//!   Jacobian by blocks for the block-arrowhead iteration matrix (docs/model.md §8b);
+//! - [`actuator`]: [`Actuator`], the facade the node and the CLI step;
+//! - [`snapshot`]: what is observable after a tick;
+//! - [`scenario`]: the paper's experiments and scenario files; [`schedule`]: their input
+//!   schedules.
 
 pub mod actuator;
 pub mod jacobian;

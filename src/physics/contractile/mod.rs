@@ -1,4 +1,14 @@
 //! Contractile elements: Hill-type, and Huxley-type cross-bridges (Distribution-Moment and full).
+//! The mathematics only; the models built on it are in [`crate::physics::models`].
+//!
+//! - [`force_length`]: f(l_m), shared by both kinds; [`hill`]: the Hill element (§3);
+//! - [`crossbridge`]: Huxley's attachment and detachment rates (§6);
+//! - [`distribution_moment`]: Zahalak's moment equations and their closure (§6);
+//! - [`huxley_grid`]: the full model's bond distribution by characteristics (§7);
+//!   [`huxley_exact`]: its closed-form steady states (§7);
+//! - [`calibration`]: the cross-bridge models scaled to a muscle's Fmax and vmax (§6–7).
+//!
+//! Sections are those of docs/model.md.
 
 pub mod calibration;
 pub mod crossbridge;
