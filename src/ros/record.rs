@@ -2,7 +2,8 @@
 //! state as published, the inputs as the tick loop applied them (stamped with the tick they took
 //! effect at: stamp = tick origin + tick / rate), which is what `replay` feeds back, and the
 //! node's `/diagnostics` and `/rosout` lines. One time base, the node's clock
-//! ([`super::clock`]): wall-clock time, or simulated time with `clock` sim or lockstep.
+//! ([`super::clock`]): wall-clock time, simulated time with `clock` sim or lockstep, or the
+//! followed `/clock`'s time (docs/time.md, "Time in recordings").
 
 use super::clock::NodeClock;
 use super::params::NodeParams;

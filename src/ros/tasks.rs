@@ -1,6 +1,8 @@
-//! The node's tasks on the DDS executor, one function each: the four input topics (validated,
-//! recorded as received, forwarded to the tick loop), the reset service, and the tick loop's
-//! events turned into log lines. None of them waits on the tick loop.
+//! The node's tasks on the DDS executor, one function each: the input topics (the three
+//! activation topics, the load, the driven joints' motion: validated, recorded as received,
+//! forwarded to the tick loop; `/clock` when following it), the reset service, the `~/step`
+//! service and topic, and the tick loop's events turned into log lines. None of them waits on the
+//! tick loop.
 
 use super::args::Severity;
 use super::clock::ClockMode;
