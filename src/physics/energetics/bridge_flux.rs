@@ -86,7 +86,9 @@ fn closure_gaussian(q: &[f64; 3]) -> Option<(f64, f64, f64)> {
 
 /// DM detachment moments `D_k = ∫ ξ^k g n dξ` for the Gaussian n with moments `q`:
 ///
-///     D_k = Q0 { g2 J_k(τ0) + g1 [M_{k+1} - J_{k+1}(τ0)] + g3 [M_{k+1} - J_{k+1}(τ1) - M_k + J_k(τ1)] }
+/// ```text
+/// D_k = Q0 { g2 J_k(τ0) + g1 [M_{k+1} - J_{k+1}(τ0)] + g3 [M_{k+1} - J_{k+1}(τ1) - M_k + J_k(τ1)] }
+/// ```
 ///
 /// (τ0 = -p/q, τ1 = (1-p)/q; J, M of docs/model.md §6). For k = 0 this is
 /// `Q0 [g2 Φ(-p/q) + g1 (p Φ(p/q) + q ϕ(p/q)) + g3 (...)]`. The part of the moments the guard's
