@@ -4,6 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::physics::energetics::params::{EnergeticsParams, EnergyModel};
+
 /// Shape of the force–length curve f(l_m) (docs/model.md §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
@@ -65,6 +67,8 @@ pub struct MuscleParams {
     pub b_m: f64,
     /// Cross-bridge parameters of the Huxley models.
     pub crossbridge: CrossBridgeParams,
+    /// Energetics: the phenomenological heat-rate model and the energy constants (§11).
+    pub energetics: EnergeticsParams,
 }
 
 impl Default for MuscleParams {
@@ -93,6 +97,7 @@ impl Default for MuscleParams {
             f_mc: 69.4723,
             b_m: 257.1,
             crossbridge: CrossBridgeParams::default(),
+            energetics: EnergeticsParams::default(),
         }
     }
 }
@@ -297,6 +302,22 @@ impl MuscleParams {
         c.positive("s_hs", x.s_hs);
         if x.pde_cells < 10 || x.pde_cells > 100_000 {
             c.fail("pde_cells", x.pde_cells, "must be between 10 and 100000");
+        }
+        let e = &self.energetics;
+        let mut c = Checker {
+            prefix: &format!("{prefix}energetics."),
+            errors: c.errors,
+        };
+        c.positive("atp_free_energy", e.atp_free_energy);
+        c.positive("hill_a_over_p0", e.hill_a_over_p0);
+        if !(0.0..1.0).contains(&e.activation_share) {
+            c.fail("activation_share", e.activation_share, "must be in [0, 1)");
+        }
+        if !(0.0..=1.0).contains(&e.slow_twitch_ratio) {
+            c.fail("slow_twitch_ratio", e.slow_twitch_ratio, "must be in [0, 1]");
+        }
+        if let Some(m) = e.metabolic_mass {
+            c.positive("metabolic_mass", m);
         }
     }
 
