@@ -90,7 +90,11 @@ fn export_of_a_clamped_run_is_simulates_csv() {
     let (a, b) = simulate_and_export("pulse", &["pulse", "--model", "huxley"]);
     assert_same_text(&a, &b);
     assert_eq!(a.lines().count(), 1 + 3001);
-    assert!(a.lines().next().unwrap().ends_with(",crossbridge_energy"));
+    assert!(a
+        .lines()
+        .next()
+        .unwrap()
+        .ends_with(",phenomenological_energy"));
 }
 
 /// `export` of `input`: fails with one `error:` line naming the problem, writes no CSV.

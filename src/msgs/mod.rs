@@ -537,7 +537,7 @@ mod tests {
             ),
             (
                 "muscle_actuator_msgs/msg/ActuatorState",
-                "RIHS01_cc98e166df36e153a97b7b0724f2f7253e3ec4182662c9b4fd309ab254ab79eb",
+                "RIHS01_18ca2781f4598ed2c13314d95bb40066122c9b0bc819394fddfcbf88701f9714",
             ),
             (
                 "sensor_msgs/msg/JointState",

@@ -3,6 +3,10 @@
 //! tendon between the mass and the load. Written once for every contractile model.
 
 use crate::physics::contractile::force_length::{force_length, force_length_slope};
+use crate::physics::energetics::metabolic::{
+    mechanism_rates, MetabolicRates, MetabolicSample, MuscleProbe,
+};
+use crate::physics::energetics::probe::ProbeInputs;
 use crate::physics::model::ModelKind;
 use crate::physics::muscle_model::{CeInputs, ContractileModel};
 use crate::physics::observables::MuscleSnapshot;
@@ -24,6 +28,8 @@ pub struct Mtu {
     pub parallel: ExpLinearSpring,
     /// The contractile element.
     pub ce: Box<dyn ContractileModel>,
+    /// Its phenomenological energy model (docs/model.md §11.4).
+    pub probe: MuscleProbe,
 }
 
 impl Mtu {
@@ -34,6 +40,13 @@ impl Mtu {
             tendon: tendon(params),
             parallel: parallel_spring(params),
             ce: model.build(params)?,
+            probe: MuscleProbe {
+                model: params.energetics.energy_model.phenomenological(),
+                muscle: params
+                    .energetics
+                    .probe_muscle(params.f_max, params.l_opt, params.v_max),
+                atp_free_energy_j: params.energetics.atp_free_energy,
+            },
         })
     }
 
@@ -88,7 +101,7 @@ impl Mtu {
         self.ce.state_scales(&mut out[2..]);
     }
 
-    /// Everything observable about this MTU at muscle state `s = [l_m, v, x...]`, tendon length
+    /// Everything observable about this MTU but its energetics ([`Mtu::metabolic`]) at muscle state `s = [l_m, v, x...]`, tendon length
     /// l_t, excitation u and activation a; the force is the tendon's, F_SE(l_t).
     pub fn outputs(&self, excitation: f64, activation: f64, s: &[f64], l_t: f64) -> MuscleSnapshot {
         let (l_m, v, x) = (s[0], s[1], &s[2..]);
@@ -113,6 +126,48 @@ impl Mtu {
             tendon_energy: self.tendon.energy(l_t),
             fiber_energy: self.parallel.energy(l_m),
             crossbridge_energy: self.ce.energy(x),
+            // The energetics are the stepping's: rates at the tick's end from the element that
+            // was stepped, energies integrated over the ticks (sim::energy).
+            ..MuscleSnapshot::default()
+        }
+    }
+
+    /// What the phenomenological energy model reads at muscle state `s = [l_m, v, x...]`,
+    /// excitation u and activation a.
+    pub fn probe_inputs(&self, excitation: f64, activation: f64, s: &[f64]) -> ProbeInputs {
+        let (l_m, v, x) = (s[0], s[1], &s[2..]);
+        let ce = self.ce_inputs(activation, l_m, v);
+        ProbeInputs {
+            excitation,
+            activation,
+            fibre_length_norm: l_m / self.params.l_opt,
+            force_length: ce.overlap,
+            fibre_velocity_m_s: v,
+            active_force_n: self.ce.force(&ce, x),
+            passive_force_n: self.parallel.force(l_m),
+        }
+    }
+
+    /// The metabolic rates at muscle state `s`, excitation u and activation a (docs/model.md
+    /// §11.6), with the mechanism's and the probe's inputs they came from. Models with state
+    /// outside the ODE must be asked after the sub-step hooks have brought it in step with `s`.
+    pub fn metabolic(&self, excitation: f64, activation: f64, s: &[f64]) -> MetabolicSample {
+        let x = self.probe_inputs(excitation, activation, s);
+        let ce = self.ce_inputs(activation, s[0], s[1]);
+        let mechanism = self.ce.bridge_energy(&ce, &s[2..]).map(|(fluxes, b)| {
+            mechanism_rates(
+                b,
+                &fluxes,
+                activation,
+                x.active_force_n,
+                x.fibre_velocity_m_s,
+            )
+        });
+        let probe = self.probe.rates(&x);
+        MetabolicSample {
+            mechanism,
+            probe_inputs: x,
+            rates: MetabolicRates::of(mechanism.as_ref(), &probe, self.probe.atp_free_energy_j),
         }
     }
 

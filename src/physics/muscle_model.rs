@@ -6,12 +6,15 @@
 //! - the size of its own state (0 for Hill, Q0..Q2 for the Huxley models) and their scales;
 //! - the rates of that state, the contractile force F_CE, the stiffness k_CE and the
 //!   cross-bridge energy, at a given activation, fibre length and velocity;
+//! - for models with bonds, the fluxes that carry energy (docs/model.md §11);
 //! - optional hooks around each implicit sub-step, for state that lives outside the ODE (the full
 //!   Huxley model's bond distribution), and how it wants to be sub-stepped.
 //!
 //! The mechanics around it (fibre mass, springs, tendon, joints) are written once, in
 //! `physics::mtu` and `physics::plant`.
 
+use crate::physics::energetics::bridge_flux::EnergyFluxes;
+use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
 use std::fmt;
@@ -61,6 +64,15 @@ pub trait ContractileModel: fmt::Debug + Send + Sync {
     /// The Distribution-Moment quantities Q0, Q1, Q2 it publishes (zeros for models without
     /// bonds).
     fn moments(&self, x: &[f64]) -> [f64; 3];
+    /// The energy-carrying fluxes of its bonds at this state and the constants that turn them
+    /// into watts (docs/model.md §11.1–11.2); `None` for a model without bonds.
+    fn bridge_energy(
+        &self,
+        _ce: &CeInputs,
+        _x: &[f64],
+    ) -> Option<(EnergyFluxes, &BridgeEnergetics)> {
+        None
+    }
     /// Hook before a fixed sub-step starting at `t0` (time within the tick) of length `dt`.
     fn before_substep(&mut self, _t0: f64, _dt: f64) {}
     /// Hook after a fixed sub-step: may advance state outside the ODE and overwrite `x`.

@@ -87,6 +87,27 @@ observables! {
         fiber_energy: "J",
         /// Cross-bridge elastic energy, J.
         crossbridge_energy: "J",
+        /// Metabolic power, W: the bridges' ATP at detachment plus the calcium handling for
+        /// the Huxley models, the phenomenological model's for Hill (docs/model.md §11.6).
+        metabolic_power: "W",
+        /// Activation heat rate (phenomenological: activation and maintenance), W.
+        activation_heat_rate: "W",
+        /// Shortening and lengthening heat rate (Huxley models: the bridges' heat), W.
+        shortening_heat_rate: "W",
+        /// Work rate of the contractile element counted in the metabolic power, W (shortening
+        /// positive).
+        work_rate: "W",
+        /// Rate of change of the energy the attached bridges hold (0 for Hill), W; the four
+        /// parts above and this sum to the metabolic power.
+        bridge_storage_rate: "W",
+        /// ATP rate, mol/s (Hill: the metabolic power in ATP at the energy per ATP).
+        atp_rate: "mol/s",
+        /// Metabolic energy since start (the integral of the metabolic power), J.
+        metabolic_energy: "J",
+        /// The phenomenological model's metabolic power, for every model, W.
+        phenomenological_power: "W",
+        /// The phenomenological model's energy since start, J.
+        phenomenological_energy: "J",
     }
 }
 

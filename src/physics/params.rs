@@ -314,7 +314,11 @@ impl MuscleParams {
             c.fail("activation_share", e.activation_share, "must be in [0, 1)");
         }
         if !(0.0..=1.0).contains(&e.slow_twitch_ratio) {
-            c.fail("slow_twitch_ratio", e.slow_twitch_ratio, "must be in [0, 1]");
+            c.fail(
+                "slow_twitch_ratio",
+                e.slow_twitch_ratio,
+                "must be in [0, 1]",
+            );
         }
         if let Some(m) = e.metabolic_mass {
             c.positive("metabolic_mass", m);

@@ -93,9 +93,49 @@ pub fn ros2msg_schema<'a>(
     Ok(out)
 }
 
+/// The field names of `pkg/Type`'s definition within a `ros2msg` schema text (the root's
+/// when `root` names it, else its `MSG: pkg/Type` section), constants left out; `None` when
+/// the schema does not define it.
+pub fn field_names(schema: &str, type_name: &str, root: bool) -> Option<Vec<String>> {
+    let mut sections = schema.split(SEPARATOR);
+    let body = if root {
+        sections.next()?
+    } else {
+        let header = format!("MSG: {type_name}");
+        sections.find_map(|s| {
+            let s = s.trim_start_matches('\n');
+            s.strip_prefix(header.as_str())
+                .filter(|rest| rest.starts_with('\n'))
+        })?
+    };
+    let fields = body
+        .lines()
+        .filter_map(|line| {
+            let line = line.split('#').next().unwrap_or("").trim();
+            let mut words = line.split_whitespace();
+            let (_ty, name) = (words.next()?, words.next()?);
+            (!name.contains('=')).then(|| name.to_string())
+        })
+        .collect();
+    Some(fields)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn field_names_of_a_section() {
+        let text = format!(
+            "string A=\"a\"\nstd_msgs/Header header # c\nfloat64 x\n{SEPARATOR}\nMSG: std_msgs/Header\nint32 sec # s\nstring frame_id\n"
+        );
+        assert_eq!(field_names(&text, "root", true).unwrap(), ["header", "x"]);
+        assert_eq!(
+            field_names(&text, "std_msgs/Header", false).unwrap(),
+            ["sec", "frame_id"]
+        );
+        assert_eq!(field_names(&text, "std_msgs/Head", false), None);
+    }
 
     #[test]
     fn appends_dependencies_once() {

@@ -3,9 +3,12 @@
 //! recording spans (replay simulates every tick up to the last); finite values; states naming
 //! the run's muscles and joints; inputs in tick order with one value per name.
 
+use super::channels::STATE_TYPE;
 use super::limits::MAX_RECORDED_TICKS;
 use super::RunMeta;
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
+use crate::recording::schema::field_names;
+use crate::recording::Recording;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use crate::text::excerpt;
 
@@ -127,6 +130,44 @@ pub(super) fn check_length(
              span only {recorded_span_s:.6e} s",
             meta.rate_hz
         ));
+    }
+    Ok(())
+}
+
+/// The `MuscleState` of every recorded `ActuatorState` schema has this version's fields: an
+/// older recording (one made before the energetics fields, say) is refused with the fields it
+/// lacks, not decoded into garbage.
+pub(super) fn check_state_schema(rec: &Recording) -> Result<(), String> {
+    const MUSCLE_TYPE: &str = "muscle_actuator_msgs/MuscleState";
+    let want: Vec<&str> = std::iter::once("name")
+        .chain(MuscleSnapshot::FIELDS)
+        .collect();
+    for ch in rec.channels.values() {
+        let Some(schema) = ch.schema.as_ref().filter(|s| s.name == STATE_TYPE) else {
+            continue;
+        };
+        let text = String::from_utf8_lossy(&schema.data);
+        let have = field_names(&text, MUSCLE_TYPE, false).unwrap_or_default();
+        if have != want {
+            let missing: Vec<&str> = want
+                .iter()
+                .copied()
+                .filter(|f| !have.iter().any(|h| h == f))
+                .collect();
+            return Err(format!(
+                "channel {}: its {MUSCLE_TYPE} has {} fields where this version's has {}{}; \
+                 the recording was made by another version of muscle_actuator, and replay, \
+                 compare and export read this version's recordings only",
+                excerpt(&ch.topic),
+                have.len(),
+                want.len(),
+                if missing.is_empty() {
+                    String::new()
+                } else {
+                    format!(" (it lacks {})", excerpt(&missing.join(", ")))
+                }
+            ));
+        }
     }
     Ok(())
 }

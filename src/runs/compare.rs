@@ -26,6 +26,22 @@ pub struct SignalDiff {
     pub rise_time_b: Option<f64>,
 }
 
+/// What one muscle spent over the compared span, in each run (docs/model.md §11.6).
+#[derive(Debug, Clone, Serialize)]
+pub struct EnergyFigures {
+    /// The muscle's name.
+    pub muscle: String,
+    /// Metabolic energy over the span (the rise of `metabolic_energy`), J.
+    pub energy_a_j: f64,
+    pub energy_b_j: f64,
+    /// Root mean square of `metabolic_power` over the span's samples, W.
+    pub rms_power_a_w: f64,
+    pub rms_power_b_w: f64,
+    /// The phenomenological model's energy over the span, J.
+    pub phenomenological_energy_a_j: f64,
+    pub phenomenological_energy_b_j: f64,
+}
+
 /// The comparison.
 #[derive(Debug, Clone, Serialize)]
 pub struct Comparison {
@@ -37,6 +53,8 @@ pub struct Comparison {
     /// Samples compared.
     pub samples: usize,
     pub signals: Vec<SignalDiff>,
+    /// What each muscle spent in the common span, in each run.
+    pub energies: Vec<EnergyFigures>,
     /// Warnings on the files read (one per file cut by a crash, read up to the cut).
     #[serde(skip)]
     pub warnings: Vec<String>,
@@ -44,7 +62,14 @@ pub struct Comparison {
 
 /// The muscle fields compared, by their names in the one field list
 /// ([`crate::sim::snapshot::MuscleSnapshot::FIELDS`]).
-pub const MUSCLE_SIGNALS: [&str; 3] = ["force", "fiber_length", "stiffness"];
+pub const MUSCLE_SIGNALS: [&str; 6] = [
+    "force",
+    "fiber_length",
+    "stiffness",
+    "metabolic_power",
+    "metabolic_energy",
+    "phenomenological_energy",
+];
 /// The joint fields compared ([`crate::sim::snapshot::JointSnapshot::FIELDS`]).
 pub const JOINT_SIGNALS: [&str; 3] = ["position", "torque", "stiffness"];
 
@@ -208,6 +233,12 @@ pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> 
             rise_time_b: rise_time(&vb),
         });
     }
+    let energies = a
+        .meta
+        .muscles
+        .iter()
+        .map(|m| energy_figures(m, &sa, &sb, start, end))
+        .collect();
     let c = Comparison {
         model_a: a.meta.model.name().into(),
         model_b: b.meta.model.name().into(),
@@ -215,10 +246,47 @@ pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> 
         end,
         samples,
         signals,
+        energies,
         warnings: Vec::new(),
     };
     c.check_finite()?;
     Ok(c)
+}
+
+/// Muscle `m`'s energy figures over [start, end] from the two runs' series.
+fn energy_figures(
+    m: &str,
+    sa: &[(String, Vec<(f64, f64)>)],
+    sb: &[(String, Vec<(f64, f64)>)],
+    start: f64,
+    end: f64,
+) -> EnergyFigures {
+    let within = |s: &[(String, Vec<(f64, f64)>)], f: &str| -> Vec<(f64, f64)> {
+        let key = format!("{m}.{f}");
+        s.iter()
+            .find(|(n, _)| *n == key)
+            .map(|(_, v)| {
+                v.iter()
+                    .copied()
+                    .filter(|p| p.0 >= start && p.0 <= end)
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    let rise = |v: &[(f64, f64)]| match (v.first(), v.last()) {
+        (Some(a), Some(b)) => b.1 - a.1,
+        _ => f64::NAN,
+    };
+    let rms = |v: &[(f64, f64)]| (v.iter().map(|p| p.1 * p.1).sum::<f64>() / v.len() as f64).sqrt();
+    EnergyFigures {
+        muscle: m.to_string(),
+        energy_a_j: rise(&within(sa, "metabolic_energy")),
+        energy_b_j: rise(&within(sb, "metabolic_energy")),
+        rms_power_a_w: rms(&within(sa, "metabolic_power")),
+        rms_power_b_w: rms(&within(sb, "metabolic_power")),
+        phenomenological_energy_a_j: rise(&within(sa, "phenomenological_energy")),
+        phenomenological_energy_b_j: rise(&within(sb, "phenomenological_energy")),
+    }
 }
 
 impl Comparison {
@@ -283,6 +351,28 @@ impl Comparison {
                 d.peak_time_b,
                 opt(d.rise_time_a),
                 opt(d.rise_time_b)
+            ));
+        }
+        s.push_str(&format!(
+            "\n{:<26} {:>12} {:>12} {:>12} {:>12} {:>14} {:>14}\n",
+            "energy over the span",
+            "A (J)",
+            "B (J)",
+            "rms P A (W)",
+            "rms P B (W)",
+            "phenom. A (J)",
+            "phenom. B (J)"
+        ));
+        for e in &self.energies {
+            s.push_str(&format!(
+                "{:<26} {:>12.5e} {:>12.5e} {:>12.5e} {:>12.5e} {:>14.5e} {:>14.5e}\n",
+                e.muscle,
+                e.energy_a_j,
+                e.energy_b_j,
+                e.rms_power_a_w,
+                e.rms_power_b_w,
+                e.phenomenological_energy_a_j,
+                e.phenomenological_energy_b_j
             ));
         }
         s

@@ -53,6 +53,7 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
         format!("no {METADATA_NAME:?} metadata record: not a muscle_actuator recording")
     })?;
     let meta = RunMeta::from_map(meta_map)?;
+    checks::check_state_schema(rec)?;
     let ours = [STATE_TYPE, JOINT_STATE_TYPE, ACTIVATION_TYPE, LOAD_TYPE];
     let applied = |ty: &str, suffix: &str| {
         rec.messages

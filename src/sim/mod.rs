@@ -5,11 +5,12 @@
 //! - [`part`]: one independent part of a limb with its own stepper; [`jacobian`]: the plant's
 //!   Jacobian by blocks for the block-arrowhead iteration matrix (docs/model.md §8b);
 //! - [`actuator`]: [`Actuator`], the facade the node and the CLI step;
-//! - [`snapshot`]: what is observable after a tick;
+//! - [`snapshot`]: what is observable after a tick; [`energy`]: the energy spent since start;
 //! - [`scenario`]: the paper's experiments and scenario files; [`schedule`]: their input
 //!   schedules.
 
 pub mod actuator;
+pub mod energy;
 pub mod jacobian;
 pub mod part;
 pub mod scenario;

@@ -6,6 +6,7 @@ use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
 use crate::integrator::{esdirk::Esdirk, tableau::Tableau};
 use crate::integrator::{OdeSystem, Stats};
 use crate::physics::activation::activation_after;
+use crate::physics::energetics::metabolic::MetabolicSample;
 use crate::physics::muscle_model::SubstepMotion;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::stepping::Stepping;
@@ -164,6 +165,20 @@ impl Part {
         for (k, &i) in self.muscles.iter().enumerate() {
             activation[i] = memo.a[k];
         }
+    }
+
+    /// The global indices of its muscles, in local order.
+    pub fn muscles(&self) -> &[usize] {
+        &self.muscles
+    }
+
+    /// Local muscle k's metabolic rates after a tick (its state, the activation at the tick's
+    /// end, the tick's excitation), from this part's own contractile elements (whose state
+    /// outside the ODE, the full model's grid, is the one stepped).
+    pub fn metabolic(&self, k: usize) -> MetabolicSample {
+        let a = self.memo.borrow().a[k];
+        let s = self.plant.muscle_state(&self.y, k);
+        self.plant.mtus[k].metabolic(self.inputs.excitation[k], a, s)
     }
 
     /// Work counters of its stepper.

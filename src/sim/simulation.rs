@@ -5,8 +5,10 @@
 //! contractile model.
 
 use crate::integrator::Stats;
+use crate::physics::energetics::metabolic::MetabolicRates;
 use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
+use crate::sim::energy::MuscleEnergy;
 use crate::sim::part::Part;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 
@@ -41,6 +43,10 @@ pub struct Simulation {
     activation: Vec<f64>,
     y: Vec<f64>,
     tick: u64,
+    /// Per muscle: the energetics carried from tick to tick (sim::energy).
+    energy: Vec<MuscleEnergy>,
+    /// Per muscle: the rates at the current tick's start (scratch, kept to not allocate).
+    energy_start: Vec<MetabolicRates>,
 }
 
 impl Simulation {
@@ -89,6 +95,8 @@ impl Simulation {
             activation: vec![0.0; m],
             y: vec![0.0; n],
             tick: 0,
+            energy: vec![MuscleEnergy::default(); m],
+            energy_start: vec![MetabolicRates::default(); m],
             parts,
             plant,
         };
@@ -103,6 +111,11 @@ impl Simulation {
         self.plant.resting_state(&self.inputs, &mut self.y);
         for p in &mut self.parts {
             p.reset();
+        }
+        for (i, mtu) in self.plant.mtus.iter().enumerate() {
+            let s = self.plant.muscle_state(&self.y, i);
+            let rest = mtu.metabolic(self.inputs.excitation[i], 0.0, s);
+            self.energy[i] = MuscleEnergy::at_rest(rest);
         }
         self.tick = 0;
     }
@@ -158,6 +171,10 @@ impl Simulation {
     /// restores the previous state (of every part) and is reported.
     pub fn step(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
+        for (i, mtu) in self.plant.mtus.iter().enumerate() {
+            self.energy_start[i] =
+                self.energy[i].rates_at_start(&mtu.probe, self.inputs.excitation[i]);
+        }
         let mut ok = true;
         let mut stepped = 0;
         for p in &mut self.parts {
@@ -185,6 +202,9 @@ impl Simulation {
         }
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
+            for (k, &i) in p.muscles().iter().enumerate() {
+                self.energy[i].advance(&self.energy_start[i], p.metabolic(k), dt);
+            }
         }
         // A driven joint shared by several parts: each integrated θ' = ω0 with its own
         // sub-steps; the state holds the rule's value, whatever the rounding.
@@ -197,8 +217,26 @@ impl Simulation {
 
     /// Muscle i's published state.
     pub fn muscle_snapshot(&self, i: usize) -> MuscleSnapshot {
-        self.plant
-            .outputs(&self.y, &self.activation, &self.inputs, i)
+        let mut s = self
+            .plant
+            .outputs(&self.y, &self.activation, &self.inputs, i);
+        let e = &self.energy[i];
+        let r = &e.sample.rates;
+        s.metabolic_power = r.metabolic_w;
+        s.activation_heat_rate = r.activation_heat_w;
+        s.shortening_heat_rate = r.shortening_heat_w;
+        s.work_rate = r.work_w;
+        s.bridge_storage_rate = r.storage_w;
+        s.atp_rate = r.atp_rate_mol_s;
+        s.metabolic_energy = e.metabolic_j;
+        s.phenomenological_power = r.phenomenological_w;
+        s.phenomenological_energy = e.phenomenological_j;
+        s
+    }
+
+    /// Muscle i's energetics carried from tick to tick.
+    pub fn muscle_energy(&self, i: usize) -> &MuscleEnergy {
+        &self.energy[i]
     }
 
     /// Fills `out` with the published state (its vectors keep their storage).

@@ -10,7 +10,7 @@
 //!   et al. (2016), and Bhargava et al. (2004), as OpenSim's metabolic probes compute them
 //!   ([`probe`], [`umberger`], [`bhargava`]; the selection in [`phenomenological`]).
 //!
-//! [`params`] holds a muscle's energetics parameters (the configuration's `[muscle.energetics]`).
+//! [`metabolic`] is what a run publishes of them per muscle and instant. [`params`] holds a muscle's energetics parameters (the configuration's `[muscle.energetics]`).
 //! [`steady`] puts both together for isovelocity steady states at full activation and optimal
 //! length. Every function is stateless; units are SI (W, J, mol/s, N, m/s) unless a name says
 //! otherwise. Velocities follow docs/model.md: `v` lengthens the fibre, `v_s = -v` shortens it;
@@ -20,6 +20,7 @@ pub mod bhargava;
 pub mod bridge_flux;
 pub mod bridge_power;
 pub mod huxley_steady;
+pub mod metabolic;
 pub mod params;
 pub mod phenomenological;
 pub mod probe;

@@ -61,7 +61,7 @@ impl ProbeMuscle {
 }
 
 /// What a probe reads from the muscle at one instant.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ProbeInputs {
     /// Excitation u, [0, 1].
     pub excitation: f64,

@@ -4,6 +4,10 @@
 
 use crate::physics::contractile::calibration::{self, CrossBridgeScale};
 use crate::physics::contractile::distribution_moment::moment_rates;
+use crate::physics::energetics::bridge_flux::{gaussian_fluxes, EnergyFluxes};
+use crate::physics::energetics::bridge_power::BridgeEnergyScale;
+use crate::physics::energetics::metabolic::BridgeEnergetics;
+use crate::physics::energetics::steady::dm_isometric_bridge_w;
 use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
@@ -32,11 +36,18 @@ pub static SPEC: ModelSpec = ModelSpec {
 pub struct DistributionMoment {
     /// Its calibration.
     pub scale: CrossBridgeScale,
+    /// Its bridges' energetics (docs/model.md §11.2).
+    pub energetics: BridgeEnergetics,
 }
 
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
     let scale = calibration::calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
-    Ok(Box::new(DistributionMoment { scale }))
+    let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
+    let energetics = BridgeEnergetics {
+        scale: e,
+        isometric_bridge_w: dm_isometric_bridge_w(&scale, &e),
+    };
+    Ok(Box::new(DistributionMoment { scale, energetics }))
 }
 
 fn q(x: &[f64]) -> [f64; 3] {
@@ -69,6 +80,12 @@ impl ContractileModel for DistributionMoment {
     }
     fn moments(&self, x: &[f64]) -> [f64; 3] {
         q(x)
+    }
+    /// The Gaussian closure's fluxes in closed form (docs/model.md §11.1).
+    fn bridge_energy(&self, ce: &CeInputs, x: &[f64]) -> Option<(EnergyFluxes, &BridgeEnergetics)> {
+        let r = ce.activation * ce.overlap;
+        let fluxes = gaussian_fluxes(&self.scale.rates, r, &q(x)).energy();
+        Some((fluxes, &self.energetics))
     }
     fn clone_box(&self) -> Box<dyn ContractileModel> {
         Box::new(self.clone())

@@ -7,6 +7,10 @@
 
 use crate::physics::contractile::calibration::{self, CrossBridgeScale};
 use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
+use crate::physics::energetics::bridge_flux::{grid_fluxes, EnergyFluxes};
+use crate::physics::energetics::bridge_power::BridgeEnergyScale;
+use crate::physics::energetics::metabolic::BridgeEnergetics;
+use crate::physics::energetics::steady::exact_isometric_bridge_w;
 use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepMotion};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
@@ -55,13 +59,22 @@ pub struct HuxleyPde {
     pub scale: CrossBridgeScale,
     /// The bond distribution.
     pub grid: CrossBridgeGrid,
+    /// Its bridges' energetics (docs/model.md §11.2).
+    pub energetics: BridgeEnergetics,
     held: HeldClosure,
     previous: Option<[f64; 3]>,
 }
 
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
+    let scale = calibration::calibrate_exact(p);
+    let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
+    let energetics = BridgeEnergetics {
+        scale: e,
+        isometric_bridge_w: exact_isometric_bridge_w(&scale, &e),
+    };
     Ok(Box::new(HuxleyPde {
-        scale: calibration::calibrate_exact(p),
+        scale,
+        energetics,
         grid: CrossBridgeGrid::new(p.crossbridge.pde_cells, GRID_EXTENT),
         held: HeldClosure::default(),
         previous: None,
@@ -98,6 +111,17 @@ impl ContractileModel for HuxleyPde {
     }
     fn moments(&self, x: &[f64]) -> [f64; 3] {
         [x[0], x[1], x[2]]
+    }
+    /// The grid's own quadrature of the fluxes (docs/model.md §11.1); the grid is in step with
+    /// `x` after every sub-step.
+    fn bridge_energy(
+        &self,
+        ce: &CeInputs,
+        _x: &[f64],
+    ) -> Option<(EnergyFluxes, &BridgeEnergetics)> {
+        let r = ce.activation * ce.overlap;
+        let fluxes = grid_fluxes(&self.grid, &self.scale.rates, r).energy();
+        Some((fluxes, &self.energetics))
     }
     fn before_substep(&mut self, t0: f64, dt: f64) {
         let phi = self.grid.closure(&self.scale.rates);

@@ -1,0 +1,156 @@
+//! One muscle's metabolic rates at one instant, as a run publishes them (docs/model.md §11.6):
+//! the mechanism's (the Huxley models' bridges and their calcium handling) where the model has
+//! bonds, the phenomenological model's for every model, and which of the two is the muscle's
+//! metabolic power.
+
+use crate::physics::energetics::bridge_flux::EnergyFluxes;
+use crate::physics::energetics::bridge_power::{
+    activation_heat_w, bridge_powers, BridgeEnergyScale, AVOGADRO_PER_MOL,
+};
+use crate::physics::energetics::phenomenological::PhenomenologicalModel;
+use crate::physics::energetics::probe::{ProbeInputs, ProbeMuscle, ProbeRates};
+
+/// The cross-bridge energetics of one muscle's model: the scale from fluxes to watts and the
+/// bridges' isometric chemical power at full activation (the activation cost's scale), W.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BridgeEnergetics {
+    /// Fluxes to watts and moles.
+    pub scale: BridgeEnergyScale,
+    /// The bridges' own isometric chemical power at full activation and optimal length, W.
+    pub isometric_bridge_w: f64,
+}
+
+/// The mechanism's rates: where the free energy of the ATP goes, W (ATP in mol/s).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MechanismRates {
+    /// Chemical power, ATP counted as it is split at detachment, plus the activation cost.
+    pub total_w: f64,
+    /// Activation (calcium-handling) heat.
+    pub activation_heat_w: f64,
+    /// The bridges' heat: free energy not stored at attachment plus strain released at
+    /// detachment.
+    pub bridge_heat_w: f64,
+    /// Work of the contractile element on its load, `F_CE v_s`.
+    pub work_w: f64,
+    /// Rate of change of the energy the attached bridges hold: their strain energy less the
+    /// free energy of the ATP they have yet to split, `dE_CE/dt - e N_hs B dQ0/dt`.
+    pub storage_w: f64,
+    /// ATP split per second: by detachments, and by the calcium pumps at e per molecule.
+    pub atp_rate_mol_s: f64,
+}
+
+/// The mechanism's rates from the fluxes, the activation a, the contractile force (N) and the
+/// fibre's lengthening velocity (m/s).
+pub fn mechanism_rates(
+    b: &BridgeEnergetics,
+    fluxes: &EnergyFluxes,
+    activation: f64,
+    force_n: f64,
+    lengthening_velocity_m_s: f64,
+) -> MechanismRates {
+    let p = bridge_powers(&b.scale, fluxes, force_n, lengthening_velocity_m_s);
+    let act = activation_heat_w(activation, b.scale.activation_share, b.isometric_bridge_w);
+    let per_mol = b.scale.atp_free_energy_j * AVOGADRO_PER_MOL;
+    MechanismRates {
+        total_w: p.chemical_w + act,
+        activation_heat_w: act,
+        bridge_heat_w: p.heat_w(),
+        work_w: p.work_w,
+        // Counted at detachment the chemical power is that at attachment less e N_hs B dQ0/dt.
+        storage_w: p.stored_rate_w - (p.chemical_at_attachment_w - p.chemical_w),
+        atp_rate_mol_s: p.atp_rate_mol_s + act / per_mol,
+    }
+}
+
+/// A muscle's phenomenological model, with the constants it reads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MuscleProbe {
+    /// The model and its options.
+    pub model: PhenomenologicalModel,
+    /// The muscle's constants (mass, Fmax, lopt, vmax, fibre types).
+    pub muscle: ProbeMuscle,
+    /// Energy per ATP, J (for its ATP equivalent).
+    pub atp_free_energy_j: f64,
+}
+
+impl MuscleProbe {
+    /// Its rates at one instant.
+    pub fn rates(&self, x: &ProbeInputs) -> ProbeRates {
+        self.model.rates(&self.muscle, x)
+    }
+}
+
+/// What a run publishes of one muscle's energetics at an instant (the rate fields of
+/// `MuscleState.msg`; the energies since start are the integrals of the two totals).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MetabolicRates {
+    /// Metabolic power: the mechanism's where there are bridges, else the phenomenological
+    /// model's, W.
+    pub metabolic_w: f64,
+    /// Activation (and, phenomenologically, maintenance) heat, W.
+    pub activation_heat_w: f64,
+    /// Shortening and lengthening heat (the bridges' heat for the mechanism), W.
+    pub shortening_heat_w: f64,
+    /// The work rate the metabolic power counts, W (shortening positive).
+    pub work_w: f64,
+    /// The bridges' storage rate, W (0 for the phenomenological models).
+    pub storage_w: f64,
+    /// ATP rate, mol/s (phenomenological: its power in ATP at e per molecule).
+    pub atp_rate_mol_s: f64,
+    /// The phenomenological model's total, W, whatever the contractile model.
+    pub phenomenological_w: f64,
+}
+
+impl MetabolicRates {
+    /// From the mechanism's rates (a model with bridges) and the phenomenological ones.
+    pub fn of(mechanism: Option<&MechanismRates>, probe: &ProbeRates, e_j: f64) -> Self {
+        match mechanism {
+            Some(m) => Self {
+                metabolic_w: m.total_w,
+                activation_heat_w: m.activation_heat_w,
+                shortening_heat_w: m.bridge_heat_w,
+                work_w: m.work_w,
+                storage_w: m.storage_w,
+                atp_rate_mol_s: m.atp_rate_mol_s,
+                phenomenological_w: probe.total_w(),
+            },
+            None => Self {
+                metabolic_w: probe.total_w(),
+                activation_heat_w: probe.activation_maintenance_w,
+                shortening_heat_w: probe.shortening_w,
+                work_w: probe.work_w,
+                storage_w: 0.0,
+                atp_rate_mol_s: probe.total_w() / (e_j * AVOGADRO_PER_MOL),
+                phenomenological_w: probe.total_w(),
+            },
+        }
+    }
+}
+
+/// One muscle's energetics at an instant: the mechanism's rates (models with bridges), what
+/// the phenomenological model read, and the published rates.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MetabolicSample {
+    /// The mechanism's rates, for a model with bridges.
+    pub mechanism: Option<MechanismRates>,
+    /// The phenomenological model's inputs.
+    pub probe_inputs: ProbeInputs,
+    /// The published rates.
+    pub rates: MetabolicRates,
+}
+
+impl MetabolicSample {
+    /// The same instant under another excitation (a tick's start, where the command changes):
+    /// the bridges do not see the excitation, the phenomenological models do.
+    pub fn with_excitation(&self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
+        let x = ProbeInputs {
+            excitation,
+            ..self.probe_inputs
+        };
+        MetabolicRates::of(
+            self.mechanism.as_ref(),
+            &probe.rates(&x),
+            probe.atp_free_energy_j,
+        )
+    }
+}

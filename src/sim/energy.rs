@@ -1,0 +1,45 @@
+//! Energy spent since start, per muscle (docs/model.md §11.6): the metabolic rates at each
+//! tick's end, carried to the next tick's start, and their integrals over the ticks.
+//!
+//! A tick's energy is the trapezoidal rule over the tick, `dt (P(start) + P(end)) / 2`: second
+//! order, like the fixed sub-steps, and exact for the powers that vary linearly within a tick.
+//! The power at a tick's start is that of the state the previous tick ended in under this
+//! tick's excitation: the bridges do not see the excitation (their rates are carried as they
+//! were), the phenomenological models do (theirs are recomputed).
+
+use crate::physics::energetics::metabolic::{MetabolicRates, MetabolicSample, MuscleProbe};
+
+/// One muscle's energetics carried from tick to tick.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MuscleEnergy {
+    /// At the last tick's end (or at rest after a reset).
+    pub sample: MetabolicSample,
+    /// Metabolic energy since start, J (the integral of `rates.metabolic_w`).
+    pub metabolic_j: f64,
+    /// The phenomenological model's energy since start, J.
+    pub phenomenological_j: f64,
+}
+
+impl MuscleEnergy {
+    /// At rest: the sample of the resting state, no energy spent.
+    pub fn at_rest(sample: MetabolicSample) -> Self {
+        Self {
+            sample,
+            metabolic_j: 0.0,
+            phenomenological_j: 0.0,
+        }
+    }
+
+    /// The rates at the start of a tick under `excitation`.
+    pub fn rates_at_start(&self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
+        self.sample.with_excitation(probe, excitation)
+    }
+
+    /// After a tick of `dt` seconds that started at rates `start` and ended at `end`.
+    pub fn advance(&mut self, start: &MetabolicRates, end: MetabolicSample, dt: f64) {
+        let r = &end.rates;
+        self.metabolic_j += 0.5 * dt * (start.metabolic_w + r.metabolic_w);
+        self.phenomenological_j += 0.5 * dt * (start.phenomenological_w + r.phenomenological_w);
+        self.sample = end;
+    }
+}
