@@ -3,7 +3,9 @@
 //! sub-stepping in its help come from [`MODELS`](crate::physics::model::MODELS).
 
 use crate::config::ActuatorConfig;
+use crate::physics::energetics::params::UnknownEnergyModel;
 use crate::physics::model::{join, ModelKind, UnknownModel};
+use crate::physics::params::EnergyModel;
 use crate::physics::stepping::Stepping;
 use crate::runs::limits;
 use crate::sim::scenario::Scenario;
@@ -34,6 +36,8 @@ pub enum Command {
         /// Limb configuration: a built-in name (elbow, arm) or a file (TOML); default: elbow.
         #[arg(long)]
         config: Option<PathBuf>,
+        #[arg(long, help = energy_model_help())]
+        energy_model: Option<String>,
         /// Tick rate, Hz.
         #[arg(long, default_value_t = 1000.0)]
         rate_hz: f64,
@@ -161,6 +165,25 @@ fn load_config(path: &Option<PathBuf>) -> Result<ActuatorConfig, String> {
     Ok(cfg)
 }
 
+/// The help of `--energy-model`, from the list of energy models.
+fn energy_model_help() -> String {
+    format!(
+        "Phenomenological energy model of every muscle: {} (default: each muscle's \
+         energetics.energy_model in the configuration, umberger unless set)",
+        EnergyModel::names()
+    )
+}
+
+/// `cfg` with every muscle's energy model set to `name`, if one is given.
+fn with_energy_model(cfg: ActuatorConfig, name: Option<&str>) -> Result<ActuatorConfig, String> {
+    match name {
+        Some(n) => {
+            Ok(cfg.with_energy_model(n.parse().map_err(|e: UnknownEnergyModel| e.to_string())?))
+        }
+        None => Ok(cfg),
+    }
+}
+
 /// Runs one parsed command.
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
@@ -168,6 +191,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
             scenario,
             model,
             config,
+            energy_model,
             rate_hz,
             substeps,
             csv,
@@ -175,7 +199,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         } => simulate(
             &scenario,
             &model,
-            &config,
+            &with_energy_model(load_config(&config)?, energy_model.as_deref())?,
             rate_hz,
             substeps,
             csv.as_deref(),
@@ -221,7 +245,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
 fn simulate(
     scenario: &str,
     model: &str,
-    config: &Option<PathBuf>,
+    cfg: &ActuatorConfig,
     rate_hz: f64,
     substeps: Option<usize>,
     csv: Option<&Path>,
@@ -232,7 +256,6 @@ fn simulate(
         limits::check_substeps("--substeps", n)?;
     }
     let model = parse_model(model)?;
-    let cfg = &load_config(config)?;
     let sc = Scenario::resolve(scenario, &cfg.muscles[0].params)?;
     let stepping = substeps
         .map(Stepping::Fixed)

@@ -3,7 +3,7 @@
 //! describes.
 
 use crate::physics::moment_arm::MomentArm;
-use crate::physics::params::{JointParams, MuscleParams};
+use crate::physics::params::{EnergyModel, JointParams, MuscleParams};
 use crate::physics::topology::{Anchor, MuscleSpec, Span, Topology};
 use serde::{Deserialize, Serialize};
 
@@ -94,6 +94,15 @@ impl ActuatorConfig {
     /// Joint names, in order.
     pub fn joint_names(&self) -> Vec<String> {
         self.joints.iter().map(|j| j.name.clone()).collect()
+    }
+
+    /// This configuration with every muscle's phenomenological energy model set to `m` (the
+    /// node's `energy_model` parameter, `--energy-model` on the command line).
+    pub fn with_energy_model(mut self, m: EnergyModel) -> Self {
+        for muscle in &mut self.muscles {
+            muscle.params.energetics.energy_model = m;
+        }
+        self
     }
 
     /// The topology this configuration describes (validate first: unknown joints are skipped).

@@ -163,7 +163,10 @@ fn validate_param(
             candidate.clock.name()
         ));
     }
-    if matches!(name, params::MODEL | params::RATE_HZ | params::CONFIG) {
+    if matches!(
+        name,
+        params::MODEL | params::RATE_HZ | params::CONFIG | params::ENERGY_MODEL
+    ) {
         build_off_executor(&candidate)?;
     }
     Ok(())
@@ -185,7 +188,7 @@ fn apply_param(
     let mut candidate = p.clone();
     candidate.set(name, value, false)?;
     match name {
-        params::MODEL | params::RATE_HZ | params::CONFIG => {
+        params::MODEL | params::RATE_HZ | params::CONFIG | params::ENERGY_MODEL => {
             let act = build_off_executor(&candidate)?;
             if let Ok(mut n) = shared.names.write() {
                 *n = Names::of(&act);

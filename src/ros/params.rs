@@ -2,6 +2,7 @@
 
 use super::clock::ClockMode;
 use crate::physics::model::ModelKind;
+use crate::physics::params::EnergyModel;
 use crate::sim::Actuator;
 use crate::{config::ActuatorConfig, text::excerpt};
 use ros2_client::ParameterValue;
@@ -17,8 +18,9 @@ pub const CLOCK: &str = "clock";
 pub const REAL_TIME_FACTOR: &str = "real_time_factor";
 pub const CLOCK_RATE_HZ: &str = "clock_rate_hz";
 pub const JOINT_STATE_TIMEOUT_TICKS: &str = "joint_state_timeout_ticks";
+pub const ENERGY_MODEL: &str = "energy_model";
 /// All of them, in the order they are declared.
-pub const ALL: [&str; 10] = [
+pub const ALL: [&str; 11] = [
     MODEL,
     RATE_HZ,
     PUBLISH_RATE_HZ,
@@ -29,6 +31,7 @@ pub const ALL: [&str; 10] = [
     REAL_TIME_FACTOR,
     CLOCK_RATE_HZ,
     JOINT_STATE_TIMEOUT_TICKS,
+    ENERGY_MODEL,
 ];
 /// Highest `real_time_factor` (beyond it, 0 = as fast as possible is the honest value).
 pub const MAX_REAL_TIME_FACTOR: f64 = 1e6;
@@ -63,6 +66,9 @@ pub struct NodeParams {
     pub clock_rate_hz: f64,
     /// Driven joints: ticks without a `JointState` after which their input is reported stale.
     pub joint_state_timeout_ticks: i64,
+    /// The phenomenological energy model of every muscle; `None` (the parameter empty): each
+    /// muscle's `energetics.energy_model` from the configuration.
+    pub energy_model: Option<EnergyModel>,
 }
 
 impl Default for NodeParams {
@@ -78,6 +84,7 @@ impl Default for NodeParams {
             real_time_factor: 0.0,
             clock_rate_hz: 100.0,
             joint_state_timeout_ticks: 100,
+            energy_model: None,
         }
     }
 }
@@ -96,6 +103,11 @@ impl NodeParams {
             REAL_TIME_FACTOR => ParameterValue::Double(self.real_time_factor),
             CLOCK_RATE_HZ => ParameterValue::Double(self.clock_rate_hz),
             JOINT_STATE_TIMEOUT_TICKS => ParameterValue::Integer(self.joint_state_timeout_ticks),
+            ENERGY_MODEL => ParameterValue::String(
+                self.energy_model
+                    .map(|m| m.name().to_string())
+                    .unwrap_or_default(),
+            ),
             _ => return None,
         })
     }
@@ -178,6 +190,16 @@ impl NodeParams {
                     ))
                 }
             },
+            ENERGY_MODEL => {
+                let s = as_string(value)?;
+                self.energy_model = if s.is_empty() {
+                    None
+                } else {
+                    Some(s.parse::<EnergyModel>().map_err(|e| {
+                        format!("{e} (or empty: each muscle's from the configuration)")
+                    })?)
+                };
+            }
             other => {
                 return Err(format!(
                     "unknown parameter {:?} (known: {})",
@@ -189,13 +211,17 @@ impl NodeParams {
         Ok(())
     }
 
-    /// Loads the configuration these parameters name.
+    /// Loads the configuration these parameters name, with `energy_model` applied.
     pub fn load_config(&self) -> Result<ActuatorConfig, String> {
-        if self.config.is_empty() {
-            Ok(ActuatorConfig::default())
+        let cfg = if self.config.is_empty() {
+            ActuatorConfig::default()
         } else {
-            ActuatorConfig::resolve(&self.config).map_err(|e| e.to_string())
-        }
+            ActuatorConfig::resolve(&self.config).map_err(|e| e.to_string())?
+        };
+        Ok(match self.energy_model {
+            Some(m) => cfg.with_energy_model(m),
+            None => cfg,
+        })
     }
 
     /// Builds the actuator these parameters describe (checks the whole set).
@@ -241,7 +267,7 @@ fn double(name: &str, v: &ParameterValue, lenient: bool) -> Result<f64, String> 
 fn string(name: &str, v: &ParameterValue) -> Result<String, String> {
     match v {
         ParameterValue::String(s) => {
-            let (limit, too_long) = if name == MODEL || name == CLOCK {
+            let (limit, too_long) = if name == MODEL || name == CLOCK || name == ENERGY_MODEL {
                 ("64 characters", s.chars().count() > MAX_NAME_CHARS)
             } else {
                 ("4096 bytes", s.len() > MAX_PATH_BYTES)

@@ -1,0 +1,241 @@
+//! Energetics on runs (docs/model.md §11.6): the Huxley models' energy balance with every term
+//! from its own source, the parts of each power against its total, the energies against the
+//! integrals of the powers, and the physiological sense of the numbers (isometric cost between
+//! the phenomenological models', the cost of stiffness rising with co-contraction).
+
+use muscle_actuator::config::ActuatorConfig;
+use muscle_actuator::physics::contractile::calibration;
+use muscle_actuator::physics::energetics::bridge_power::BridgeEnergyScale;
+use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::params::{EnergyModel, MuscleParams};
+use muscle_actuator::sim::scenario::{Run, Scenario};
+use muscle_actuator::sim::simulation::default_stepping;
+use muscle_actuator::sim::MuscleSnapshot;
+use std::path::Path;
+
+fn scenario(name: &str) -> Scenario {
+    match name.strip_suffix(".toml") {
+        Some(_) => Scenario::from_file(&Path::new(env!("CARGO_MANIFEST_DIR")).join(name)).unwrap(),
+        None => Scenario::built_in(name, &MuscleParams::default()).unwrap(),
+    }
+}
+
+fn run(name: &str, cfg: &ActuatorConfig, model: ModelKind, rate_hz: f64) -> Run {
+    scenario(name)
+        .run(cfg, model, rate_hz, default_stepping(model))
+        .unwrap()
+}
+
+/// The trapezoidal integral of `f` over muscle i's records, J for a power in W.
+fn integral(run: &Run, i: usize, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
+    run.records
+        .windows(2)
+        .map(|w| 0.5 * (w[1].time - w[0].time) * (f(&w[0].muscles[i]) + f(&w[1].muscles[i])))
+        .sum()
+}
+
+/// Energy per unit Q0 of the bridges yet to split their ATP, `e N_hs B`, J (§11.2).
+fn atp_energy_per_q0(model: ModelKind, p: &MuscleParams) -> f64 {
+    let scale = if model == ModelKind::HUXLEY {
+        calibration::calibrate_distribution_moment(p).unwrap()
+    } else {
+        calibration::calibrate_exact(p)
+    };
+    BridgeEnergyScale::new(&scale, p, &p.energetics.bridge()).chemical_power_w(1.0)
+}
+
+const BALANCE_RUNS: [&str; 3] = [
+    "pulse",
+    "scenarios/elbow_cocontraction_ramp.toml",
+    "scenarios/elbow_cocontraction_10hz.toml",
+];
+
+/// The bridges' chemical energy, counted at attachment, equals the contractile element's work
+/// plus the bridges' heat plus the change of their strain energy. The run publishes ATP as it
+/// is split, at detachment; counted at attachment it is more by e times the change in the
+/// number of attached bridges, `e N_hs B ΔQ0`, which the test adds from the states. Every term
+/// has its own source: the chemical power from the detachment flux D_0, the heat from A_0, A_2
+/// and D_2, the work from F_CE v, the strain energy from Q2 and the bridge count from Q0.
+#[test]
+fn bridges_balance_chemical_energy_with_work_heat_and_strain() {
+    let cfg = ActuatorConfig::default();
+    let p = &cfg.muscles[0].params;
+    for model in [ModelKind::HUXLEY, ModelKind::HUXLEY_PDE] {
+        let per_q0 = atp_energy_per_q0(model, p);
+        for name in BALANCE_RUNS {
+            let r = run(name, &cfg, model, 1000.0);
+            for i in 0..r.muscle_names.len() {
+                let chem_detach = integral(&r, i, |m| m.metabolic_power - m.activation_heat_rate);
+                let work = integral(&r, i, |m| m.work_rate);
+                let heat = integral(&r, i, |m| m.shortening_heat_rate);
+                let (first, last) = (
+                    &r.records[0].muscles[i],
+                    &r.records.last().unwrap().muscles[i],
+                );
+                let strain = last.crossbridge_energy - first.crossbridge_energy;
+                let bound = per_q0 * (last.q0 - first.q0);
+                let chem_attach = chem_detach + bound;
+                let residual = chem_attach - (work + heat + strain);
+                let rel = residual / chem_attach;
+                println!(
+                    "{model} {name} {}: chemical {chem_detach:.6} J (+ bound {bound:.3e} J) = \
+                     work {work:.5} + heat {heat:.5} + strain {strain:.3e}; residual {residual:.2e} J \
+                     ({rel:.2e})",
+                    r.muscle_names[i]
+                );
+                assert!(chem_detach > 1.0, "{model} {name}: {chem_detach} J");
+                assert!(
+                    rel.abs() < 2e-3,
+                    "{model} {name}: residual {rel:.3e} of the chemical energy"
+                );
+            }
+        }
+    }
+}
+
+/// The parts of the metabolic power sum to it at every tick, for every model; the metabolic
+/// energy of the Huxley models is the trapezoidal integral of their power; Hill's metabolic
+/// power is its phenomenological model's.
+#[test]
+fn parts_sum_to_totals_and_energies_integrate_powers() {
+    let cfg = ActuatorConfig::default();
+    for model in ModelKind::all() {
+        let r = run(
+            "scenarios/elbow_cocontraction_10hz.toml",
+            &cfg,
+            model,
+            1000.0,
+        );
+        for rec in &r.records {
+            for m in &rec.muscles {
+                let parts = m.activation_heat_rate
+                    + m.shortening_heat_rate
+                    + m.work_rate
+                    + m.bridge_storage_rate;
+                let scale = m.activation_heat_rate.abs()
+                    + m.shortening_heat_rate.abs()
+                    + m.work_rate.abs()
+                    + 1.0;
+                assert!(
+                    (parts - m.metabolic_power).abs() <= 1e-12 * scale,
+                    "{model} at {} s: parts {parts} W, total {} W",
+                    rec.time,
+                    m.metabolic_power
+                );
+                if model == ModelKind::HILL {
+                    assert_eq!(m.metabolic_power, m.phenomenological_power);
+                    assert_eq!(m.bridge_storage_rate, 0.0);
+                }
+            }
+        }
+        let last = &r.records.last().unwrap().muscles;
+        for i in 0..r.muscle_names.len() {
+            let integral = integral(&r, i, |m| m.metabolic_power);
+            if model != ModelKind::HILL {
+                // The bridges do not see the excitation: their power at a tick's start is the
+                // previous tick's end, so the run's energy is exactly this integral.
+                let d = (last[i].metabolic_energy - integral).abs();
+                assert!(
+                    d <= 1e-9 * integral,
+                    "{model}: {} J against {integral} J",
+                    last[i].metabolic_energy
+                );
+            }
+            assert!(last[i].metabolic_energy > 0.0 && last[i].phenomenological_energy > 0.0);
+        }
+    }
+}
+
+/// The energies converge with the tick: at 1 kHz within 1e-3 of those at 8 kHz, for a pulse
+/// whose excitation steps (the phenomenological models see the step at the tick's start).
+#[test]
+fn energies_converge_with_the_tick() {
+    let cfg = ActuatorConfig::default();
+    for model in [ModelKind::HILL, ModelKind::HUXLEY] {
+        let coarse = run("pulse", &cfg, model, 1000.0);
+        let fine = run("pulse", &cfg, model, 8000.0);
+        let (a, b) = (
+            &coarse.records.last().unwrap().muscles[0],
+            &fine.records.last().unwrap().muscles[0],
+        );
+        for (what, x, y) in [
+            ("metabolic", a.metabolic_energy, b.metabolic_energy),
+            (
+                "phenomenological",
+                a.phenomenological_energy,
+                b.phenomenological_energy,
+            ),
+        ] {
+            let rel = (x - y) / y;
+            println!("{model} pulse {what}: {x:.6} J at 1 kHz, {y:.6} J at 8 kHz ({rel:.2e})");
+            assert!(rel.abs() < 1e-3, "{model} {what}: {x} J against {y} J");
+        }
+    }
+}
+
+/// Isometric at full activation (the pulse's plateau), the Huxley models' metabolic power per
+/// kg lies between the phenomenological models' for the same muscle: Umberger's (Uchida's
+/// options) and Bhargava's, computed on the same run.
+#[test]
+fn isometric_cost_lies_between_the_phenomenological_models() {
+    let p = MuscleParams::default();
+    let mass = p.energetics.mass_kg(p.f_max, p.l_opt);
+    let at_plateau = |energy_model: EnergyModel, model: ModelKind| {
+        let cfg = ActuatorConfig::default().with_energy_model(energy_model);
+        let r = run("pulse", &cfg, model, 1000.0);
+        let m = &r.records[1900].muscles[0];
+        (m.metabolic_power / mass, m.phenomenological_power / mass)
+    };
+    for model in [ModelKind::HUXLEY, ModelKind::HUXLEY_PDE] {
+        let (mech, umberger) = at_plateau(EnergyModel::Umberger, model);
+        let (_, bhargava) = at_plateau(EnergyModel::Bhargava, model);
+        println!("{model}: {mech:.1} W/kg; Umberger {umberger:.1}, Bhargava {bhargava:.1} W/kg");
+        assert!(umberger < mech && mech < bhargava, "{model}: {mech} W/kg");
+    }
+}
+
+/// The cost of stiffness: isometric co-contraction of the elbow at rising excitation stiffens
+/// the joint and costs more, for every model and energy model (the paper's trade-off).
+#[test]
+fn stiffness_and_its_cost_rise_with_cocontraction() {
+    for model in ModelKind::all() {
+        let mut prev = (f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        for level in [0.0, 0.1, 0.2, 0.4, 0.6, 0.8, 1.0] {
+            let (k, power, phen) = cocontraction(model, level);
+            println!("{model} at {level}: {k:.1} N m/rad for {power:.2} W ({phen:.2} W phenomenological)");
+            assert!(
+                k > prev.0 && power > prev.1 && phen > prev.2,
+                "{model} at {level}"
+            );
+            prev = (k, power, phen);
+        }
+    }
+}
+
+/// The elbow held by both muscles at `level` for 0.3 s: joint stiffness, N m/rad, and the
+/// total metabolic and phenomenological power, W.
+fn cocontraction(model: ModelKind, level: f64) -> (f64, f64, f64) {
+    let text = format!(
+        "duration = 0.3\nattachment = \"joint\"\n\
+         [[input]]\nsignal = \"excitation\"\nmuscle = \"flexor\"\nkind = \"constant\"\nvalue = {level}\n\
+         [[input]]\nsignal = \"excitation\"\nmuscle = \"extensor\"\nkind = \"constant\"\nvalue = {level}\n"
+    );
+    let path = std::env::temp_dir().join(format!("cocontraction_{}_{level}.toml", model.name()));
+    std::fs::write(&path, text).unwrap();
+    let sc = Scenario::from_file(&path).unwrap();
+    let r = sc
+        .run(
+            &ActuatorConfig::default(),
+            model,
+            1000.0,
+            default_stepping(model),
+        )
+        .unwrap();
+    let last = r.records.last().unwrap();
+    let sum = |f: fn(&MuscleSnapshot) -> f64| last.muscles.iter().map(f).sum::<f64>();
+    (
+        last.joints[0].stiffness,
+        sum(|m| m.metabolic_power),
+        sum(|m| m.phenomenological_power),
+    )
+}
