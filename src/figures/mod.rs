@@ -1,7 +1,8 @@
 //! The paper's figures reproduced (Figs. 4–6 of Jovanović et al. 2015, docs/model.md §9), plus the
-//! steady force–velocity curves of the three models, as PNG and SVG, and a summary of the
-//! numbers they show (`summary.md`).
+//! steady force–velocity curves of the three models and what the muscles cost ([`cost`]), as PNG
+//! and SVG, and a summary of the numbers they show (`summary.md`).
 
+pub mod cost;
 pub mod plot;
 
 use crate::config::ActuatorConfig;
@@ -97,6 +98,7 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     pulse_figures(dir, &cfg, &mut summary)?;
     energy_figures(dir, &cfg, &mut summary)?;
     force_velocity_figure(dir, &cfg, &mut summary)?;
+    cost::stiffness_cost_figure(dir, &cfg, &mut summary)?;
     std::fs::write(dir.join("summary.md"), &summary)
         .map_err(|e| format!("cannot write {}: {e}", dir.join("summary.md").display()))?;
     print!("{summary}");
@@ -152,7 +154,7 @@ fn pulse_figures(dir: &Path, cfg: &ActuatorConfig, summary: &mut String) -> Resu
     )?;
     pulse_table(&pulse, summary);
     pulse_differences(&pulse, summary);
-    Ok(())
+    cost::pulse_power_figure(dir, cfg, &pulse, summary)
 }
 
 /// The pulse's numbers per model.
