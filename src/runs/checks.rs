@@ -171,3 +171,60 @@ pub(super) fn check_state_schema(rec: &Recording) -> Result<(), String> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::msgs::definition;
+    use crate::recording::schema::ros2msg_schema;
+    use std::borrow::Cow;
+    use std::sync::Arc;
+
+    /// A recording with one `~/state` channel whose schema is `text`.
+    fn with_state_schema(text: &str) -> Recording {
+        let schema = mcap::Schema {
+            id: 1,
+            name: STATE_TYPE.into(),
+            encoding: "ros2msg".into(),
+            data: Cow::Owned(text.as_bytes().to_vec()),
+        };
+        let channel = mcap::Channel {
+            id: 1,
+            topic: "/muscle_actuator/state".into(),
+            schema: Some(Arc::new(schema)),
+            message_encoding: "cdr".into(),
+            metadata: Default::default(),
+        };
+        let mut rec = Recording::default();
+        rec.channels.insert(1, Arc::new(channel));
+        rec
+    }
+
+    #[test]
+    fn a_recording_of_this_version_passes_an_older_one_is_refused_by_name() {
+        let current = ros2msg_schema(STATE_TYPE, &definition).unwrap();
+        assert_eq!(check_state_schema(&with_state_schema(&current)), Ok(()));
+        // The schema of a recording made before the energetics fields.
+        let older: String = current
+            .lines()
+            .take_while(|l| !l.starts_with("# Energetics"))
+            .chain(
+                current
+                    .lines()
+                    .skip_while(|l| !l.starts_with("float64 phenomenological_energy"))
+                    .skip(1),
+            )
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert!(older.contains("crossbridge_energy") && !older.contains("metabolic_power"));
+        let e = check_state_schema(&with_state_schema(&older)).unwrap_err();
+        assert!(
+            e.contains("lacks metabolic_power, activation_heat_rate"),
+            "{e}"
+        );
+        assert!(e.contains("another version"), "{e}");
+        // A schema without the MuscleState section at all.
+        let e = check_state_schema(&with_state_schema("float64 x\n")).unwrap_err();
+        assert!(e.contains("has 0 fields"), "{e}");
+    }
+}

@@ -86,6 +86,7 @@ def test_values_from_the_command_line_and_the_file(peer, client):
         ("config", "/nonexistent/actuator.toml", "/nonexistent/actuator.toml"),
         ("publish_rate_hz", -5.0, "publish_rate_hz"),
         ("rate_hz", "fast", "rate_hz"),
+        ("energy_model", "bogus", "bogus"),
     ],
 )
 def test_invalid_values_are_refused_with_a_reason(peer, client, name, value, reason):
@@ -114,6 +115,33 @@ def test_model_changes_at_run_time(peer, client, watch):
     finally:
         peer.await_future(client.set_parameters([Parameter("model", value="hill")]))
     watch.next_state(lambda s: s.model == "hill", what="~/state back to hill")
+
+
+def test_energy_model_changes_at_run_time(peer, client, watch):
+    """`energy_model`: empty by default (each muscle's from the configuration); a change
+    rebuilds the actuator, whose states carry the energetics: the parts sum to the metabolic
+    power, the energy since the start grows, Hill's metabolic power is its phenomenological
+    model's."""
+    assert values(peer, client, ["energy_model"])["energy_model"] == ""
+    try:
+        resp = peer.await_future(client.set_parameters([Parameter("energy_model", value="bhargava")]))
+        assert resp.results[0].successful, resp.results[0].reason
+        assert values(peer, client, ["energy_model"])["energy_model"] == "bhargava"
+        first = watch.next_state(lambda s: s.model == "hill" and 0 < s.tick < 200, what="a state of the rebuilt actuator")
+        later = watch.next_state(lambda s: s.tick > first.tick + 50, what="a later state")
+        for s in (first, later):
+            for m in s.muscles:
+                parts = m.activation_heat_rate + m.shortening_heat_rate + m.work_rate + m.bridge_storage_rate
+                assert abs(parts - m.metabolic_power) <= 1e-9 * max(1.0, abs(m.metabolic_power))
+                assert m.metabolic_power == m.phenomenological_power
+                assert m.bridge_storage_rate == 0.0
+                # At rest the heat floor of 1 W/kg of the 1.59 kg muscle.
+                assert m.metabolic_power >= 1.59
+        for a, b in zip(first.muscles, later.muscles):
+            assert b.metabolic_energy > a.metabolic_energy > 0.0
+    finally:
+        peer.await_future(client.set_parameters([Parameter("energy_model", value="")]))
+    assert values(peer, client, ["energy_model"])["energy_model"] == ""
 
 
 def test_publish_rate_changes_the_state_rate(peer, client, watch):
