@@ -338,7 +338,22 @@ mod tests {
         assert_eq!(publish_every(1000.0, 0.0), 1);
         assert_eq!(publish_every(1000.0, 100.0), 10);
         assert_eq!(publish_every(1000.0, 2000.0), 1);
-        assert_eq!(p.values().len(), 10);
+        assert_eq!(p.values().len(), 11);
+        // energy_model: a name overrides every muscle's, empty keeps the configuration's.
+        let s = |v: &str| ParameterValue::String(v.into());
+        assert!(p.set(ENERGY_MODEL, &s("bhargava"), false).is_ok());
+        let cfg = p.load_config().unwrap();
+        assert!(cfg
+            .muscles
+            .iter()
+            .all(|m| m.params.energetics.energy_model == EnergyModel::Bhargava));
+        let e = p.set(ENERGY_MODEL, &s("heat"), false).unwrap_err();
+        assert!(e.contains("\"heat\"") && e.contains("umberger2010"), "{e}");
+        assert_eq!(p.energy_model, Some(EnergyModel::Bhargava));
+        assert_eq!(p.value(ENERGY_MODEL), Some(s("bhargava")));
+        assert!(p.set(ENERGY_MODEL, &s(""), false).is_ok());
+        assert_eq!(p.energy_model, None);
+        assert_eq!(p.value(ENERGY_MODEL), Some(s("")));
         assert!(p
             .set(
                 JOINT_STATE_TIMEOUT_TICKS,
