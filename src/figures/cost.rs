@@ -2,8 +2,9 @@
 //! beside its force, and the cost of stiffness, joint stiffness against metabolic power for
 //! isometric co-contraction of the elbow from rest to full excitation, per model.
 
+use super::palette::color;
 use super::plot::{write_chart, Chart, Series};
-use super::{color, run, series};
+use super::samples::{at, run, series};
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
 use crate::physics::params::EnergyModel;
@@ -120,7 +121,7 @@ pub(super) fn pulse_power_figure(
         let _ = writeln!(
             summary,
             "| {name} | {:.1} | {:.2} | {:.2} |",
-            super::at(r, 1.9, |s| s.metabolic_power),
+            at(r, 1.9, |s| s.metabolic_power),
             end.metabolic_energy,
             end.phenomenological_energy
         );

@@ -3,7 +3,9 @@
 //! and SVG, and a summary of the numbers they show (`summary.md`).
 
 pub mod cost;
+pub mod palette;
 pub mod plot;
+pub mod samples;
 
 use crate::config::ActuatorConfig;
 use crate::physics::contractile::calibration::{calibrate_distribution_moment, calibrate_exact};
@@ -12,52 +14,13 @@ use crate::physics::contractile::hill::force_velocity;
 use crate::physics::contractile::huxley_exact::steady_q1;
 use crate::physics::model::ModelKind;
 use crate::physics::params::MuscleParams;
-use crate::sim::scenario::{Run, Scenario};
-use crate::sim::simulation::default_stepping;
+use crate::sim::scenario::Run;
 use crate::sim::MuscleSnapshot;
+use palette::{color, BLUE, RED};
 use plot::{write_chart, Chart, Series};
-use plotters::style::RGBColor;
+use samples::{at, run, series};
 use std::fmt::Write as _;
 use std::path::Path;
-
-const RED: RGBColor = RGBColor(0xd6, 0x27, 0x28);
-const BLUE: RGBColor = RGBColor(0x1f, 0x77, 0xb4);
-const GREEN: RGBColor = RGBColor(0x2c, 0xa0, 0x2c);
-
-/// The models' colours, by their position in [`MODELS`](crate::physics::model::MODELS)
-/// (repeating after the sixth).
-const PALETTE: [RGBColor; 6] = [
-    RED,
-    BLUE,
-    GREEN,
-    RGBColor(0x94, 0x67, 0xbd),
-    RGBColor(0xff, 0x7f, 0x0e),
-    RGBColor(0x8c, 0x56, 0x4b),
-];
-
-/// A model's colour: its position in the model list.
-fn color(model: ModelKind) -> RGBColor {
-    let i = ModelKind::all().position(|m| m == model).unwrap_or(0);
-    PALETTE[i % PALETTE.len()]
-}
-
-fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String> {
-    let sc = Scenario::built_in(name, &cfg.muscles[0].params)?;
-    sc.run(cfg, model, 1000.0, default_stepping(model))
-}
-
-fn series(run: &Run, f: impl Fn(&MuscleSnapshot) -> f64) -> Vec<(f64, f64)> {
-    run.records
-        .iter()
-        .map(|r| (r.time, f(&r.muscles[0])))
-        .collect()
-}
-
-/// Value of the first muscle's signal at time t (nearest tick).
-fn at(run: &Run, t: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
-    let i = ((t * run.rate_hz).round() as usize).min(run.records.len() - 1);
-    f(&run.records[i].muscles[0])
-}
 
 /// Time from `start` until the force first reaches `frac` of its value at `plateau_t`, s.
 fn rise_time(run: &Run, start: f64, plateau_t: f64, frac: f64) -> f64 {

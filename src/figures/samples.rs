@@ -1,0 +1,28 @@
+//! The runs the figures read and the samples they take: a built-in scenario at 1 kHz, the first
+//! muscle's signal as a time series or at one time.
+
+use crate::config::ActuatorConfig;
+use crate::physics::model::ModelKind;
+use crate::sim::scenario::{Run, Scenario};
+use crate::sim::simulation::default_stepping;
+use crate::sim::MuscleSnapshot;
+
+/// The built-in scenario `name` with `model` on `cfg`, at 1 kHz with the model's stepping.
+pub fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String> {
+    let sc = Scenario::built_in(name, &cfg.muscles[0].params)?;
+    sc.run(cfg, model, 1000.0, default_stepping(model))
+}
+
+/// The first muscle's signal `f` over the run, (time s, value).
+pub fn series(run: &Run, f: impl Fn(&MuscleSnapshot) -> f64) -> Vec<(f64, f64)> {
+    run.records
+        .iter()
+        .map(|r| (r.time, f(&r.muscles[0])))
+        .collect()
+}
+
+/// Value of the first muscle's signal at time t (nearest tick).
+pub fn at(run: &Run, t: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
+    let i = ((t * run.rate_hz).round() as usize).min(run.records.len() - 1);
+    f(&run.records[i].muscles[0])
+}
