@@ -135,16 +135,20 @@ impl Mtu {
     /// What the phenomenological energy model reads at muscle state `s = [l_m, v, x...]`,
     /// excitation u and activation a.
     pub fn probe_inputs(&self, excitation: f64, activation: f64, s: &[f64]) -> ProbeInputs {
-        let (l_m, v, x) = (s[0], s[1], &s[2..]);
-        let ce = self.ce_inputs(activation, l_m, v);
+        let ce = self.ce_inputs(activation, s[0], s[1]);
+        self.probe_inputs_at(excitation, &ce, s)
+    }
+
+    /// The same, with the contractile element's inputs already computed.
+    fn probe_inputs_at(&self, excitation: f64, ce: &CeInputs, s: &[f64]) -> ProbeInputs {
         ProbeInputs {
             excitation,
-            activation,
-            fibre_length_norm: l_m / self.params.l_opt,
+            activation: ce.activation,
+            fibre_length_norm: ce.fibre_length / self.params.l_opt,
             force_length: ce.overlap,
-            fibre_velocity_m_s: v,
-            active_force_n: self.ce.force(&ce, x),
-            passive_force_n: self.parallel.force(l_m),
+            fibre_velocity_m_s: ce.fibre_velocity,
+            active_force_n: self.ce.force(ce, &s[2..]),
+            passive_force_n: self.parallel.force(ce.fibre_length),
         }
     }
 
@@ -152,8 +156,8 @@ impl Mtu {
     /// §11.6), with the mechanism's and the probe's inputs they came from. Models with state
     /// outside the ODE must be asked after the sub-step hooks have brought it in step with `s`.
     pub fn metabolic(&self, excitation: f64, activation: f64, s: &[f64]) -> MetabolicSample {
-        let x = self.probe_inputs(excitation, activation, s);
         let ce = self.ce_inputs(activation, s[0], s[1]);
+        let x = self.probe_inputs_at(excitation, &ce, s);
         let mechanism = self.ce.bridge_energy(&ce, &s[2..]).map(|(fluxes, b)| {
             mechanism_rates(
                 b,
