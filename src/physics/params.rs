@@ -1,10 +1,13 @@
-//! Model parameters (docs/model.md §1, §6, §8), their embedded defaults and their validation.
+//! Model parameters (docs/model.md §1, §6, §8), their embedded defaults and their validation;
+//! the energetics table's data (§11) in [`energetics`].
 //!
 //! Everything is SI: m, s, N, kg. The defaults are the paper's Appendix A, Table 1.
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::physics::energetics::params::{EnergeticsParams, EnergyModel};
+pub mod energetics;
+
+pub use energetics::{EnergeticsParams, EnergyModel};
 
 /// Shape of the force–length curve f(l_m) (docs/model.md §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -314,7 +317,11 @@ impl MuscleParams {
             c.fail("activation_share", e.activation_share, "must be in [0, 1)");
         }
         if !(0.0..=1.0).contains(&e.slow_twitch_ratio) {
-            c.fail("slow_twitch_ratio", e.slow_twitch_ratio, "must be in [0, 1]");
+            c.fail(
+                "slow_twitch_ratio",
+                e.slow_twitch_ratio,
+                "must be in [0, 1]",
+            );
         }
         if let Some(m) = e.metabolic_mass {
             c.positive("metabolic_mass", m);
