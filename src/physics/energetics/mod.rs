@@ -27,4 +27,4 @@ pub mod steady;
 pub mod umberger;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
