@@ -1,7 +1,10 @@
 //! The paper's figures reproduced (Figs. 4–6 of Jovanović et al. 2015, docs/model.md §9), plus the
-//! steady force–velocity curves of the three models, as PNG and SVG, and a summary of the
-//! numbers they show (`summary.md`).
+//! steady force–velocity curves of the three models and their steady-state energetics
+//! ([`energetics`], §11), as PNG and SVG, and a summary of the numbers they show (`summary.md`).
+//! The colours are [`palette`]'s, the drawing [`plot`]'s.
 
+pub mod energetics;
+pub mod palette;
 pub mod plot;
 
 use crate::config::ActuatorConfig;
@@ -14,31 +17,10 @@ use crate::physics::params::MuscleParams;
 use crate::sim::scenario::{Run, Scenario};
 use crate::sim::simulation::default_stepping;
 use crate::sim::MuscleSnapshot;
+use palette::{color, BLUE, RED};
 use plot::{write_chart, Chart, Series};
-use plotters::style::RGBColor;
 use std::fmt::Write as _;
 use std::path::Path;
-
-const RED: RGBColor = RGBColor(0xd6, 0x27, 0x28);
-const BLUE: RGBColor = RGBColor(0x1f, 0x77, 0xb4);
-const GREEN: RGBColor = RGBColor(0x2c, 0xa0, 0x2c);
-
-/// The models' colours, by their position in [`MODELS`](crate::physics::model::MODELS)
-/// (repeating after the sixth).
-const PALETTE: [RGBColor; 6] = [
-    RED,
-    BLUE,
-    GREEN,
-    RGBColor(0x94, 0x67, 0xbd),
-    RGBColor(0xff, 0x7f, 0x0e),
-    RGBColor(0x8c, 0x56, 0x4b),
-];
-
-/// A model's colour: its position in the model list.
-fn color(model: ModelKind) -> RGBColor {
-    let i = ModelKind::all().position(|m| m == model).unwrap_or(0);
-    PALETTE[i % PALETTE.len()]
-}
 
 fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String> {
     let sc = Scenario::built_in(name, &cfg.muscles[0].params)?;
@@ -97,6 +79,7 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     pulse_figures(dir, &cfg, &mut summary)?;
     energy_figures(dir, &cfg, &mut summary)?;
     force_velocity_figure(dir, &cfg, &mut summary)?;
+    energetics::steady_energetics_figure(dir, &cfg.muscles[0].params, &mut summary)?;
     std::fs::write(dir.join("summary.md"), &summary)
         .map_err(|e| format!("cannot write {}: {e}", dir.join("summary.md").display()))?;
     print!("{summary}");
