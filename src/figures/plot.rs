@@ -224,7 +224,7 @@ pub fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> Result<(), String> 
     Ok(())
 }
 
-/// Writes `stem.png` and `stem.svg` in `dir`: the panels side by side, each [`PANEL_PX`].
+/// Writes `stem.png` and `stem.svg` in `dir`: the panels side by side, each `PANEL_PX` (pixels).
 pub fn write_panels(dir: &Path, stem: &str, panels: &[Panel]) -> Result<(), String> {
     register_font();
     let size = (PANEL_PX.0 * panels.len().max(1) as u32, PANEL_PX.1);
