@@ -187,6 +187,15 @@ fn bridge_points(
 ) -> Result<Option<Vec<SteadyPoint>>, String> {
     let bridge = params.energetics.bridge();
     if model == ModelKind::HUXLEY_PDE {
+        // Huxley's closed form (huxley_steady, huxley_exact) has no bonds detaching at the extra
+        // rate g3 beyond ξ = 1, which lengthening reaches (docs/model.md §11.3).
+        let g3 = params.crossbridge.g3;
+        if g3 != 0.0 {
+            return Err(format!(
+                "the full model's steady states are Huxley's closed form, which holds for \
+                 crossbridge.g3 = 0 only (this muscle has g3 = {g3})"
+            ));
+        }
         let scale = calibrate_exact(params);
         let e = BridgeEnergyScale::new(&scale, params, &bridge);
         return Ok(Some(

@@ -246,6 +246,17 @@ fn invalid_parameters_are_refused_not_computed() {
     }
 }
 
+/// The full model's closed form holds for g3 = 0 only: with g3 > 0 it is refused, not
+/// computed as if g3 were 0 (lengthening would carry bonds past ξ = 1).
+#[test]
+fn the_full_model_with_g3_is_refused() {
+    let mut p = MuscleParams::default();
+    p.crossbridge.g3 = 5.0;
+    let e = steady_table(&p, ModelKind::HUXLEY_PDE, 41).unwrap_err();
+    assert!(e.contains("g3 = 5"), "{e}");
+    assert!(steady_table(&p, ModelKind::HUXLEY, 41).is_ok());
+}
+
 /// The failing velocity is the first of its side, by |v_s|, that fails.
 #[test]
 fn first_failure_names_the_velocity_where_continuation_fails() {
