@@ -1,6 +1,8 @@
 //! The `muscle_actuator` command line: the offline commands (simulate, replay, compare, recover,
-//! export, figures, models) and the node. Model names, the default model and the default
-//! sub-stepping in its help come from [`MODELS`](crate::physics::model::MODELS).
+//! export, figures, models, [`steady`](mod@steady)) and the node. Model names, the default model
+//! and the default sub-stepping in its help come from [`MODELS`](crate::physics::model::MODELS).
+
+pub mod steady;
 
 use crate::config::ActuatorConfig;
 use crate::physics::energetics::params::UnknownEnergyModel;
@@ -10,6 +12,7 @@ use crate::physics::stepping::Stepping;
 use crate::runs::limits;
 use crate::sim::scenario::Scenario;
 use crate::sim::simulation::default_stepping;
+use crate::sim::steady::{DEFAULT_POINTS, MAX_POINTS, MIN_POINTS};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -103,6 +106,24 @@ pub enum Command {
     },
     /// List the contractile models: name and what it is, one a line.
     Models,
+    /// One muscle's steady states at full activation and optimal length, shortening velocities
+    /// from -vmax to vmax: force, ATP rate, chemical power, heat, work, efficiency, from the
+    /// cross-bridges (Huxley models) and each phenomenological energy model.
+    Steady {
+        #[arg(long, default_value = ModelKind::DEFAULT.name(), help = model_help())]
+        model: String,
+        /// Limb configuration: a built-in name (elbow, arm) or a file (TOML); default: elbow.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// The muscle, by name; default: the configuration's first.
+        #[arg(long)]
+        muscle: Option<String>,
+        #[arg(long, default_value_t = DEFAULT_POINTS, help = points_help())]
+        points: usize,
+        /// CSV of every row ('-' for standard output, and no table).
+        #[arg(long)]
+        csv: Option<PathBuf>,
+    },
 }
 
 /// Help of `simulate --model`.
@@ -110,6 +131,14 @@ fn model_help() -> String {
     format!(
         "Contractile model: {}",
         ModelKind::names_joined(", ", " or ")
+    )
+}
+
+/// Help of `steady --points`.
+fn points_help() -> String {
+    format!(
+        "Shortening velocities, evenly from -vmax to vmax through 0: an odd number from \
+         {MIN_POINTS} to {MAX_POINTS}"
     )
 }
 
@@ -238,6 +267,18 @@ pub fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Node { args } => crate::ros::run_node(args),
+        Command::Steady {
+            model,
+            config,
+            muscle,
+            points,
+            csv,
+        } => {
+            crate::sim::steady::check_points(points)?;
+            let model = parse_model(&model)?;
+            let cfg = load_config(&config)?;
+            steady::steady(model, &cfg, muscle.as_deref(), points, csv.as_deref())
+        }
     }
 }
 

@@ -1,8 +1,11 @@
 //! The paper's figures reproduced (Figs. 4–6 of Jovanović et al. 2015, docs/model.md §9), plus the
-//! steady force–velocity curves of the three models and what the muscles cost ([`cost`]), as PNG
-//! and SVG, and a summary of the numbers they show (`summary.md`).
+//! steady force–velocity curves of the three models, their steady-state energetics
+//! ([`energetics`], §11) and what the muscles cost in runs ([`cost`]), as PNG and SVG, and a
+//! summary of the numbers they show (`summary.md`). The colours are [`palette`]'s, the drawing
+//! [`plot`]'s, the runs and samples [`samples`]'.
 
 pub mod cost;
+pub mod energetics;
 pub mod palette;
 pub mod plot;
 pub mod samples;
@@ -61,6 +64,7 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     pulse_figures(dir, &cfg, &mut summary)?;
     energy_figures(dir, &cfg, &mut summary)?;
     force_velocity_figure(dir, &cfg, &mut summary)?;
+    energetics::steady_energetics_figure(dir, &cfg.muscles[0].params, &mut summary)?;
     cost::stiffness_cost_figure(dir, &cfg, &mut summary)?;
     std::fs::write(dir.join("summary.md"), &summary)
         .map_err(|e| format!("cannot write {}: {e}", dir.join("summary.md").display()))?;

@@ -1,5 +1,7 @@
-//! A line chart written as PNG and SVG (plotters), with axes, units and a legend.
+//! A line chart written as PNG and SVG (plotters), with axes, units and a legend; several side
+//! by side as the panels of one figure, with markers over their curves.
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -42,10 +44,34 @@ fn register_font() {
     });
 }
 
-fn bounds(series: &[Series]) -> ((f64, f64), (f64, f64)) {
+/// Points drawn as circles over a panel's curves, with a legend entry.
+pub struct Markers<'a> {
+    /// Legend label.
+    pub label: &'a str,
+    /// Colour.
+    pub color: RGBColor,
+    /// (x, y) points.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One panel of a figure: a chart (curves with an empty label stay out of the legend), markers
+/// over it, and the corner of its legend.
+pub struct Panel<'a> {
+    /// The curves, axes and title.
+    pub chart: Chart<'a>,
+    /// Points over the curves.
+    pub markers: Vec<Markers<'a>>,
+    /// Where the legend goes.
+    pub legend: SeriesLabelPosition,
+}
+
+/// Size of one panel, pixels.
+const PANEL_PX: (u32, u32) = (640, 560);
+
+fn bounds<'a>(points: impl Iterator<Item = &'a [(f64, f64)]>) -> ((f64, f64), (f64, f64)) {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for s in series {
-        for &(x, y) in &s.points {
+    for s in points {
+        for &(x, y) in s {
             if x.is_finite() && y.is_finite() {
                 x0 = x0.min(x);
                 x1 = x1.max(x);
@@ -70,8 +96,25 @@ where
 {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
     root.fill(&WHITE).map_err(err)?;
-    let ((x0, x1), (y0, y1)) = bounds(&chart.series);
-    let mut c = ChartBuilder::on(&root)
+    draw_panel(&root, chart, &[], SeriesLabelPosition::UpperRight)?;
+    root.present().map_err(err)?;
+    Ok(())
+}
+
+/// Draws `chart` and `markers` on `area`, the legend at `legend`.
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    chart: &Chart,
+    markers: &[Markers],
+    legend: SeriesLabelPosition,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
+    let curves = chart.series.iter().map(|s| &s.points[..]);
+    let ((x0, x1), (y0, y1)) = bounds(curves.chain(markers.iter().map(|m| &m.points[..])));
+    let mut c = ChartBuilder::on(area)
         .caption(chart.title, ("sans-serif", 22))
         .margin(15)
         .x_label_area_size(45)
@@ -86,33 +129,79 @@ where
         .draw()
         .map_err(err)?;
     for s in &chart.series {
-        let style = ShapeStyle::from(&s.color).stroke_width(2);
-        let pts = s
-            .points
-            .iter()
-            .copied()
-            .filter(|(x, y)| x.is_finite() && y.is_finite());
-        let anno = if s.dashed {
-            c.draw_series(DashedLineSeries::new(pts, 8, 5, style))
-                .map_err(err)?
-        } else {
-            c.draw_series(LineSeries::new(pts, style)).map_err(err)?
-        };
-        let color = s.color;
-        anno.label(s.label).legend(move |(x, y)| {
-            PathElement::new(
-                vec![(x, y), (x + 20, y)],
-                ShapeStyle::from(&color).stroke_width(2),
-            )
-        });
+        draw_curve(&mut c, s)?;
     }
-    c.configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(err)?;
+    for m in markers {
+        let style = ShapeStyle::from(&m.color).stroke_width(2);
+        let pts = m.points.iter().copied();
+        c.draw_series(pts.map(|p| Circle::new(p, 5, style)))
+            .map_err(err)?
+            .label(m.label)
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, style));
+    }
+    if chart.series.iter().any(|s| !s.label.is_empty()) || !markers.is_empty() {
+        c.configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 14))
+            .position(legend)
+            .draw()
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Draws one curve, solid or dashed, with its legend entry (none for an empty label).
+fn draw_curve<'a, DB: DrawingBackend + 'a>(
+    c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    s: &Series,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
+    let style = ShapeStyle::from(&s.color).stroke_width(2);
+    let pts = s
+        .points
+        .iter()
+        .copied()
+        .filter(|(x, y)| x.is_finite() && y.is_finite());
+    let anno = if s.dashed {
+        c.draw_series(DashedLineSeries::new(pts, 8, 5, style))
+            .map_err(err)?
+    } else {
+        c.draw_series(LineSeries::new(pts, style)).map_err(err)?
+    };
+    if s.label.is_empty() {
+        return Ok(());
+    }
+    // A dashed curve's legend entry is two dashes, a solid one's one line.
+    let anno = anno.label(s.label);
+    if s.dashed {
+        anno.legend(move |(x, y)| {
+            EmptyElement::at((x, y))
+                + PathElement::new(vec![(0, 0), (8, 0)], style)
+                + PathElement::new(vec![(12, 0), (20, 0)], style)
+        });
+    } else {
+        anno.legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+    }
+    Ok(())
+}
+
+/// Draws the panels side by side on `root`.
+fn draw_panels<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    panels: &[Panel],
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
+    root.fill(&WHITE).map_err(err)?;
+    for (area, panel) in root.split_evenly((1, panels.len())).iter().zip(panels) {
+        draw_panel(area, &panel.chart, &panel.markers, panel.legend.clone())?;
+    }
     root.present().map_err(err)?;
     Ok(())
 }
@@ -132,5 +221,18 @@ pub fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> Result<(), String> 
         chart,
     )
     .map_err(|e| format!("{}: {e}", svg.display()))?;
+    Ok(())
+}
+
+/// Writes `stem.png` and `stem.svg` in `dir`: the panels side by side, each `PANEL_PX` (pixels).
+pub fn write_panels(dir: &Path, stem: &str, panels: &[Panel]) -> Result<(), String> {
+    register_font();
+    let size = (PANEL_PX.0 * panels.len().max(1) as u32, PANEL_PX.1);
+    let png = dir.join(format!("{stem}.png"));
+    let svg = dir.join(format!("{stem}.svg"));
+    draw_panels(BitMapBackend::new(&png, size).into_drawing_area(), panels)
+        .map_err(|e| format!("{}: {e}", png.display()))?;
+    draw_panels(SVGBackend::new(&svg, size).into_drawing_area(), panels)
+        .map_err(|e| format!("{}: {e}", svg.display()))?;
     Ok(())
 }

@@ -8,6 +8,8 @@
 //! - [`snapshot`]: what is observable after a tick; [`energy`]: the energy spent since start;
 //! - [`scenario`]: the paper's experiments and scenario files; [`schedule`]: their input
 //!   schedules.
+//! - [`steady`]: isovelocity steady states at full activation and optimal length, with their
+//!   energetics (the `steady` command, the steady-state energetics figure).
 
 pub mod actuator;
 pub mod energy;
@@ -17,6 +19,7 @@ pub mod scenario;
 pub mod schedule;
 pub mod simulation;
 pub mod snapshot;
+pub mod steady;
 
 pub use actuator::Actuator;
 pub use simulation::{Simulation, StepError};

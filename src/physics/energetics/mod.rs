@@ -28,4 +28,4 @@ pub mod steady;
 pub mod umberger;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -6,7 +6,7 @@ mod hand;
 mod huxley;
 mod opensim;
 mod power;
-mod quadrature;
+pub(crate) mod quadrature;
 mod steady;
 
 use crate::physics::contractile::crossbridge::Rates;
