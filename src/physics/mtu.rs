@@ -133,7 +133,7 @@ impl Mtu {
     }
 
     /// What the phenomenological energy model reads at muscle state `s = [l_m, v, x...]`,
-    /// excitation u and activation a.
+    /// excitation u and activation a (the passive force only if it reads it, else 0).
     pub fn probe_inputs(&self, excitation: f64, activation: f64, s: &[f64]) -> ProbeInputs {
         let ce = self.ce_inputs(activation, s[0], s[1]);
         self.probe_inputs_at(excitation, &ce, s)
@@ -148,7 +148,11 @@ impl Mtu {
             force_length: ce.overlap,
             fibre_velocity_m_s: ce.fibre_velocity,
             active_force_n: self.ce.force(ce, &s[2..]),
-            passive_force_n: self.parallel.force(ce.fibre_length),
+            passive_force_n: if self.probe.model.reads_passive_force() {
+                self.parallel.force(ce.fibre_length)
+            } else {
+                0.0
+            },
         }
     }
 

@@ -30,9 +30,14 @@ impl MuscleEnergy {
         }
     }
 
-    /// The rates at the start of a tick under `excitation`.
+    /// The rates at the start of a tick under `excitation`: those the last tick ended with,
+    /// recomputed only if the excitation changed.
     pub fn rates_at_start(&self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
-        self.sample.with_excitation(probe, excitation)
+        if excitation == self.sample.probe_inputs.excitation {
+            self.sample.rates
+        } else {
+            self.sample.with_excitation(probe, excitation)
+        }
     }
 
     /// After a tick of `dt` seconds that started at rates `start` and ended at `end`.

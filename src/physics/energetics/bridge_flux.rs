@@ -95,13 +95,26 @@ fn closure_gaussian(q: &[f64; 3]) -> Option<(f64, f64, f64)> {
 /// Gaussian does not carry (zero for physical moments), which the closure relaxes at
 /// `(f1 + g1)/2`, counts as detachment, so that `gaussian_bound_attachment + this = φ` exactly.
 pub fn gaussian_detachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+    gaussian_parts(rates, q).1
+}
+
+/// DM bound part of the attachment integral, `∫ ξ^k f n dξ = Q0 f1 [J_{k+1}(τ1) - J_{k+1}(τ0)]`
+/// (zero without a Gaussian part).
+pub fn gaussian_bound_attachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+    gaussian_parts(rates, q).0
+}
+
+/// Both DM integrals, (bound attachment, detachment), from one evaluation of the Gaussian's
+/// partial moments (the error functions and exponentials are the cost).
+fn gaussian_parts(rates: &Rates, q: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
     let relax = 0.5 * (rates.f1 + rates.g1);
     let Some((q0, p, sd)) = closure_gaussian(q) else {
-        return q.map(|x| relax * x);
+        return ([0.0; 3], q.map(|x| relax * x));
     };
     let j0 = partial_moments(p, sd, -p / sd);
     let j1 = partial_moments(p, sd, (1.0 - p) / sd);
     let m = full_moments(p, sd);
+    let bound = [0, 1, 2].map(|k| q0 * rates.f1 * (j1[k + 1] - j0[k + 1]));
     let mut d = [0.0; 3];
     for (k, out) in d.iter_mut().enumerate() {
         let body = rates.g2 * j0[k]
@@ -111,25 +124,15 @@ pub fn gaussian_detachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
     }
     d[1] += relax * (q[1] - q0 * m[1]);
     d[2] += relax * (q[2] - q0 * m[2]);
-    d
-}
-
-/// DM bound part of the attachment integral, `∫ ξ^k f n dξ = Q0 f1 [J_{k+1}(τ1) - J_{k+1}(τ0)]`
-/// (zero without a Gaussian part).
-pub fn gaussian_bound_attachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
-    let Some((q0, p, sd)) = closure_gaussian(q) else {
-        return [0.0; 3];
-    };
-    let j0 = partial_moments(p, sd, -p / sd);
-    let j1 = partial_moments(p, sd, (1.0 - p) / sd);
-    [0, 1, 2].map(|k| q0 * rates.f1 * (j1[k + 1] - j0[k + 1]))
+    (bound, d)
 }
 
 /// Both fluxes of the DM model at moments `q` and attachment factor `r`.
 pub fn gaussian_fluxes(rates: &Rates, r: f64, q: &[f64; 3]) -> BridgeFluxes {
+    let (bound, detachment) = gaussian_parts(rates, q);
     BridgeFluxes {
-        attachment: attachment(rates, r, gaussian_bound_attachment(rates, q)),
-        detachment: gaussian_detachment(rates, q),
+        attachment: attachment(rates, r, bound),
+        detachment,
     }
 }
 

@@ -15,6 +15,12 @@ pub enum PhenomenologicalModel {
 }
 
 impl PhenomenologicalModel {
+    /// Whether it reads the passive fibre force (Bhargava's shortening heat counts the whole
+    /// fibre force); the others need not be given it.
+    pub fn reads_passive_force(&self) -> bool {
+        matches!(self, Self::Bhargava(_))
+    }
+
     /// Its rates for one muscle at one instant.
     pub fn rates(&self, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
         match self {

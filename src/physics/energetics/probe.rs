@@ -24,11 +24,8 @@ pub fn muscle_mass_kg(f_max_n: f64, l_opt_m: f64, sigma_pa: f64, rho_kg_m3: f64)
 /// Bhargava et al. (2004) recruitment: the excitations of the slow- and fast-twitch fibres,
 /// `(r sin(π u/2), (1 - r)(1 - cos(π u/2)))`: slow fibres first.
 pub fn recruitment(excitation: f64, slow_twitch_ratio: f64) -> (f64, f64) {
-    let x = FRAC_PI_2 * excitation;
-    (
-        slow_twitch_ratio * x.sin(),
-        (1.0 - slow_twitch_ratio) * (1.0 - x.cos()),
-    )
+    let (sin, cos) = (FRAC_PI_2 * excitation).sin_cos();
+    (slow_twitch_ratio * sin, (1.0 - slow_twitch_ratio) * (1.0 - cos))
 }
 
 /// One muscle's constants for a probe.
