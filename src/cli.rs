@@ -225,15 +225,22 @@ pub fn run(cli: Cli) -> Result<(), String> {
             substeps,
             csv,
             out,
-        } => simulate(
-            &scenario,
-            &model,
-            &with_energy_model(load_config(&config)?, energy_model.as_deref())?,
-            rate_hz,
-            substeps,
-            csv.as_deref(),
-            out.as_deref(),
-        ),
+        } => {
+            let mut inputs = read_files(&[Some(Path::new(&scenario)), config.as_deref()]);
+            for o in [&csv, &out].into_iter().flatten() {
+                crate::files::check_not_an_input(o, &inputs)?;
+                inputs.push(o);
+            }
+            simulate(
+                &scenario,
+                &model,
+                &with_energy_model(load_config(&config)?, energy_model.as_deref())?,
+                rate_hz,
+                substeps,
+                csv.as_deref(),
+                out.as_deref(),
+            )
+        }
         Command::Replay { input, model, out } => {
             let model = model.as_deref().map(parse_model).transpose()?;
             replay(&input, model, &out)
@@ -275,11 +282,25 @@ pub fn run(cli: Cli) -> Result<(), String> {
             csv,
         } => {
             crate::sim::steady::check_points(points)?;
+            if let Some(c) = &csv {
+                crate::files::check_not_an_input(c, &read_files(&[config.as_deref()]))?;
+            }
             let model = parse_model(&model)?;
             let cfg = load_config(&config)?;
             steady::steady(model, &cfg, muscle.as_deref(), points, csv.as_deref())
         }
     }
+}
+
+/// The files among `paths` that exist (a scenario or configuration named by path rather than
+/// as a built-in), which no output may overwrite.
+fn read_files<'a>(paths: &[Option<&'a Path>]) -> Vec<&'a Path> {
+    paths
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|p| p.is_file())
+        .collect()
 }
 
 /// `simulate`: the scenario run offline, recorded to MCAP and/or written as CSV.

@@ -1,5 +1,5 @@
 //! Bounded reading of the files a user names (configurations, scenarios, parameter files,
-//! recordings): regular files only, of a bounded size.
+//! recordings): regular files only, of a bounded size; and no output written over an input.
 
 /// Largest configuration or scenario file read, bytes.
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
@@ -45,4 +45,37 @@ pub fn read_regular_file(path: &std::path::Path, max_bytes: u64) -> std::io::Res
         ));
     }
     Ok(buf)
+}
+
+/// Whether `a` and `b` name the same file: the same device and inode where both exist (a hard
+/// link, a symbolic link, `./x` and `x`), else the same canonical path, else equal paths.
+pub fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+        return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+    }
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == b,
+    }
+}
+
+/// Refuses to write `out` over any of `inputs` (the recordings, configurations and scenarios a
+/// command reads, or another of its outputs), before anything is read or written; `-`
+/// (standard output) is no file.
+pub fn check_not_an_input(
+    out: &std::path::Path,
+    inputs: &[&std::path::Path],
+) -> Result<(), String> {
+    if out.as_os_str() == "-" {
+        return Ok(());
+    }
+    match inputs.iter().find(|i| same_file(i, out)) {
+        Some(input) => Err(format!(
+            "{}: the output would overwrite {}, which this command reads; give another path",
+            out.display(),
+            input.display()
+        )),
+        None => Ok(()),
+    }
 }

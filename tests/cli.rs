@@ -240,3 +240,134 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
         "{at_half:?}"
     );
 }
+
+/// No command writes its output over a file it reads: `replay --out` over its recording,
+/// `export --csv` over it, `compare --plot` over one of the runs, `simulate --csv`/`--out` over
+/// its scenario or configuration or over each other, `steady --csv` over its configuration.
+/// Each is refused before anything is written, the input left byte for byte as it was.
+#[test]
+fn no_output_is_written_over_an_input() {
+    let dir = tmp("overwrite_marker", "").parent().unwrap().to_path_buf();
+    let rec = dir.join("overwrite_run.mcap");
+    let o = bin()
+        .args(["simulate", "pulse", "--model", "hill", "--out"])
+        .arg(&rec)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = std::fs::read(&rec).unwrap();
+    // Another name for the same file: through `..` and through a symbolic link.
+    let dotted = dir
+        .join("..")
+        .join(dir.file_name().unwrap())
+        .join("overwrite_run.mcap");
+    let link = dir.join("overwrite_link.mcap");
+    let _ = std::fs::remove_file(&link);
+    std::os::unix::fs::symlink(&rec, &link).unwrap();
+    // A run named as the plot's SVG: `--plot X.png` writes X.png and X.svg.
+    let as_svg = dir.join("overwrite_plot_run.svg");
+    std::fs::copy(&rec, &as_svg).unwrap();
+    let scenario = tmp(
+        "overwrite_scenario.toml",
+        "duration = 0.01\nattachment = \"clamped\"\n",
+    );
+    let config = tmp("overwrite_config.toml", "[[joint]]\nname = \"elbow\"\n");
+    let s = |p: &PathBuf| p.to_string_lossy().into_owned();
+    let cases: Vec<(Vec<String>, PathBuf)> = vec![
+        (
+            vec![
+                "replay".into(),
+                s(&rec),
+                "--model".into(),
+                "huxley".into(),
+                "--out".into(),
+                s(&rec),
+            ],
+            rec.clone(),
+        ),
+        (
+            vec!["replay".into(), s(&rec), "--out".into(), s(&dotted)],
+            rec.clone(),
+        ),
+        (
+            vec!["replay".into(), s(&link), "--out".into(), s(&rec)],
+            rec.clone(),
+        ),
+        (
+            vec!["export".into(), s(&rec), "--csv".into(), s(&link)],
+            rec.clone(),
+        ),
+        (
+            vec![
+                "compare".into(),
+                s(&rec),
+                s(&as_svg),
+                "--plot".into(),
+                s(&as_svg.with_extension("png")),
+            ],
+            as_svg.clone(),
+        ),
+        (
+            vec![
+                "simulate".into(),
+                s(&scenario),
+                "--csv".into(),
+                s(&scenario),
+            ],
+            scenario.clone(),
+        ),
+        (
+            vec![
+                "simulate".into(),
+                "pulse".into(),
+                "--config".into(),
+                s(&config),
+                "--out".into(),
+                s(&config),
+            ],
+            config.clone(),
+        ),
+        (
+            vec![
+                "simulate".into(),
+                "pulse".into(),
+                "--csv".into(),
+                s(&rec),
+                "--out".into(),
+                s(&rec),
+            ],
+            rec.clone(),
+        ),
+        (
+            vec![
+                "steady".into(),
+                "--config".into(),
+                s(&config),
+                "--csv".into(),
+                s(&config),
+            ],
+            config.clone(),
+        ),
+    ];
+    for (args, input) in cases {
+        let kept = std::fs::read(&input).unwrap();
+        let o = bin().args(&args).output().unwrap();
+        assert_clean_failure(&o, &["would overwrite"]);
+        assert_eq!(
+            std::fs::read(&input).unwrap(),
+            kept,
+            "{args:?} changed its input"
+        );
+    }
+    assert_eq!(std::fs::read(&rec).unwrap(), before);
+    // A plot beside the run, not over it, is written.
+    let o = bin()
+        .args(["compare"])
+        .arg(&rec)
+        .arg(&rec)
+        .arg("--plot")
+        .arg(dir.join("overwrite_plot.png"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+}

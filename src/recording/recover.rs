@@ -46,22 +46,10 @@ impl Recovered {
     }
 }
 
-/// Whether `a` and `b` name the same file (or `b` a path that resolves to `a`).
-fn same_file(a: &Path, b: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
-        return ma.dev() == mb.dev() && ma.ino() == mb.ino();
-    }
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => a == b,
-    }
-}
-
 /// Reads `input` (complete, or cut by a crash) and writes everything readable to `out` as a
 /// complete MCAP file.
 pub fn recover(input: &Path, out: &Path) -> Result<Recovered, String> {
-    if same_file(input, out) {
+    if crate::files::same_file(input, out) {
         return Err(format!(
             "{}: the output would overwrite the input; give another path",
             out.display()

@@ -438,6 +438,11 @@ pub fn plot(a: &LoadedRun, b: &LoadedRun, out: &Path) -> Result<(), String> {
 /// `compare A B`: loads both (a file cut by a crash up to the cut, with a warning), compares,
 /// optionally plots.
 pub fn compare_files(a: &Path, b: &Path, plot_out: Option<&Path>) -> Result<Comparison, String> {
+    if let Some(p) = plot_out {
+        for written in [p.with_extension("png"), p.with_extension("svg")] {
+            crate::files::check_not_an_input(&written, &[a, b])?;
+        }
+    }
     let ra = load_run(a)?;
     let rb = load_run(b)?;
     for (run, path) in [(&ra, a), (&rb, b)] {

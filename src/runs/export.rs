@@ -54,6 +54,7 @@ pub struct ExportSummary {
 
 /// Writes the states of the recording `input` as CSV to `csv` (`-`: standard output).
 pub fn export_csv(input: &Path, csv: &Path) -> Result<ExportSummary, String> {
+    crate::files::check_not_an_input(csv, &[input])?;
     let loaded = load_run(input)?;
     // A recording cut by a crash is read up to the cut, and said so once (as replay does).
     if let Some(w) = &loaded.warning {

@@ -121,6 +121,7 @@ fn replay_meta(input: &Path, meta: &RunMeta, model: ModelKind, stepping: Steppin
 /// one) and records the result to `out`. With the recorded model every recorded state comes back
 /// bit for bit (the summary says how many were compared and matched).
 pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<ReplaySummary, String> {
+    crate::files::check_not_an_input(out, &[input])?;
     let run = load_run(input)?;
     let meta = &run.meta;
     if let AttachmentMeta::Force { .. } = meta.attachment {

@@ -25,7 +25,10 @@ pub fn muscle_mass_kg(f_max_n: f64, l_opt_m: f64, sigma_pa: f64, rho_kg_m3: f64)
 /// `(r sin(π u/2), (1 - r)(1 - cos(π u/2)))`: slow fibres first.
 pub fn recruitment(excitation: f64, slow_twitch_ratio: f64) -> (f64, f64) {
     let (sin, cos) = (FRAC_PI_2 * excitation).sin_cos();
-    (slow_twitch_ratio * sin, (1.0 - slow_twitch_ratio) * (1.0 - cos))
+    (
+        slow_twitch_ratio * sin,
+        (1.0 - slow_twitch_ratio) * (1.0 - cos),
+    )
 }
 
 /// One muscle's constants for a probe.
