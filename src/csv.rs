@@ -47,9 +47,18 @@ pub fn write_csv(run: &Run, out: &mut impl Write) -> std::io::Result<()> {
 
 /// Writes the run as CSV to the file `path` (`-`: standard output).
 pub fn write_csv_to(run: &Run, path: &Path) -> Result<(), String> {
+    write_text_to(path, |out| write_csv(run, out))
+}
+
+/// Writes a CSV table by `body` to the file `path` (`-`: standard output), buffered; the error
+/// names the file.
+pub fn write_text_to(
+    path: &Path,
+    body: impl Fn(&mut std::io::BufWriter<&mut dyn Write>) -> std::io::Result<()>,
+) -> Result<(), String> {
     let write = |out: &mut dyn Write| {
         let mut buf = std::io::BufWriter::new(out);
-        write_csv(run, &mut buf)?;
+        body(&mut buf)?;
         buf.flush()
     };
     if path.as_os_str() == "-" {

@@ -8,7 +8,7 @@ use std::process::Output;
 
 #[path = "common/cli.rs"]
 mod cli;
-use cli::{bin, stderr};
+use cli::{assert_clean_failure, bin, stderr};
 
 fn tmp(name: &str, text: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("muscle_actuator_cli_{}", std::process::id()));
@@ -31,16 +31,6 @@ fn msg_fields(name: &str) -> Vec<(String, String)> {
             (ty.to_string(), name.trim().to_string())
         })
         .collect()
-}
-
-fn assert_clean_failure(o: &Output, needles: &[&str]) {
-    let err = stderr(o);
-    assert!(!o.status.success(), "should fail: {err}");
-    assert_ne!(o.status.code(), Some(101), "panicked: {err}");
-    assert!(!err.contains("panicked"), "panicked: {err}");
-    for n in needles {
-        assert!(err.contains(n), "expected {n:?} in: {err}");
-    }
 }
 
 fn simulate_with_config(config_text: &str) -> Output {

@@ -10,7 +10,7 @@ use std::process::Output;
 
 #[path = "common/cli.rs"]
 mod cli;
-use cli::{bin, run_ok, stderr, temp_dir};
+use cli::{assert_clean_failure, bin, run_ok, stderr, temp_dir};
 
 /// Avogadro's number, 1/mol (SI 2019, exact).
 const AVOGADRO_PER_MOL: f64 = 6.022_140_76e23;
@@ -229,16 +229,6 @@ fn the_named_muscle_with_its_energetics() {
     assert_eq!(flexor[1].get("force_n"), 2000.0);
     let arm = steady_csv(&["--config", "arm", "--muscle", "TRIlong", "--points", "3"]);
     assert_eq!(arm[2].get("v_s_m_s"), 0.723656);
-}
-
-fn assert_clean_failure(o: &Output, needles: &[&str]) {
-    let err = stderr(o);
-    assert!(!o.status.success(), "should fail: {err}");
-    assert_ne!(o.status.code(), Some(101), "panicked: {err}");
-    assert!(!err.contains("panicked"), "panicked: {err}");
-    for n in needles {
-        assert!(err.contains(n), "expected {n:?} in: {err}");
-    }
 }
 
 fn steady(args: &[&str]) -> Output {

@@ -175,19 +175,7 @@ pub fn csv_number(x: f64) -> String {
 
 /// The CSV to the file `path` (`-`: standard output).
 fn write_csv_to(rows: &[SteadyRow], path: &Path) -> Result<(), String> {
-    let write = |out: &mut dyn Write| {
-        let mut buf = std::io::BufWriter::new(out);
-        write_csv(rows, &mut buf)?;
-        buf.flush()
-    };
-    if path.as_os_str() == "-" {
-        write(&mut std::io::stdout().lock())
-    } else {
-        let mut f = std::fs::File::create(path)
-            .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-        write(&mut f)
-    }
-    .map_err(|e| format!("cannot write CSV {}: {e}", path.display()))
+    crate::csv::write_text_to(path, |out| write_csv(rows, out))
 }
 
 #[cfg(test)]

@@ -23,6 +23,17 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// A refusal: a non-zero exit that is not a panic (101), naming each of `needles` on stderr.
+pub fn assert_clean_failure(o: &Output, needles: &[&str]) {
+    let err = stderr(o);
+    assert!(!o.status.success(), "should fail: {err}");
+    assert_ne!(o.status.code(), Some(101), "panicked: {err}");
+    assert!(!err.contains("panicked"), "panicked: {err}");
+    for n in needles {
+        assert!(err.contains(n), "expected {n:?} in: {err}");
+    }
+}
+
 /// Runs `cmd`, which must succeed.
 pub fn run_ok(cmd: &mut Command) -> Output {
     let o = cmd.output().unwrap();
