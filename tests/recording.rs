@@ -235,6 +235,42 @@ fn compare_hill_and_huxley_pulse() {
     assert!((ra - rb).abs() > 0.005, "rise {ra} vs {rb}");
     assert!(f.rms_diff > 1.0);
 
+    // What each run spent: the rise of its recorded energy over the span, and the RMS of its
+    // recorded power, computed here from the states.
+    let spent = |p: &Path| {
+        let run = load_run(p).unwrap();
+        let m = |i: usize| run.states[i].muscles[0].state;
+        let n = run.states.len();
+        let rms = (run
+            .states
+            .iter()
+            .map(|s| s.muscles[0].state.metabolic_power.powi(2))
+            .sum::<f64>()
+            / n as f64)
+            .sqrt();
+        (m(n - 1).metabolic_energy - m(0).metabolic_energy, rms)
+    };
+    let (e, json_e) = (&c.energies[0], &json["energies"][0]);
+    assert_eq!(e.muscle, "flexor");
+    for (got, (energy, rms)) in [
+        ((e.energy_a_j, e.rms_power_a_w), spent(&hill)),
+        ((e.energy_b_j, e.rms_power_b_w), spent(&hux)),
+    ] {
+        assert!(energy > 100.0, "{energy} J");
+        assert!(
+            (got.0 - energy).abs() <= 1e-9 * energy,
+            "{} J against {energy} J",
+            got.0
+        );
+        assert!(
+            (got.1 - rms).abs() <= 1e-9 * rms,
+            "{} W against {rms} W",
+            got.1
+        );
+    }
+    assert_eq!(json_e["energy_b_j"].as_f64(), Some(e.energy_b_j));
+    assert!(table.contains("energy over the span"), "{table}");
+
     // Incomparable: different muscles (a joint run has two).
     let joint = dir().join("joint.toml");
     std::fs::write(
