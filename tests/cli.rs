@@ -50,6 +50,22 @@ fn each_invalid_parameter_gets_its_own_error() {
             &["muscle.flexor.f_max", "must be > 0"],
         ),
         (
+            "[[muscle]]\nname = \"flexor\"\n[muscle.energetics]\natp_free_energy = 1e-300\n[[muscle]]\nname = \"extensor\"\n",
+            &["muscle.flexor.energetics.atp_free_energy", "from 1e-21 to 1e-17 J"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\n[muscle.energetics]\nactivation_share = 1.0\n[[muscle]]\nname = \"extensor\"\n",
+            &["muscle.flexor.energetics.activation_share", "[0, 0.9]"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\n[[muscle]]\nname = \"extensor\"\n[muscle.energetics]\nmetabolic_mass = 1e300\n",
+            &["muscle.extensor.energetics.metabolic_mass", "<= 1000 kg"],
+        ),
+        (
+            "[[muscle]]\nname = \"flexor\"\n[muscle.energetics]\nenergy_model = \"heat\"\n[[muscle]]\nname = \"extensor\"\n",
+            &["energy_model", "heat", "umberger2010"],
+        ),
+        (
             "[[muscle]]\nname = \"flexor\"\nmass = 0.0\n[[muscle]]\nname = \"extensor\"\n",
             &["muscle.flexor.mass", "must be > 0"],
         ),

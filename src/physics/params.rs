@@ -311,12 +311,27 @@ impl MuscleParams {
             prefix: &format!("{prefix}energetics."),
             errors: c.errors,
         };
-        c.positive("atp_free_energy", e.atp_free_energy);
-        c.positive("hill_a_over_p0", e.hill_a_over_p0);
-        if !(0.0..1.0).contains(&e.activation_share) {
-            c.fail("activation_share", e.activation_share, "must be in [0, 1)");
+        // Bounds of physical sense, wide: they keep every energetics output finite (the ATP
+        // rate scales as 1/e, the activation heat as s/(1 - s)).
+        let within = |v: f64, lo: f64, hi: f64| v.is_finite() && (lo..=hi).contains(&v);
+        if !within(e.atp_free_energy, 1e-21, 1e-17) {
+            c.fail(
+                "atp_free_energy",
+                e.atp_free_energy,
+                "must be from 1e-21 to 1e-17 J",
+            );
         }
-        if !(0.0..=1.0).contains(&e.slow_twitch_ratio) {
+        if !(within(e.hill_a_over_p0, 0.0, 10.0) && e.hill_a_over_p0 > 0.0) {
+            c.fail("hill_a_over_p0", e.hill_a_over_p0, "must be > 0 and <= 10");
+        }
+        if !within(e.activation_share, 0.0, 0.9) {
+            c.fail(
+                "activation_share",
+                e.activation_share,
+                "must be in [0, 0.9]",
+            );
+        }
+        if !within(e.slow_twitch_ratio, 0.0, 1.0) {
             c.fail(
                 "slow_twitch_ratio",
                 e.slow_twitch_ratio,
@@ -324,7 +339,9 @@ impl MuscleParams {
             );
         }
         if let Some(m) = e.metabolic_mass {
-            c.positive("metabolic_mass", m);
+            if !(within(m, 0.0, 1e3) && m > 0.0) {
+                c.fail("metabolic_mass", m, "must be > 0 and <= 1000 kg");
+            }
         }
     }
 

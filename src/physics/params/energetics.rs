@@ -85,7 +85,7 @@ pub struct EnergeticsParams {
     /// Hill's (1938) heat coefficient a / P0, which sets the energy per ATP over a bridge's
     /// strain energy (Huxley 1957; docs/model.md §11.2).
     pub hill_a_over_p0: f64,
-    /// Share of the isometric ATP turnover at full activation spent on calcium handling, [0, 1).
+    /// Share of the isometric ATP turnover at full activation spent on calcium handling, [0, 0.9].
     pub activation_share: f64,
     /// Share of slow-twitch fibres r, [0, 1] (the phenomenological models).
     pub slow_twitch_ratio: f64,
