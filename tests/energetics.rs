@@ -129,19 +129,19 @@ fn parts_sum_to_totals_and_energies_integrate_powers() {
             }
         }
         let last = &r.records.last().unwrap().muscles;
-        for i in 0..r.muscle_names.len() {
+        for (i, end) in last.iter().enumerate() {
             let integral = integral(&r, i, |m| m.metabolic_power);
             if model != ModelKind::HILL {
                 // The bridges do not see the excitation: their power at a tick's start is the
                 // previous tick's end, so the run's energy is exactly this integral.
-                let d = (last[i].metabolic_energy - integral).abs();
+                let d = (end.metabolic_energy - integral).abs();
                 assert!(
                     d <= 1e-9 * integral,
                     "{model}: {} J against {integral} J",
-                    last[i].metabolic_energy
+                    end.metabolic_energy
                 );
             }
-            assert!(last[i].metabolic_energy > 0.0 && last[i].phenomenological_energy > 0.0);
+            assert!(end.metabolic_energy > 0.0 && end.phenomenological_energy > 0.0);
         }
     }
 }
