@@ -132,15 +132,10 @@ impl Mtu {
         }
     }
 
-    /// What the phenomenological energy model reads at muscle state `s = [l_m, v, x...]`,
-    /// excitation u and activation a (the passive force only if it reads it, else 0).
-    pub fn probe_inputs(&self, excitation: f64, activation: f64, s: &[f64]) -> ProbeInputs {
-        let ce = self.ce_inputs(activation, s[0], s[1]);
-        self.probe_inputs_at(excitation, &ce, s)
-    }
-
-    /// The same, with the contractile element's inputs already computed.
-    fn probe_inputs_at(&self, excitation: f64, ce: &CeInputs, s: &[f64]) -> ProbeInputs {
+    /// What the phenomenological energy model reads under excitation u, with the contractile
+    /// element's inputs `ce` at muscle state `s = [l_m, v, x...]` (the passive force only if it
+    /// reads it, else 0).
+    fn probe_inputs(&self, excitation: f64, ce: &CeInputs, s: &[f64]) -> ProbeInputs {
         ProbeInputs {
             excitation,
             activation: ce.activation,
@@ -161,7 +156,7 @@ impl Mtu {
     /// outside the ODE must be asked after the sub-step hooks have brought it in step with `s`.
     pub fn metabolic(&self, excitation: f64, activation: f64, s: &[f64]) -> MetabolicSample {
         let ce = self.ce_inputs(activation, s[0], s[1]);
-        let x = self.probe_inputs_at(excitation, &ce, s);
+        let x = self.probe_inputs(excitation, &ce, s);
         let mechanism = self.ce.bridge_energy(&ce, &s[2..]).map(|(fluxes, b)| {
             mechanism_rates(
                 b,

@@ -234,11 +234,6 @@ impl Simulation {
         s
     }
 
-    /// Muscle i's energetics carried from tick to tick.
-    pub fn muscle_energy(&self, i: usize) -> &MuscleEnergy {
-        &self.energy[i]
-    }
-
     /// Fills `out` with the published state (its vectors keep their storage).
     pub fn fill_snapshot(&self, out: &mut StateSnapshot) {
         let (m, n) = (self.plant.muscle_count(), self.plant.joint_count());

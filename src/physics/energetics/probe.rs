@@ -3,7 +3,6 @@
 //! `Bhargava2004MuscleMetabolicsProbe`) compute them: the muscle mass, fibre recruitment, the
 //! inputs read from the muscle, the parts of the result, and the two clamps.
 
-use crate::physics::params::MuscleParams;
 use std::f64::consts::FRAC_PI_2;
 
 /// Specific tension σ of mammalian muscle, Pa (OpenSim's default).
@@ -44,20 +43,6 @@ pub struct ProbeMuscle {
     pub v_max_lopt_s: f64,
     /// Share of slow-twitch fibres r, [0, 1].
     pub slow_twitch_ratio: f64,
-}
-
-impl ProbeMuscle {
-    /// The muscle of `p` with OpenSim's mass `(Fmax / σ) ρ lopt` (σ, ρ their defaults) and
-    /// slow-twitch share r.
-    pub fn opensim(p: &MuscleParams, slow_twitch_ratio: f64) -> Self {
-        Self {
-            mass_kg: muscle_mass_kg(p.f_max, p.l_opt, SPECIFIC_TENSION_PA, MUSCLE_DENSITY_KG_M3),
-            f_max_n: p.f_max,
-            l_opt_m: p.l_opt,
-            v_max_lopt_s: p.v_max / p.l_opt,
-            slow_twitch_ratio,
-        }
-    }
 }
 
 /// What a probe reads from the muscle at one instant.

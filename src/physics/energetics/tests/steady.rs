@@ -9,7 +9,6 @@ use crate::physics::energetics::bhargava::BhargavaOptions;
 use crate::physics::energetics::bridge_power::{BridgeEnergyParams, BridgeEnergyScale};
 use crate::physics::energetics::huxley_steady::energy_rate_ratio;
 use crate::physics::energetics::phenomenological::PhenomenologicalModel;
-use crate::physics::energetics::probe::ProbeMuscle;
 use crate::physics::energetics::steady::*;
 use crate::physics::energetics::umberger::UmbergerOptions;
 use crate::physics::params::MuscleParams;
@@ -188,7 +187,7 @@ fn dm_against_the_full_model() {
 #[test]
 fn isometric_rates_lie_between_the_phenomenological_ones() {
     let m = models(0.35);
-    let muscle = ProbeMuscle::opensim(&m.p, 0.5);
+    let muscle = m.p.energetics.probe_muscle(m.p.f_max, m.p.l_opt, m.p.v_max);
     let e = m.e_exact.atp_free_energy_j;
     let per_kg = |p: SteadyPoint| p.chemical_w / muscle.mass_kg;
     let umberger = PhenomenologicalModel::Umberger(UmbergerOptions::uchida_2016());
@@ -211,7 +210,7 @@ fn isometric_rates_lie_between_the_phenomenological_ones() {
 #[test]
 fn hill_steady_states_with_the_probes() {
     let p = MuscleParams::default();
-    let muscle = ProbeMuscle::opensim(&p, 0.5);
+    let muscle = p.energetics.probe_muscle(p.f_max, p.l_opt, p.v_max);
     for model in [
         PhenomenologicalModel::Umberger(UmbergerOptions::default()),
         PhenomenologicalModel::Bhargava(BhargavaOptions::default()),
