@@ -9,9 +9,6 @@ use crate::physics::energetics::params::UnknownEnergyModel;
 use crate::physics::model::{join, ModelKind, UnknownModel};
 use crate::physics::params::EnergyModel;
 use crate::physics::stepping::Stepping;
-use crate::runs::limits;
-use crate::sim::scenario::Scenario;
-use crate::sim::simulation::default_stepping;
 use crate::sim::steady::{DEFAULT_POINTS, MAX_POINTS, MIN_POINTS};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -313,19 +310,8 @@ fn simulate(
     csv: Option<&Path>,
     out: Option<&Path>,
 ) -> Result<(), String> {
-    limits::check_rate_hz("--rate-hz", rate_hz)?;
-    if let Some(n) = substeps {
-        limits::check_substeps("--substeps", n)?;
-    }
     let model = parse_model(model)?;
-    let sc = Scenario::resolve(scenario, &cfg.muscles[0].params)?;
-    let stepping = substeps
-        .map(Stepping::Fixed)
-        .unwrap_or(default_stepping(model));
-    let run = match out {
-        Some(path) => crate::runs::simulate_to_mcap(&sc, cfg, model, rate_hz, stepping, path)?,
-        None => sc.run(cfg, model, rate_hz, stepping)?,
-    };
+    let run = crate::runs::run_scenario(scenario, cfg, model, rate_hz, substeps, out)?;
     if let Some(path) = csv {
         crate::csv::write_csv_to(&run, path)?;
     }

@@ -26,7 +26,9 @@
 //! - [`pair`]: the antagonistic-pair form.
 //! - [`parse`]: built-in names, files and TOML text.
 //! - [`validate`]: the rules and the warnings.
+//! - [`overrides`]: single values set by dotted keys (`muscle.flexor.k_t`).
 
+pub mod overrides;
 pub mod pair;
 pub mod parse;
 pub mod schema;

@@ -30,5 +30,5 @@ pub use channels::{
 pub use load::{load_run, InputsAt, JointMotionAt, LoadedRun};
 pub use metadata::{driven_motion, AttachmentMeta, RunMeta, METADATA_NAME};
 pub use replay::{replay, ReplaySummary};
-pub use simulate::simulate_to_mcap;
+pub use simulate::{run_scenario, simulate_to_mcap};
 pub use writer::joint_motion_msg;

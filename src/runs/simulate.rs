@@ -1,14 +1,40 @@
 //! `simulate --out`: a scenario run recorded as it is simulated.
 
+use super::limits;
 use super::metadata::{driven_motion, AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
 use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
-use crate::sim::simulation::Stepping;
+use crate::sim::simulation::{default_stepping, Stepping};
 use crate::sim::snapshot::StateSnapshot;
 use crate::time::{now_ns, TimeBase};
 use std::path::Path;
+
+/// `simulate`'s run: the scenario (a built-in name or a file) with `model` at `rate_hz`, fixed
+/// `substeps` per tick or the model's default stepping, recorded to `out` if given. The command
+/// line and the Python package both run this, so their numbers are the same.
+pub fn run_scenario(
+    scenario: &str,
+    cfg: &ActuatorConfig,
+    model: ModelKind,
+    rate_hz: f64,
+    substeps: Option<usize>,
+    out: Option<&Path>,
+) -> Result<Run, String> {
+    limits::check_rate_hz("--rate-hz", rate_hz)?;
+    if let Some(n) = substeps {
+        limits::check_substeps("--substeps", n)?;
+    }
+    let sc = Scenario::resolve(scenario, &cfg.muscles[0].params)?;
+    let stepping = substeps
+        .map(Stepping::Fixed)
+        .unwrap_or(default_stepping(model));
+    match out {
+        Some(path) => simulate_to_mcap(&sc, cfg, model, rate_hz, stepping, path),
+        None => sc.run(cfg, model, rate_hz, stepping),
+    }
+}
 
 /// Runs a scenario (as [`Scenario::run`]) and records it to `out`.
 pub fn simulate_to_mcap(
