@@ -10,6 +10,7 @@
 //! Written by hand: no crate offers a moving-grid characteristic solver for this equation.
 
 use crate::physics::contractile::crossbridge::Rates;
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 use std::collections::VecDeque;
 
 /// Bond fraction below which an outer cell is dropped.
@@ -208,5 +209,38 @@ impl CrossBridgeGrid {
                 self.first_centre += self.dxi;
             }
         }
+    }
+}
+
+/// The distribution: its first cell's centre and its cells (between one and the capacity); the
+/// cell width and the capacity are the rebuilt grid's.
+impl SavedState for CrossBridgeGrid {
+    fn save_state(&self, out: &mut StateWriter) {
+        out.f64(self.first_centre);
+        out.usize(self.n.len());
+        for &v in &self.n {
+            out.f64(v);
+        }
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        self.first_centre = input.f64("bond grid's first cell")?;
+        self.n.clear();
+        let cells = input.f64s_extend("bond grid cells", self.capacity, &mut self.n)?;
+        // What a reset and every advance leave, to a cell: the attachment range and its margin
+        // covered (a grid far from it would be extended cell by cell on the next sub-step).
+        let slack = 2.0 * self.dxi;
+        let (lo, hi) = (-COVER_MARGIN + slack, 1.0 + COVER_MARGIN - slack);
+        let covers = cells > 0
+            && self.first_centre.is_finite()
+            && self.first_centre - 0.5 * self.dxi <= lo
+            && self.last_centre() + 0.5 * self.dxi >= hi;
+        if !covers {
+            return Err(format!(
+                "bond grid: {cells} cells from {} do not cover the attachment range",
+                self.first_centre
+            ));
+        }
+        Ok(())
     }
 }
