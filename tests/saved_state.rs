@@ -342,6 +342,71 @@ fn a_clone_continues_as_the_original() {
     }
 }
 
+/// Set in the child process of [`a_state_restored_in_another_process_continues_bit_for_bit`]:
+/// the directory of the saved states it restores and of the outputs it writes.
+const CHILD_DIR: &str = "MUSCLE_ACTUATOR_SAVED_STATE_DIR";
+
+/// Each model's arm saved here, restored and continued by a fresh process (this test binary run
+/// again for this one test): its outputs are the original's, bit for bit.
+#[test]
+fn a_state_restored_in_another_process_continues_bit_for_bit() {
+    let names = |dir: &std::path::Path, model: ModelKind| {
+        (
+            dir.join(format!("{model}.state")),
+            dir.join(format!("{model}.out")),
+        )
+    };
+    if let Some(dir) = std::env::var_os(CHILD_DIR) {
+        // The child: restore, continue, write every tick's outputs.
+        for model in MODELS {
+            let (state, out) = names(std::path::Path::new(&dir), model);
+            let mut a = Actuator::from_bytes(&std::fs::read(state).unwrap()).unwrap();
+            let bits: Vec<u8> = (run(&mut a, SAVE..END).into_iter().flatten())
+                .flat_map(u64::to_le_bytes)
+                .collect();
+            std::fs::write(out, bits).unwrap();
+        }
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("muscle_actuator_saved_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut originals = Vec::new();
+    for model in MODELS {
+        let mut a = Actuator::new(&built_in("arm"), model, RATE_HZ).unwrap();
+        run(&mut a, 0..SAVE);
+        std::fs::write(names(&dir, model).0, a.to_bytes()).unwrap();
+        originals.push((run(&mut a, SAVE..END), a));
+    }
+    let status = std::process::Command::new(std::env::current_exe().unwrap())
+        .args([
+            "--exact",
+            "a_state_restored_in_another_process_continues_bit_for_bit",
+        ])
+        .arg("--test-threads=1")
+        .env(CHILD_DIR, &dir)
+        .stdout(std::process::Stdio::null())
+        .status()
+        .unwrap();
+    assert!(status.success(), "the child process failed: {status}");
+    for (model, (original, a)) in MODELS.into_iter().zip(&originals) {
+        let bytes = std::fs::read(names(&dir, model).1).unwrap();
+        let bits: Vec<u64> = (bytes.chunks_exact(8))
+            .map(|b| u64::from_le_bytes(b.try_into().unwrap()))
+            .collect();
+        let copy: Vec<Vec<u64>> = bits
+            .chunks(original[0].len())
+            .map(<[u64]>::to_vec)
+            .collect();
+        assert_same(
+            &format!("arm/{model} in another process"),
+            a,
+            original,
+            &copy,
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// The configuration comes back identical, every f64 by its bits, from the TOML text the bytes
 /// hold: values that need all 17 digits, tiny and huge ones, −0, polynomial arms, an energy
 /// model chosen.

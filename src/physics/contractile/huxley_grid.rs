@@ -244,3 +244,46 @@ impl SavedState for CrossBridgeGrid {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::contractile::calibration;
+    use crate::physics::params::MuscleParams;
+
+    /// A grid after some motion comes back cell for cell; one moved off the attachment range,
+    /// or with more cells than its room, is refused.
+    #[test]
+    fn a_saved_grid_comes_back_and_a_displaced_one_is_refused() {
+        let scale = calibration::calibrate_exact(&MuscleParams::default());
+        let mut grid = CrossBridgeGrid::new(50, 4.0);
+        for k in 0..40 {
+            let shift = if k < 20 { -0.01 } else { 0.015 };
+            grid.advance(&scale.rates, 0.8, 1e-3, shift);
+        }
+        let mut out = StateWriter::new();
+        grid.save_state(&mut out);
+        let mut back = CrossBridgeGrid::new(50, 4.0);
+        back.restore_state(&mut StateReader::new(out.bytes()))
+            .unwrap();
+        assert_eq!(back.first_centre.to_bits(), grid.first_centre.to_bits());
+        assert_eq!(back.n, grid.n);
+
+        let mut moved = grid.clone();
+        moved.first_centre += 0.5;
+        let mut out = StateWriter::new();
+        moved.save_state(&mut out);
+        let e = back
+            .restore_state(&mut StateReader::new(out.bytes()))
+            .unwrap_err();
+        assert!(e.contains("do not cover"), "{e}");
+
+        let mut out = StateWriter::new();
+        out.f64(grid.first_centre);
+        out.usize(grid.capacity + 1);
+        let e = back
+            .restore_state(&mut StateReader::new(out.bytes()))
+            .unwrap_err();
+        assert!(e.contains("over its bound"), "{e}");
+    }
+}
