@@ -14,6 +14,7 @@
 //! - [`time`]: the time base of a run (ticks ↔ stamps), now, ISO 8601 dates (neutral).
 //! - [`text`]: user text as messages quote it: excerpts, one-line messages (neutral).
 //! - [`files`]: bounded reading of the files a user names (neutral).
+//! - [`state_bytes`]: the values of a saved state as bytes, every read checked (neutral).
 
 pub mod cli;
 pub mod config;
@@ -27,6 +28,7 @@ pub mod recording;
 pub mod ros;
 pub mod runs;
 pub mod sim;
+pub mod state_bytes;
 pub mod text;
 pub mod time;
 

@@ -12,6 +12,7 @@
 
 use crate::integrator::dense::{invert, Lu};
 use crate::integrator::{IterationMatrix, OdeSystem};
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
 /// One leaf's part of the Jacobian.
 #[derive(Debug, Clone, Default)]
@@ -216,6 +217,87 @@ impl<S: ArrowheadSystem + ?Sized> IterationMatrix<S> for ArrowheadMatrix {
                 *x = v;
             }
         }
+    }
+}
+
+/// An entry list of a leaf's coupling: (row, column, value) with the row below `rows` and the
+/// column below `cols`.
+fn save_entries(out: &mut StateWriter, entries: &[(usize, usize, f64)]) {
+    out.usize(entries.len());
+    for &(r, c, v) in entries {
+        out.usize(r);
+        out.usize(c);
+        out.f64(v);
+    }
+}
+
+fn restore_entries(
+    input: &mut StateReader,
+    what: &str,
+    (rows, cols): (usize, usize),
+    entries: &mut Vec<(usize, usize, f64)>,
+) -> Result<(), String> {
+    let n = input.usize(what, usize::MAX)?;
+    input.check_room(n, 24, what)?;
+    entries.clear();
+    for _ in 0..n {
+        let r = input.usize(what, rows.saturating_sub(1))?;
+        let c = input.usize(what, cols.saturating_sub(1))?;
+        entries.push((r, c, input.f64(what)?));
+    }
+    if n > 0 && rows * cols == 0 {
+        return Err(format!("{what}: entries saved for an empty block"));
+    }
+    Ok(())
+}
+
+/// The Jacobian and its factorisation (both kept from tick to tick) and the work vectors; the
+/// structure (core and leaf sizes) is the rebuilt plant's, and the saved sizes must be its.
+impl SavedState for ArrowheadMatrix {
+    fn save_state(&self, out: &mut StateWriter) {
+        out.f64s(&self.jac.core);
+        out.usize(self.leaves.len());
+        for (leaf, lj) in self.leaves.iter().zip(&self.jac.leaves) {
+            out.f64s(&lj.block);
+            save_entries(out, &lj.to_core);
+            save_entries(out, &lj.from_core);
+            out.f64s(&leaf.p);
+            out.f64s(&leaf.inverse);
+            out.f64s(&leaf.w);
+        }
+        self.schur.save_state(out);
+        out.f64s(&self.schur_inverse);
+        out.f64(self.d);
+        out.f64s(&self.x_core);
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        let nc = self.core;
+        input.f64s_into("Jacobian core block", &mut self.jac.core)?;
+        input.expect_len("Jacobian leaf blocks", self.leaves.len())?;
+        for (leaf, lj) in self.leaves.iter_mut().zip(&mut self.jac.leaves) {
+            let n = leaf.n;
+            input.f64s_into("Jacobian leaf block", &mut lj.block)?;
+            restore_entries(
+                input,
+                "Jacobian leaf-to-core entries",
+                (nc, n),
+                &mut lj.to_core,
+            )?;
+            restore_entries(
+                input,
+                "Jacobian core-to-leaf entries",
+                (n, nc),
+                &mut lj.from_core,
+            )?;
+            input.f64s_into("leaf iteration block", &mut leaf.p)?;
+            input.f64s_into("leaf inverse", &mut leaf.inverse)?;
+            input.f64s_into("leaf work vector", &mut leaf.w)?;
+        }
+        self.schur.restore_state(input)?;
+        input.f64s_into("Schur complement inverse", &mut self.schur_inverse)?;
+        self.d = input.f64("iteration matrix's h gamma")?;
+        input.f64s_into("core work vector", &mut self.x_core)
     }
 }
 

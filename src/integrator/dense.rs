@@ -5,6 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::integrator::{IterationMatrix, OdeSystem};
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
 /// Dense `I - d J`, row-major, with its LU.
 #[derive(Debug, Clone)]
@@ -152,6 +153,34 @@ impl Lu {
             x[i] = (x[i] - dot) / row[i];
         }
         b.copy_from_slice(x);
+    }
+}
+
+/// The factorisation and its work vectors (a kept factorisation is solved with on later
+/// ticks); the permutation must be one of `0..n`.
+impl SavedState for Lu {
+    fn save_state(&self, out: &mut StateWriter) {
+        out.f64s(&self.rows);
+        out.usize(self.perm.len());
+        for &p in &self.perm {
+            out.usize(p);
+        }
+        out.f64s(&self.pivot_row);
+        out.f64s(&self.x);
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        input.f64s_into("LU factors", &mut self.rows)?;
+        input.expect_len("LU permutation", self.n)?;
+        let mut seen = vec![false; self.n];
+        for p in self.perm.iter_mut() {
+            *p = input.usize("LU permutation", self.n.saturating_sub(1))?;
+            if std::mem::replace(&mut seen[*p], true) {
+                return Err(format!("LU permutation: row {p} appears twice"));
+            }
+        }
+        input.f64s_into("LU pivot row", &mut self.pivot_row)?;
+        input.f64s_into("LU work vector", &mut self.x)
     }
 }
 

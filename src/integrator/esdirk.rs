@@ -27,6 +27,8 @@ use super::tableau::{Tableau, MAX_STAGES};
 use crate::integrator::{ConvergenceError, IterationMatrix, OdeSystem, Stats};
 use std::sync::Arc;
 
+mod saved;
+
 /// Newton stops when the scaled error it estimates is left is below this fraction of the step's
 /// tolerance (and never above `NEWTON_TOL_MAX`): small enough that the DM elbow's joint scenario
 /// stays within tests/reference_runs.rs's bound (1e-6 m) of the reference CSV; smaller fractions

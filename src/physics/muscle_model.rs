@@ -17,6 +17,7 @@ use crate::physics::energetics::bridge_flux::EnergyFluxes;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
+use crate::state_bytes::{StateReader, StateWriter};
 use std::fmt;
 
 /// What the contractile element sees at one instant.
@@ -81,6 +82,15 @@ pub trait ContractileModel: fmt::Debug + Send + Sync {
     fn reset(&mut self) {}
     /// Forgets what the sub-step hooks carry from one sub-step to the next (after a failed tick).
     fn forget_history(&mut self) {}
+    /// Writes what it carries from tick to tick outside the ODE state (a saved state,
+    /// `sim::saved`): nothing for a model without such state. Everything a later tick reads
+    /// must be written, or a restored run departs from the original.
+    fn save_state(&self, _out: &mut StateWriter) {}
+    /// Reads back what [`ContractileModel::save_state`] wrote, into an element built from the
+    /// same parameters; Err, naming the value, for bytes that do not fit it.
+    fn restore_state(&mut self, _input: &mut StateReader) -> Result<(), String> {
+        Ok(())
+    }
     /// A copy behind a new box.
     fn clone_box(&self) -> Box<dyn ContractileModel>;
 }

@@ -23,6 +23,7 @@ use crate::physics::observables::MuscleSnapshot;
 use crate::physics::params::JointParams;
 use crate::physics::stiffness::add_muscle_joint_stiffness;
 use crate::physics::topology::{Anchor, Span, Topology};
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
 /// Inputs held over a tick.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -58,6 +59,36 @@ impl Inputs {
         self.tendon_force.fill(0.0);
         self.joint_angle.fill(0.0);
         self.joint_velocity.fill(0.0);
+    }
+}
+
+/// Every input, in field order; the sizes must be those of the inputs read into.
+impl SavedState for Inputs {
+    fn save_state(&self, out: &mut StateWriter) {
+        let Inputs {
+            excitation,
+            external_torque,
+            tendon_force,
+            joint_angle,
+            joint_velocity,
+        } = self;
+        for v in [
+            excitation,
+            external_torque,
+            tendon_force,
+            joint_angle,
+            joint_velocity,
+        ] {
+            out.f64s(v);
+        }
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        input.f64s_into("excitations", &mut self.excitation)?;
+        input.f64s_into("external torques", &mut self.external_torque)?;
+        input.f64s_into("tendon forces", &mut self.tendon_force)?;
+        input.f64s_into("joint angles", &mut self.joint_angle)?;
+        input.f64s_into("joint velocities", &mut self.joint_velocity)
     }
 }
 

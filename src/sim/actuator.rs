@@ -149,6 +149,11 @@ impl Actuator {
         self.sim.reset_with(&inputs);
         self.sim.fill_snapshot(&mut self.state);
     }
+    /// Its simulation and its published state, for a saved state to be restored into
+    /// (sim::saved).
+    pub(super) fn restore_target(&mut self) -> (&mut Simulation, &mut StateSnapshot) {
+        (&mut self.sim, &mut self.state)
+    }
     /// Everything observable after the last tick.
     pub fn state(&self) -> &StateSnapshot {
         &self.state

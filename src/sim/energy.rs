@@ -7,7 +7,11 @@
 //! tick's excitation: the bridges do not see the excitation (their rates are carried as they
 //! were), the phenomenological models do (theirs are recomputed).
 
-use crate::physics::energetics::metabolic::{MetabolicRates, MetabolicSample, MuscleProbe};
+use crate::physics::energetics::metabolic::{
+    MechanismRates, MetabolicRates, MetabolicSample, MuscleProbe,
+};
+use crate::physics::energetics::probe::ProbeInputs;
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
 /// One muscle's energetics carried from tick to tick.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -46,5 +50,117 @@ impl MuscleEnergy {
         self.metabolic_j += 0.5 * dt * (start.metabolic_w + r.metabolic_w);
         self.phenomenological_j += 0.5 * dt * (start.phenomenological_w + r.phenomenological_w);
         self.sample = end;
+    }
+}
+
+/// The last tick's sample (its mechanism's rates, what the probe read, the published rates;
+/// the next tick's start reads them) and the energies since start. Every field is named, so
+/// that a field added to these structs fails to compile here until it is saved.
+impl SavedState for MuscleEnergy {
+    fn save_state(&self, out: &mut StateWriter) {
+        let MetabolicSample {
+            mechanism,
+            probe_inputs,
+            rates,
+        } = self.sample;
+        out.bool(mechanism.is_some());
+        let MechanismRates {
+            total_w,
+            activation_heat_w,
+            bridge_heat_w,
+            work_w,
+            storage_w,
+            atp_rate_mol_s,
+        } = mechanism.unwrap_or_default();
+        let m = [
+            total_w,
+            activation_heat_w,
+            bridge_heat_w,
+            work_w,
+            storage_w,
+            atp_rate_mol_s,
+        ];
+        let ProbeInputs {
+            excitation,
+            activation,
+            fibre_length_norm,
+            force_length,
+            fibre_velocity_m_s,
+            active_force_n,
+            passive_force_n,
+        } = probe_inputs;
+        let p = [
+            excitation,
+            activation,
+            fibre_length_norm,
+            force_length,
+            fibre_velocity_m_s,
+            active_force_n,
+            passive_force_n,
+        ];
+        let MetabolicRates {
+            metabolic_w,
+            activation_heat_w,
+            shortening_heat_w,
+            work_w,
+            storage_w,
+            atp_rate_mol_s,
+            phenomenological_w,
+        } = rates;
+        let r = [
+            metabolic_w,
+            activation_heat_w,
+            shortening_heat_w,
+            work_w,
+            storage_w,
+            atp_rate_mol_s,
+            phenomenological_w,
+        ];
+        for v in m.into_iter().chain(p).chain(r) {
+            out.f64(v);
+        }
+        out.f64(self.metabolic_j);
+        out.f64(self.phenomenological_j);
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        let has_mechanism = input.bool("energetics' mechanism flag")?;
+        let mut v = || input.f64("energetics");
+        let mechanism = MechanismRates {
+            total_w: v()?,
+            activation_heat_w: v()?,
+            bridge_heat_w: v()?,
+            work_w: v()?,
+            storage_w: v()?,
+            atp_rate_mol_s: v()?,
+        };
+        let probe_inputs = ProbeInputs {
+            excitation: v()?,
+            activation: v()?,
+            fibre_length_norm: v()?,
+            force_length: v()?,
+            fibre_velocity_m_s: v()?,
+            active_force_n: v()?,
+            passive_force_n: v()?,
+        };
+        let rates = MetabolicRates {
+            metabolic_w: v()?,
+            activation_heat_w: v()?,
+            shortening_heat_w: v()?,
+            work_w: v()?,
+            storage_w: v()?,
+            atp_rate_mol_s: v()?,
+            phenomenological_w: v()?,
+        };
+        *self = MuscleEnergy {
+            sample: MetabolicSample {
+                mechanism: has_mechanism.then_some(mechanism),
+                probe_inputs,
+                rates,
+            },
+            metabolic_j: v()?,
+            phenomenological_j: v()?,
+        };
+        Ok(())
     }
 }

@@ -6,6 +6,8 @@
 //!   Jacobian by blocks for the block-arrowhead iteration matrix (docs/model.md §8b);
 //! - [`actuator`]: [`Actuator`], the facade the node and the CLI step;
 //! - [`snapshot`]: what is observable after a tick; [`energy`]: the energy spent since start;
+//! - [`saved`]: an actuator's complete state as bytes and back (`Actuator::to_bytes`,
+//!   `Actuator::from_bytes`), for a copy that continues bit for bit;
 //! - [`scenario`]: the paper's experiments and scenario files; [`schedule`]: their input
 //!   schedules.
 //! - [`steady`]: isovelocity steady states at full activation and optimal length, with their
@@ -15,6 +17,7 @@ pub mod actuator;
 pub mod energy;
 pub mod jacobian;
 pub mod part;
+pub mod saved;
 pub mod scenario;
 pub mod schedule;
 pub mod simulation;

@@ -11,6 +11,7 @@ use crate::physics::muscle_model::SubstepMotion;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::stepping::Stepping;
 use crate::sim::jacobian::{self, JacobianScratch, PlantSystem};
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 use std::cell::RefCell;
 
 /// The activations at one time within the tick (Newton iterates at one stage time many times),
@@ -285,5 +286,46 @@ impl Part {
         }
         self.stepper.invalidate();
         self.h = 0.0;
+    }
+}
+
+/// What a part carries from tick to tick: its contractile elements' own state (the full
+/// model's grid), its state and inputs as last gathered, the carried sub-step size, the
+/// activation memo (its time and values: the next tick's scatter and energetics read them) and
+/// the stepper. Its structure (plant, index maps) and the Jacobian's scratch space, written
+/// before every read, are the rebuilt part's.
+impl SavedState for Part {
+    fn save_state(&self, out: &mut StateWriter) {
+        out.usize(self.plant.mtus.len());
+        for mtu in &self.plant.mtus {
+            mtu.ce.save_state(out);
+        }
+        out.f64s(&self.y);
+        out.f64(self.h);
+        out.f64(self.saved_h);
+        self.inputs.save_state(out);
+        out.f64s(&self.a0);
+        out.f64s(&self.lm_before);
+        let memo = self.memo.borrow();
+        out.f64(memo.t);
+        out.f64s(&memo.a);
+        self.stepper.save_state(out);
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        input.expect_len("part's muscles", self.plant.mtus.len())?;
+        for (k, mtu) in self.plant.mtus.iter_mut().enumerate() {
+            (mtu.ce.restore_state(input)).map_err(|e| format!("muscle {k} of the part: {e}"))?;
+        }
+        input.f64s_into("part's state", &mut self.y)?;
+        self.h = input.f64("carried sub-step")?;
+        self.saved_h = input.f64("saved sub-step")?;
+        self.inputs.restore_state(input)?;
+        input.f64s_into("part's activations at the tick's start", &mut self.a0)?;
+        input.f64s_into("part's fibre lengths", &mut self.lm_before)?;
+        let memo = self.memo.get_mut();
+        memo.t = input.f64("activation memo time")?;
+        input.f64s_into("activation memo", &mut memo.a)?;
+        self.stepper.restore_state(input)
     }
 }

@@ -11,6 +11,7 @@ use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
 use crate::sim::part::Part;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
 pub use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS, MAX_SUBSTEPS};
 
@@ -273,5 +274,45 @@ impl Simulation {
     /// Kinetic energy of the fibre masses and the joints, J.
     pub fn kinetic_energy(&self) -> f64 {
         self.plant.kinetic_energy(&self.y)
+    }
+}
+
+/// What the simulation carries from tick to tick: the tick, the inputs held over the next one,
+/// the activations, the state vector, each muscle's energetics, then each part's own state. The
+/// plant, the rate and the stepping are the rebuilt simulation's, and the saved sizes must be
+/// its; the whole plant's contractile elements are never stepped (the parts' are) and the
+/// rates at a tick's start are scratch, so neither is saved.
+impl SavedState for Simulation {
+    fn save_state(&self, out: &mut StateWriter) {
+        out.u64(self.tick);
+        self.inputs.save_state(out);
+        out.f64s(&self.activation);
+        out.f64s(&self.y);
+        out.usize(self.energy.len());
+        for e in &self.energy {
+            e.save_state(out);
+        }
+        out.usize(self.parts.len());
+        for p in &self.parts {
+            p.save_state(out);
+        }
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        self.tick = input.u64("tick")?;
+        self.inputs.restore_state(input)?;
+        input.f64s_into("activations", &mut self.activation)?;
+        input.f64s_into("state vector", &mut self.y)?;
+        input.expect_len("muscles' energetics", self.energy.len())?;
+        for (i, e) in self.energy.iter_mut().enumerate() {
+            e.restore_state(input)
+                .map_err(|e| format!("muscle {i}: {e}"))?;
+        }
+        input.expect_len("parts", self.parts.len())?;
+        for (k, p) in self.parts.iter_mut().enumerate() {
+            p.restore_state(input)
+                .map_err(|e| format!("part {k}: {e}"))?;
+        }
+        Ok(())
     }
 }

@@ -10,6 +10,7 @@
 //! Written by hand: no crate offers a moving-grid characteristic solver for this equation.
 
 use crate::physics::contractile::crossbridge::Rates;
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 use std::collections::VecDeque;
 
 /// Bond fraction below which an outer cell is dropped.
@@ -208,5 +209,81 @@ impl CrossBridgeGrid {
                 self.first_centre += self.dxi;
             }
         }
+    }
+}
+
+/// The distribution: its first cell's centre and its cells (between one and the capacity); the
+/// cell width and the capacity are the rebuilt grid's.
+impl SavedState for CrossBridgeGrid {
+    fn save_state(&self, out: &mut StateWriter) {
+        out.f64(self.first_centre);
+        out.usize(self.n.len());
+        for &v in &self.n {
+            out.f64(v);
+        }
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        self.first_centre = input.f64("bond grid's first cell")?;
+        self.n.clear();
+        let cells = input.f64s_extend("bond grid cells", self.capacity, &mut self.n)?;
+        // What a reset and every advance leave, to a cell: the attachment range and its margin
+        // covered (a grid far from it would be extended cell by cell on the next sub-step).
+        let slack = 2.0 * self.dxi;
+        let (lo, hi) = (-COVER_MARGIN + slack, 1.0 + COVER_MARGIN - slack);
+        let covers = cells > 0
+            && self.first_centre.is_finite()
+            && self.first_centre - 0.5 * self.dxi <= lo
+            && self.last_centre() + 0.5 * self.dxi >= hi;
+        if !covers {
+            return Err(format!(
+                "bond grid: {cells} cells from {} do not cover the attachment range",
+                self.first_centre
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::contractile::calibration;
+    use crate::physics::params::MuscleParams;
+
+    /// A grid after some motion comes back cell for cell; one moved off the attachment range,
+    /// or with more cells than its room, is refused.
+    #[test]
+    fn a_saved_grid_comes_back_and_a_displaced_one_is_refused() {
+        let scale = calibration::calibrate_exact(&MuscleParams::default());
+        let mut grid = CrossBridgeGrid::new(50, 4.0);
+        for k in 0..40 {
+            let shift = if k < 20 { -0.01 } else { 0.015 };
+            grid.advance(&scale.rates, 0.8, 1e-3, shift);
+        }
+        let mut out = StateWriter::new();
+        grid.save_state(&mut out);
+        let mut back = CrossBridgeGrid::new(50, 4.0);
+        back.restore_state(&mut StateReader::new(out.bytes()))
+            .unwrap();
+        assert_eq!(back.first_centre.to_bits(), grid.first_centre.to_bits());
+        assert_eq!(back.n, grid.n);
+
+        let mut moved = grid.clone();
+        moved.first_centre += 0.5;
+        let mut out = StateWriter::new();
+        moved.save_state(&mut out);
+        let e = back
+            .restore_state(&mut StateReader::new(out.bytes()))
+            .unwrap_err();
+        assert!(e.contains("do not cover"), "{e}");
+
+        let mut out = StateWriter::new();
+        out.f64(grid.first_centre);
+        out.usize(grid.capacity + 1);
+        let e = back
+            .restore_state(&mut StateReader::new(out.bytes()))
+            .unwrap_err();
+        assert!(e.contains("over its bound"), "{e}");
     }
 }

@@ -14,6 +14,7 @@ use crate::physics::energetics::steady::exact_isometric_bridge_w;
 use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepMotion};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
+use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
 /// The model's entry in [`crate::physics::model::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
@@ -144,6 +145,32 @@ impl ContractileModel for HuxleyPde {
     }
     fn forget_history(&mut self) {
         self.previous = None;
+    }
+    /// The grid, the closure held over the sub-step and the previous sub-step's closure.
+    fn save_state(&self, out: &mut StateWriter) {
+        self.grid.save_state(out);
+        let HeldClosure { phi, slope, t0 } = self.held;
+        for v in phi.into_iter().chain(slope).chain([t0]) {
+            out.f64(v);
+        }
+        out.bool(self.previous.is_some());
+        for v in self.previous.unwrap_or_default() {
+            out.f64(v);
+        }
+    }
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+        self.grid.restore_state(input)?;
+        let three = |input: &mut StateReader, what: &str| -> Result<[f64; 3], String> {
+            Ok([input.f64(what)?, input.f64(what)?, input.f64(what)?])
+        };
+        let phi = three(input, "held closure")?;
+        let slope = three(input, "held closure slope")?;
+        let t0 = input.f64("held closure start")?;
+        self.held = HeldClosure { phi, slope, t0 };
+        let has_previous = input.bool("previous closure flag")?;
+        let previous = three(input, "previous closure")?;
+        self.previous = has_previous.then_some(previous);
+        Ok(())
     }
     fn clone_box(&self) -> Box<dyn ContractileModel> {
         Box::new(self.clone())

@@ -1,0 +1,266 @@
+//! The bytes of a saved state (neutral): a writer of little-endian values and a reader whose
+//! every read is checked, against what is left of the bytes and against the size the reader
+//! expects, with errors on one line that name the value. [`crate::sim::saved`] frames these
+//! bytes (magic, version, checksum); each part of the state writes and reads its own values
+//! ([`SavedState`]).
+//!
+//! Values: `u8`; flags as one byte 0 or 1; `u64` and sizes as 8 bytes little-endian; `f64` as its
+//! bits (`to_bits`, 8 bytes little-endian: every value comes back bit for bit, −0 and NaNs too);
+//! a run of `f64` or a string as its length (8 bytes) then its items.
+
+/// Something whose state is written to saved bytes and read back into a value of the same
+/// structure (built anew from the same configuration).
+pub trait SavedState {
+    /// Writes the state.
+    fn save_state(&self, out: &mut StateWriter);
+    /// Reads back what `save_state` wrote; Err, naming the value, for bytes that do not fit
+    /// this value's structure (the value may then be partly overwritten: discard it).
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String>;
+}
+
+/// Writes values to a growing byte vector.
+#[derive(Debug, Default)]
+pub struct StateWriter {
+    bytes: Vec<u8>,
+}
+
+impl StateWriter {
+    /// An empty writer.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// One byte.
+    pub fn u8(&mut self, v: u8) {
+        self.bytes.push(v);
+    }
+    /// A flag, as 0 or 1.
+    pub fn bool(&mut self, v: bool) {
+        self.u8(u8::from(v));
+    }
+    /// 8 bytes, little-endian.
+    pub fn u64(&mut self, v: u64) {
+        self.bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    /// A size or an index, as a `u64`.
+    pub fn usize(&mut self, v: usize) {
+        self.u64(v as u64);
+    }
+    /// The bits of `v`.
+    pub fn f64(&mut self, v: f64) {
+        self.u64(v.to_bits());
+    }
+    /// The length, then each value.
+    pub fn f64s(&mut self, v: &[f64]) {
+        self.usize(v.len());
+        for &x in v {
+            self.f64(x);
+        }
+    }
+    /// The length in bytes, then the UTF-8 text.
+    pub fn str(&mut self, s: &str) {
+        self.usize(s.len());
+        self.bytes.extend_from_slice(s.as_bytes());
+    }
+    /// Raw bytes, as they are (no length).
+    pub fn raw(&mut self, b: &[u8]) {
+        self.bytes.extend_from_slice(b);
+    }
+    /// What was written.
+    pub fn bytes(&self) -> &[u8] {
+        &self.bytes
+    }
+    /// What was written, taken.
+    pub fn into_bytes(self) -> Vec<u8> {
+        self.bytes
+    }
+}
+
+/// Reads values back, each read checked.
+#[derive(Debug)]
+pub struct StateReader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl<'a> StateReader<'a> {
+    /// A reader at the start of `bytes`.
+    pub fn new(bytes: &'a [u8]) -> Self {
+        Self { bytes, at: 0 }
+    }
+
+    /// Bytes not read yet.
+    pub fn remaining(&self) -> usize {
+        self.bytes.len() - self.at
+    }
+
+    /// The next `n` bytes.
+    pub fn raw(&mut self, n: usize, what: &str) -> Result<&'a [u8], String> {
+        if n > self.remaining() {
+            return Err(format!(
+                "the bytes end inside {what} (at byte {} of {}, {n} more needed)",
+                self.at,
+                self.bytes.len()
+            ));
+        }
+        let b = &self.bytes[self.at..self.at + n];
+        self.at += n;
+        Ok(b)
+    }
+
+    /// One byte.
+    pub fn u8(&mut self, what: &str) -> Result<u8, String> {
+        Ok(self.raw(1, what)?[0])
+    }
+
+    /// A flag (0 or 1).
+    pub fn bool(&mut self, what: &str) -> Result<bool, String> {
+        match self.u8(what)? {
+            0 => Ok(false),
+            1 => Ok(true),
+            v => Err(format!("{what}: {v} is not a flag (0 or 1)")),
+        }
+    }
+
+    /// 8 bytes, little-endian.
+    pub fn u64(&mut self, what: &str) -> Result<u64, String> {
+        let b = self.raw(8, what)?;
+        Ok(u64::from_le_bytes(b.try_into().expect("8 bytes")))
+    }
+
+    /// A size or an index of at most `max`.
+    pub fn usize(&mut self, what: &str, max: usize) -> Result<usize, String> {
+        let v = self.u64(what)?;
+        match usize::try_from(v) {
+            Ok(v) if v <= max => Ok(v),
+            _ => Err(format!("{what}: {v} is over its bound {max}")),
+        }
+    }
+
+    /// A value from its bits.
+    pub fn f64(&mut self, what: &str) -> Result<f64, String> {
+        Ok(f64::from_bits(self.u64(what)?))
+    }
+
+    /// A length that must be `expected` (the size of the structure read into).
+    pub fn expect_len(&mut self, what: &str, expected: usize) -> Result<(), String> {
+        let n = self.u64(what)?;
+        if n != expected as u64 {
+            return Err(format!("{what}: {n} saved, this structure has {expected}"));
+        }
+        Ok(())
+    }
+
+    /// A run of values into `out`, whose length the saved one must equal.
+    pub fn f64s_into(&mut self, what: &str, out: &mut [f64]) -> Result<(), String> {
+        self.expect_len(what, out.len())?;
+        self.check_room(out.len(), 8, what)?;
+        for v in out.iter_mut() {
+            *v = self.f64(what)?;
+        }
+        Ok(())
+    }
+
+    /// A run of values of any length up to `max`, appended to `out`.
+    pub fn f64s_extend(
+        &mut self,
+        what: &str,
+        max: usize,
+        out: &mut impl Extend<f64>,
+    ) -> Result<usize, String> {
+        let n = self.usize(what, max)?;
+        self.check_room(n, 8, what)?;
+        for _ in 0..n {
+            out.extend([self.f64(what)?]);
+        }
+        Ok(n)
+    }
+
+    /// A string of at most `max` bytes.
+    pub fn str(&mut self, what: &str, max: usize) -> Result<&'a str, String> {
+        let n = self.usize(what, max)?;
+        let b = self.raw(n, what)?;
+        std::str::from_utf8(b).map_err(|_| format!("{what} is not UTF-8 text"))
+    }
+
+    /// A count of items of `item_bytes` bytes each that must fit in what is left (so that a
+    /// damaged count is refused before anything is allocated for it).
+    pub fn check_room(&self, count: usize, item_bytes: usize, what: &str) -> Result<(), String> {
+        match count.checked_mul(item_bytes) {
+            Some(n) if n <= self.remaining() => Ok(()),
+            _ => Err(format!(
+                "the bytes end inside {what} ({count} items announced, {} bytes left)",
+                self.remaining()
+            )),
+        }
+    }
+
+    /// Err unless every byte was read.
+    pub fn finish(&self) -> Result<(), String> {
+        match self.remaining() {
+            0 => Ok(()),
+            n => Err(format!("{n} bytes left over after the state")),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_come_back_bit_for_bit() {
+        let mut w = StateWriter::new();
+        let odd = [
+            -0.0,
+            f64::NAN,
+            f64::from_bits(0x7ff8_0000_dead_beef),
+            1e-310,
+            f64::MAX,
+        ];
+        w.f64s(&odd);
+        w.bool(true);
+        w.str("huxley");
+        w.u64(u64::MAX);
+        let bytes = w.into_bytes();
+        let mut r = StateReader::new(&bytes);
+        let mut back = [0.0; 5];
+        r.f64s_into("odd", &mut back).unwrap();
+        for (a, b) in odd.iter().zip(&back) {
+            assert_eq!(a.to_bits(), b.to_bits());
+        }
+        assert!(r.bool("flag").unwrap());
+        assert_eq!(r.str("name", 64).unwrap(), "huxley");
+        assert_eq!(r.u64("big").unwrap(), u64::MAX);
+        r.finish().unwrap();
+    }
+
+    #[test]
+    fn damaged_reads_are_refused_by_name() {
+        let mut w = StateWriter::new();
+        w.f64s(&[1.0, 2.0]);
+        w.u8(7);
+        let bytes = w.into_bytes();
+        let e = StateReader::new(&bytes)
+            .f64s_into("the y", &mut [0.0; 3])
+            .unwrap_err();
+        assert!(e.contains("the y") && e.contains("2 saved"), "{e}");
+        let e = StateReader::new(&bytes[..12])
+            .f64s_into("the y", &mut [0.0; 2])
+            .unwrap_err();
+        assert!(e.contains("end inside the y"), "{e}");
+        let mut r = StateReader::new(&bytes[16..]);
+        let e = r.usize("a count", 1 << 40).unwrap_err();
+        assert!(e.contains("a count"), "{e}");
+        let mut r = StateReader::new(&bytes[8..]);
+        r.f64("x").unwrap();
+        r.f64("y").unwrap();
+        let e = r.bool("flag").unwrap_err();
+        assert!(e.contains("not a flag"), "{e}");
+        let mut huge = StateWriter::new();
+        huge.u64(u64::MAX / 2);
+        let e = StateReader::new(huge.bytes())
+            .f64s_extend("the grid", usize::MAX, &mut Vec::new())
+            .unwrap_err();
+        assert!(e.contains("the grid"), "{e}");
+    }
+}
