@@ -31,6 +31,9 @@ from pathlib import Path
 MAX_FILE_LINES = 600
 MAX_FN_LINES = 120
 ROOT = Path(__file__).resolve().parent.parent
+# The name by which the checked crate's own binaries refer to it (`muscle_actuator::…` in
+# src/main.rs); `--crate-name` for another crate (python/src, the extension, is `_core`).
+CRATE_NAME = ["muscle_actuator"]
 
 IDENT = r"[A-Za-z_][A-Za-z0-9_]*"
 CFG_TEST = re.compile(r"#\s*\[\s*cfg\s*\(\s*(?:all\s*\(\s*)?test\b[^\]]*\]")
@@ -302,7 +305,7 @@ class Crate:
         if not segs:
             return None
         head, rest = segs[0], list(segs[1:])
-        if head in ("crate", "muscle_actuator"):
+        if head == "crate" or head == CRATE_NAME[0]:
             return rest
         if head == "self":
             return list(mod) + rest
@@ -487,10 +490,12 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--src", type=Path, default=ROOT / "src")
     ap.add_argument("--exceptions", type=Path, default=None)
+    ap.add_argument("--crate-name", default="muscle_actuator", help="the crate's own name in paths")
     ap.add_argument("--graph", action="store_true", help="print the module graph of every level")
     ap.add_argument("--max-file-lines", type=int, default=MAX_FILE_LINES, metavar="N")
     ap.add_argument("--max-fn-lines", type=int, default=MAX_FN_LINES, metavar="N")
     a = ap.parse_args(argv)
+    CRATE_NAME[0] = a.crate_name
     if not a.src.is_dir():
         print(f"check-structure: no directory {a.src}", file=sys.stderr)
         return 2

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Creates (or brings up to date) the Python environment for the ROS 2 tests, in .venv at the
-# repository root: rclpy and the message packages of ROS 2 kilted from PyPI, the tools to build
-# msg/ (muscle_actuator_msgs) for rclpy with plain cmake, pytest, the MCAP readers, and colcon
-# with colcon-ros-cargo (tests/python/test_colcon.py builds a colcon workspace).
+# Creates (or brings up to date) the Python environment for the ROS 2 tests and the Python
+# package, in .venv at the repository root: rclpy and the message packages of ROS 2 kilted from
+# PyPI, the tools to build msg/ (muscle_actuator_msgs) for rclpy with plain cmake, pytest, the
+# MCAP readers, colcon with colcon-ros-cargo (tests/python/test_colcon.py builds a colcon
+# workspace), and maturin with the Python package's optional dependencies (gymnasium,
+# matplotlib, pandas, ray) for scripts/test-python.sh.
 #
 # Idempotent: each step leaves a stamp in .venv and is skipped when its inputs did not change.
 # Usage: scripts/py-env.sh            (prints the venv path on its last line)
@@ -24,11 +26,16 @@ PACKAGES=(
   colcon-package-information
   colcon-package-selection
   colcon-ros-cargo
+  gymnasium
+  matplotlib
+  maturin
   mcap
   mcap-ros2-support
+  pandas
   pymcap-cli  # GPL: a test tool only (`doctor`), never a dependency of the product
   pytest
   pytest-timeout
+  ray
   ros-kilted-ament-cmake
   ros-kilted-ament-cmake-include-directories
   ros-kilted-ament-cmake-ros-core

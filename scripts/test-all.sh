@@ -7,14 +7,20 @@
 #   3. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
 #      a loopback-only network namespace (scripts/test-ros.sh; it creates .venv and builds the
 #      message package for rclpy on first use);
-#   4. the demo of docs/testing.md, which must end cleanly.
+#   4. the Python package: its wheel built and installed into .venv, and its tests (parity with
+#      the command line, batched rollouts, pickles across processes, recordings, Gymnasium, a
+#      sweep on Ray) in a loopback-only network namespace (scripts/test-python.sh);
+#   5. the demo of docs/testing.md, which must end cleanly.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 echo "== Rust tests" >&2
 cargo test --all-targets
 echo "== Structure checks (scripts/check-structure.py)" >&2
 python3 scripts/check-structure.py
+python3 scripts/check-structure.py --src python/src --crate-name _core
 echo "== ROS 2 tests (rclpy peer)" >&2
 MUSCLE_ACTUATOR_BUILT=1 bash scripts/test-ros.sh -q
+echo "== Python package (scripts/test-python.sh)" >&2
+MUSCLE_ACTUATOR_BUILT=1 bash scripts/test-python.sh -q
 echo "== Demo (launch-scripts/demo.sh: the node and an rclpy co-contraction sweep)" >&2
 bash launch-scripts/demo.sh

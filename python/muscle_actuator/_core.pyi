@@ -1,0 +1,119 @@
+"""Type stubs of the extension module (python/src/*.rs)."""
+
+import os
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+_Config = str | os.PathLike[str] | Mapping[str, Any] | None
+_Inputs = npt.ArrayLike | Mapping[str, float] | None
+
+__version__: str
+
+class StepError(RuntimeError):
+    """A tick failed; ``tick``, ``reason`` and, in a batch, ``instance`` say which and why."""
+
+    tick: int
+    reason: str
+    instance: int | None
+
+class ActuatorState:
+    """A saved state (``Actuator.get_state``); pickles."""
+
+    @property
+    def tick(self) -> int: ...
+    @staticmethod
+    def _from_bytes(data: bytes) -> ActuatorState: ...
+
+class Actuator:
+    """A limb of joints and muscles stepped at a fixed tick (docs/python.md)."""
+
+    muscle_fields: list[str]
+    joint_fields: list[str]
+    def __init__(
+        self,
+        config: _Config = None,
+        model: str = "huxley",
+        rate_hz: float = 1000.0,
+        *,
+        energy_model: str | None = None,
+        substeps: int | None = None,
+        overrides: Mapping[str, Any] | None = None,
+    ) -> None: ...
+    @property
+    def muscles(self) -> list[str]: ...
+    @property
+    def joints(self) -> list[str]: ...
+    @property
+    def driven_joints(self) -> list[str]: ...
+    @property
+    def model(self) -> str: ...
+    @property
+    def rate_hz(self) -> float: ...
+    @property
+    def tick(self) -> int: ...
+    @property
+    def time(self) -> float: ...
+    @property
+    def config(self) -> dict[str, Any]: ...
+    @property
+    def muscle_state(self) -> dict[str, np.ndarray]: ...
+    @property
+    def joint_state(self) -> dict[str, np.ndarray]: ...
+    @property
+    def stiffness_matrix(self) -> np.ndarray: ...
+    @property
+    def joint_efforts(self) -> np.ndarray: ...
+    def step(self, excitation: _Inputs = None, external_torque: _Inputs = None, ticks: int = 1) -> None: ...
+    def rollout(
+        self,
+        excitation: npt.ArrayLike,
+        external_torque: npt.ArrayLike | None = None,
+        outputs: Sequence[str] | None = None,
+    ) -> dict[str, np.ndarray]: ...
+    def reset(self) -> None: ...
+    def observe(self, outputs: Sequence[str] | None = None) -> dict[str, np.ndarray]: ...
+    def set_joint_motion(self, joint: str | int, angle: float, velocity: float = 0.0) -> None: ...
+    def get_state(self) -> ActuatorState: ...
+    def set_state(self, state: ActuatorState) -> None: ...
+    def copy(self) -> Actuator: ...
+    def __copy__(self) -> Actuator: ...
+    def __deepcopy__(self, memo: Any) -> Actuator: ...
+    @staticmethod
+    def _from_bytes(data: bytes) -> Actuator: ...
+
+def _rollout_new(
+    config: _Config,
+    model: str,
+    excitation: npt.ArrayLike,
+    external_torque: npt.ArrayLike | None = None,
+    *,
+    rate_hz: float = 1000.0,
+    energy_model: str | None = None,
+    substeps: int | None = None,
+    overrides: list[Mapping[str, Any]] | None = None,
+    outputs: list[str] | None = None,
+    threads: int | None = None,
+) -> dict[str, np.ndarray]: ...
+def _rollout_actuators(
+    actuators: list[Actuator],
+    excitation: npt.ArrayLike,
+    external_torque: npt.ArrayLike | None = None,
+    *,
+    outputs: Sequence[str] | None = None,
+    threads: int | None = None,
+) -> dict[str, np.ndarray]: ...
+def _simulate(
+    scenario: str | os.PathLike[str],
+    model: str = "huxley",
+    config: _Config = None,
+    rate_hz: float = 1000.0,
+    substeps: int | None = None,
+    energy_model: str | None = None,
+    out: str | os.PathLike[str] | None = None,
+) -> dict[str, Any]: ...
+def _read_recording(path: str | os.PathLike[str]) -> dict[str, Any]: ...
+def _compare(
+    a: str | os.PathLike[str], b: str | os.PathLike[str], plot: str | os.PathLike[str] | None = None
+) -> tuple[str, list[str]]: ...

@@ -1,0 +1,152 @@
+//! What a Python call names: a configuration (built-in name, path or dict), per-instance
+//! overrides, a model, an energy model and a stepping, resolved by the crate's own functions so
+//! that every refusal carries the command line's message.
+
+use muscle_actuator::config::overrides::with_overrides;
+use muscle_actuator::config::ActuatorConfig;
+use muscle_actuator::physics::model::{ModelKind, UnknownModel};
+use muscle_actuator::physics::params::energetics::UnknownEnergyModel;
+use muscle_actuator::physics::params::EnergyModel;
+use muscle_actuator::physics::stepping::Stepping;
+use muscle_actuator::runs::limits;
+use muscle_actuator::sim::simulation::default_stepping;
+use muscle_actuator::sim::Actuator;
+use pyo3::exceptions::{PyUserWarning, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString};
+
+/// A Python value as a TOML value (numbers, strings, booleans, lists, dicts).
+fn toml_value(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<toml::Value> {
+    pythonize::depythonize::<toml::Value>(obj)
+        .map_err(|e| PyValueError::new_err(format!("{what}: not a TOML value: {e}")))
+}
+
+/// The configuration `config` names: a built-in name or a file path (str or os.PathLike), a
+/// dict in the configuration file's form, or None (the default elbow). Warnings go to Python's
+/// `warnings`.
+pub fn resolve_config(
+    py: Python<'_>,
+    config: Option<&Bound<'_, PyAny>>,
+) -> PyResult<ActuatorConfig> {
+    let cfg = match config {
+        None => ActuatorConfig::default(),
+        Some(c) if c.is_instance_of::<PyDict>() => {
+            let value = toml_value(c, "configuration dict")?;
+            let text = toml::to_string(&value)
+                .map_err(|e| PyValueError::new_err(format!("configuration dict: {e}")))?;
+            ActuatorConfig::from_toml_str(&text).map_err(|e| {
+                PyValueError::new_err(
+                    e.to_string()
+                        .replace("configuration file <text>", "configuration dict"),
+                )
+            })?
+        }
+        Some(c) => {
+            let name: String = if c.is_instance_of::<PyString>() {
+                c.extract()?
+            } else {
+                let fspath = py.import("os")?.getattr("fspath")?;
+                fspath
+                    .call1((c,))
+                    .and_then(|p| p.extract())
+                    .map_err(|_| {
+                        PyValueError::new_err(
+                            "config must be a built-in name, a path or a dict in the configuration file's form",
+                        )
+                    })?
+            };
+            ActuatorConfig::resolve(&name).map_err(|e| PyValueError::new_err(e.to_string()))?
+        }
+    };
+    for w in cfg.warnings() {
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &std::ffi::CString::new(w).unwrap_or_default(),
+            1,
+        )?;
+    }
+    Ok(cfg)
+}
+
+/// Overrides as (dotted key, value): a dict `{"muscle.flexor.k_t": 2e5, ...}` or None.
+pub fn overrides_of(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, toml::Value)>> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(Vec::new());
+    };
+    let dict = obj
+        .cast::<PyDict>()
+        .map_err(|_| PyValueError::new_err("overrides must be a dict of dotted keys to values"))?;
+    let mut out = Vec::with_capacity(dict.len());
+    for (k, v) in dict.iter() {
+        let key: String = k
+            .extract()
+            .map_err(|_| PyValueError::new_err("an override's key must be a string"))?;
+        let value = toml_value(
+            &v,
+            &format!("override {:?}", muscle_actuator::text::excerpt(&key)),
+        )?;
+        out.push((key, value));
+    }
+    Ok(out)
+}
+
+/// `cfg` with the overrides and the energy model applied.
+pub fn configured(
+    cfg: &ActuatorConfig,
+    overrides: &[(String, toml::Value)],
+    energy_model: Option<&str>,
+) -> PyResult<ActuatorConfig> {
+    let cfg = with_overrides(cfg, overrides).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(match energy_model {
+        Some(name) => cfg.with_energy_model(parse_energy_model(name)?),
+        None => cfg,
+    })
+}
+
+pub fn parse_model(name: &str) -> PyResult<ModelKind> {
+    name.parse()
+        .map_err(|e: UnknownModel| PyValueError::new_err(e.to_string()))
+}
+
+pub fn parse_energy_model(name: &str) -> PyResult<EnergyModel> {
+    name.parse()
+        .map_err(|e: UnknownEnergyModel| PyValueError::new_err(e.to_string()))
+}
+
+/// The rate, checked as `--rate-hz` is.
+pub fn check_rate(rate_hz: f64) -> PyResult<()> {
+    limits::check_rate_hz("rate_hz", rate_hz).map_err(PyValueError::new_err)
+}
+
+/// Fixed sub-steps per tick, or the model's default stepping.
+pub fn stepping(model: ModelKind, substeps: Option<usize>) -> PyResult<Stepping> {
+    match substeps {
+        Some(n) => {
+            limits::check_substeps("substeps", n).map_err(PyValueError::new_err)?;
+            Ok(Stepping::Fixed(n))
+        }
+        None => Ok(default_stepping(model)),
+    }
+}
+
+/// Builds an actuator from the arguments `Actuator(...)` and `rollout(...)` take.
+pub fn build(
+    py: Python<'_>,
+    config: Option<&Bound<'_, PyAny>>,
+    model: &str,
+    rate_hz: f64,
+    energy_model: Option<&str>,
+    substeps: Option<usize>,
+    overrides: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Actuator> {
+    let model = parse_model(model)?;
+    check_rate(rate_hz)?;
+    let stepping = stepping(model, substeps)?;
+    let cfg = configured(
+        &resolve_config(py, config)?,
+        &overrides_of(overrides)?,
+        energy_model,
+    )?;
+    Actuator::with_stepping(&cfg, model, rate_hz, stepping).map_err(PyValueError::new_err)
+}

@@ -1,0 +1,38 @@
+//! `muscle_actuator._core`: the engine of the `muscle_actuator` crate as a Python extension
+//! module (docs/python.md). The physics is the crate's, called as the command line and the node
+//! call it; this layer converts and checks what crosses from Python, and releases the GIL
+//! around every call that steps.
+//!
+//! - [`config`]: configurations, overrides, models, rates and steppings from Python values;
+//! - [`inputs`]: arrays and dicts of inputs, checked;
+//! - [`errors`]: the exception of a failed tick;
+//! - [`outputs`]: the outputs a trajectory records, by field name; [`trajectory`]: an actuator
+//!   stepped over per-tick inputs, recording them;
+//! - [`actuator`]: `Actuator` and its saved states;
+//! - [`rollout`]: batched stepping on a thread pool;
+//! - [`runs`]: `simulate`, `read_recording`, `compare`.
+
+mod actuator;
+mod config;
+mod errors;
+mod inputs;
+mod outputs;
+mod rollout;
+mod runs;
+mod trajectory;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<actuator::PyActuator>()?;
+    m.add_class::<actuator::PyActuatorState>()?;
+    m.add("StepError", m.py().get_type::<errors::StepError>())?;
+    m.add_function(wrap_pyfunction!(rollout::_rollout_new, m)?)?;
+    m.add_function(wrap_pyfunction!(rollout::_rollout_actuators, m)?)?;
+    m.add_function(wrap_pyfunction!(runs::_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(runs::_read_recording, m)?)?;
+    m.add_function(wrap_pyfunction!(runs::_compare, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
