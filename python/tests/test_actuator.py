@@ -151,3 +151,19 @@ def test_energy_model_and_overrides_change_what_they_name():
     assert (ROOT / "configs/elbow.toml").exists()
     from_file = ma.Actuator(ROOT / "configs/elbow.toml", "hill").rollout(u, outputs=["force"])
     assert_bits_equal(from_file["force"], ma.Actuator("elbow", "hill").rollout(u, outputs=["force"])["force"], "path")
+
+
+def test_damaged_pickles_are_refused_with_a_message():
+    blob = pickle.dumps(ma.Actuator("elbow", "hill"))
+    data = ma.Actuator("elbow", "hill")._from_bytes  # the constructor pickles call
+    with pytest.raises(ValueError):
+        data(b"")
+    good = ma.Actuator("elbow", "hill").__reduce__()[1][0]
+    for cut in (1, 10, len(good) // 2, len(good) - 1):
+        with pytest.raises(ValueError):
+            data(good[:cut])
+    flipped = bytearray(good)
+    flipped[len(good) // 2] ^= 0x10
+    with pytest.raises(ValueError, match="checksum|length|version|magic"):
+        data(bytes(flipped))
+    assert pickle.loads(blob).tick == 0

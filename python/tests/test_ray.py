@@ -27,7 +27,7 @@ def sweep_point(k_t: float) -> dict[str, np.ndarray]:
 
 
 def resume(actuator: ma.Actuator) -> np.ndarray:
-    return actuator.rollout(np.full((100, 2), 0.8), outputs=["force"])["force"]
+    return actuator.rollout(np.full((100, 6), 0.8), outputs=["force"])["force"]
 
 
 @pytest.fixture(scope="module")
