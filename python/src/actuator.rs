@@ -145,7 +145,7 @@ impl PyActuator {
         model: &str,
         rate_hz: f64,
         energy_model: Option<&str>,
-        substeps: Option<usize>,
+        substeps: Option<i64>,
         overrides: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         Ok(Self::wrap(build(

@@ -120,8 +120,13 @@ pub fn check_rate(rate_hz: f64) -> PyResult<()> {
 }
 
 /// Fixed sub-steps per tick, or the model's default stepping.
-pub fn stepping(model: ModelKind, substeps: Option<usize>) -> PyResult<Stepping> {
-    match substeps {
+/// A count from Python (an int may be negative), refused below 0 with its name.
+pub fn count(name: &str, v: i64) -> PyResult<usize> {
+    usize::try_from(v).map_err(|_| PyValueError::new_err(format!("{name} = {v} must be >= 1")))
+}
+
+pub fn stepping(model: ModelKind, substeps: Option<i64>) -> PyResult<Stepping> {
+    match substeps.map(|n| count("substeps", n)).transpose()? {
         Some(n) => {
             limits::check_substeps("substeps", n).map_err(PyValueError::new_err)?;
             Ok(Stepping::Fixed(n))
@@ -137,7 +142,7 @@ pub fn build(
     model: &str,
     rate_hz: f64,
     energy_model: Option<&str>,
-    substeps: Option<usize>,
+    substeps: Option<i64>,
     overrides: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Actuator> {
     let model = parse_model(model)?;

@@ -17,8 +17,11 @@ use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 
 /// The worker threads: `threads` (None: one per core), at least 1.
-fn pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
-    let n = match threads {
+fn pool(threads: Option<i64>) -> PyResult<rayon::ThreadPool> {
+    let n = match threads
+        .map(|t| crate::config::count("threads", t))
+        .transpose()?
+    {
         Some(0) => return Err(PyValueError::new_err("threads = 0 must be >= 1")),
         Some(n) => n.min(1024),
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
@@ -37,7 +40,7 @@ fn run_batch<'py>(
     excitation: &Bound<'py, PyAny>,
     external_torque: Option<&Bound<'py, PyAny>>,
     outputs: Option<Vec<String>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let outputs = Outputs::named(outputs)?;
     let b = actuators.len();
@@ -118,10 +121,10 @@ pub fn _rollout_new<'py>(
     external_torque: Option<&Bound<'py, PyAny>>,
     rate_hz: f64,
     energy_model: Option<&str>,
-    substeps: Option<usize>,
+    substeps: Option<i64>,
     overrides: Option<&Bound<'py, PyAny>>,
     outputs: Option<Vec<String>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let b = batch_size(excitation)?;
     let per_instance: Vec<Option<Bound<'py, PyAny>>> = match overrides.filter(|o| !o.is_none()) {
@@ -174,7 +177,7 @@ pub fn _rollout_actuators<'py>(
     excitation: &Bound<'py, PyAny>,
     external_torque: Option<&Bound<'py, PyAny>>,
     outputs: Option<Vec<String>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if actuators.is_empty() {
         return Err(PyValueError::new_err("no actuators given"));

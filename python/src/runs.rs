@@ -70,11 +70,14 @@ pub fn _simulate<'py>(
     model: &str,
     config: Option<&Bound<'py, PyAny>>,
     rate_hz: f64,
-    substeps: Option<usize>,
+    substeps: Option<i64>,
     energy_model: Option<&str>,
     out: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scenario = path_of(py, scenario, "scenario")?;
+    let substeps = substeps
+        .map(|n| crate::config::count("substeps", n))
+        .transpose()?;
     let model = parse_model(model)?;
     let config_path = match config {
         Some(c) if !c.is_instance_of::<PyDict>() => Some(path_of(py, c, "config")?),

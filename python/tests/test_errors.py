@@ -83,6 +83,10 @@ def test_bad_inputs_are_refused_whole_and_change_nothing():
         a.rollout(np.zeros((3, 3)))
     with pytest.raises(ValueError, match=r"rate_hz"):
         ma.Actuator(rate_hz=0.0)
+    with pytest.raises(ValueError, match=r"substeps = -1 must be >= 1"):
+        ma.Actuator(substeps=-1)
+    with pytest.raises(ValueError, match=r"threads = -2 must be >= 1"):
+        ma.rollout("elbow", "hill", np.zeros((1, 2, 2)), threads=-2)
     with pytest.raises(ValueError, match=r"threads = 0"):
         ma.rollout("elbow", "hill", np.zeros((1, 2, 2)), threads=0)
     with pytest.raises(ValueError, match="given twice"):
