@@ -5,15 +5,19 @@
 //! order, like the fixed sub-steps, and exact for the powers that vary linearly within a tick.
 //! The power at a tick's start is that of the state the previous tick ended in under this
 //! tick's excitation: the bridges do not see the excitation (their rates are carried as they
-//! were), the phenomenological models do (theirs are recomputed).
+//! were), the phenomenological models do (theirs are recomputed). What those compute from the
+//! excitation alone is computed once per command and kept with the energies.
 
 use crate::physics::energetics::metabolic::{MetabolicRates, MetabolicSample, MuscleProbe};
+use crate::physics::energetics::probe::ExcitationTerms;
 
 /// One muscle's energetics carried from tick to tick.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct MuscleEnergy {
     /// At the last tick's end (or at rest after a reset).
     pub sample: MetabolicSample,
+    /// The phenomenological model's terms of the last command's excitation.
+    pub terms: ExcitationTerms,
     /// Metabolic energy since start, J (the integral of `rates.metabolic_w`).
     pub metabolic_j: f64,
     /// The phenomenological model's energy since start, J.
@@ -21,22 +25,27 @@ pub struct MuscleEnergy {
 }
 
 impl MuscleEnergy {
-    /// At rest: the sample of the resting state, no energy spent.
-    pub fn at_rest(sample: MetabolicSample) -> Self {
+    /// At rest: the sample of the resting state taken under `terms`, no energy spent.
+    pub fn at_rest(sample: MetabolicSample, terms: ExcitationTerms) -> Self {
         Self {
             sample,
+            terms,
             metabolic_j: 0.0,
             phenomenological_j: 0.0,
         }
     }
 
     /// The rates at the start of a tick under `excitation`: those the last tick ended with,
-    /// recomputed only if the excitation changed.
-    pub fn rates_at_start(&self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
+    /// recomputed only if the excitation changed. The excitation's terms are kept for the
+    /// tick's end, computed anew only if it differs from the last command's.
+    pub fn rates_at_start(&mut self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
+        if excitation != self.terms.excitation {
+            self.terms = probe.excitation_terms(excitation);
+        }
         if excitation == self.sample.probe_inputs.excitation {
             self.sample.rates
         } else {
-            self.sample.with_excitation(probe, excitation)
+            self.sample.with_excitation(probe, &self.terms)
         }
     }
 

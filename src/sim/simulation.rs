@@ -114,8 +114,9 @@ impl Simulation {
         }
         for (i, mtu) in self.plant.mtus.iter().enumerate() {
             let s = self.plant.muscle_state(&self.y, i);
-            let rest = mtu.metabolic(self.inputs.excitation[i], 0.0, s);
-            self.energy[i] = MuscleEnergy::at_rest(rest);
+            let terms = mtu.probe.excitation_terms(self.inputs.excitation[i]);
+            let rest = mtu.metabolic(&terms, 0.0, s);
+            self.energy[i] = MuscleEnergy::at_rest(rest, terms);
         }
         self.tick = 0;
     }
@@ -203,7 +204,8 @@ impl Simulation {
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
             for (k, &i) in p.muscles().iter().enumerate() {
-                self.energy[i].advance(&self.energy_start[i], p.metabolic(k), dt);
+                let end = p.metabolic(k, &self.energy[i].terms);
+                self.energy[i].advance(&self.energy_start[i], end, dt);
             }
         }
         // A driven joint shared by several parts: each integrated θ' = ω0 with its own

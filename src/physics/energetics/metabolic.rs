@@ -8,7 +8,7 @@ use crate::physics::energetics::bridge_power::{
     activation_heat_w, bridge_powers, BridgeEnergyScale, AVOGADRO_PER_MOL,
 };
 use crate::physics::energetics::phenomenological::PhenomenologicalModel;
-use crate::physics::energetics::probe::{ProbeInputs, ProbeMuscle, ProbeRates};
+use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs, ProbeMuscle, ProbeRates};
 
 /// The cross-bridge energetics of one muscle's model: the scale from fluxes to watts and the
 /// bridges' isometric chemical power at full activation (the activation cost's scale), W.
@@ -74,9 +74,15 @@ pub struct MuscleProbe {
 }
 
 impl MuscleProbe {
-    /// Its rates at one instant.
-    pub fn rates(&self, x: &ProbeInputs) -> ProbeRates {
-        self.model.rates(&self.muscle, x)
+    /// What it computes from excitation u alone.
+    pub fn excitation_terms(&self, excitation: f64) -> ExcitationTerms {
+        ExcitationTerms::new(excitation, self.muscle.slow_twitch_ratio)
+    }
+
+    /// Its rates at one instant, given the terms of its excitation (`terms.excitation` is
+    /// `x.excitation`).
+    pub fn rates(&self, x: &ProbeInputs, terms: &ExcitationTerms) -> ProbeRates {
+        self.model.rates_with(&self.muscle, x, terms)
     }
 }
 
@@ -140,16 +146,17 @@ pub struct MetabolicSample {
 }
 
 impl MetabolicSample {
-    /// The same instant under another excitation (a tick's start, where the command changes):
-    /// the bridges do not see the excitation, the phenomenological models do.
-    pub fn with_excitation(&self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
+    /// The same instant under another excitation, given by its terms (a tick's start, where
+    /// the command changes): the bridges do not see the excitation, the phenomenological models
+    /// do.
+    pub fn with_excitation(&self, probe: &MuscleProbe, terms: &ExcitationTerms) -> MetabolicRates {
         let x = ProbeInputs {
-            excitation,
+            excitation: terms.excitation,
             ..self.probe_inputs
         };
         MetabolicRates::of(
             self.mechanism.as_ref(),
-            &probe.rates(&x),
+            &probe.rates(&x, terms),
             probe.atp_free_energy_j,
         )
     }
