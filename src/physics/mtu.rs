@@ -153,8 +153,8 @@ impl Mtu {
 
     /// The metabolic rates at muscle state `s`, the excitation of `terms` (the probe's
     /// [`MuscleProbe::excitation_terms`]) and activation a (docs/model.md §11.6), with the
-    /// mechanism's and the probe's inputs they came from. Models with state outside the ODE must
-    /// be asked after the sub-step hooks have brought it in step with `s`.
+    /// probe's inputs they came from. Models with state outside the ODE must be asked after the
+    /// sub-step hooks have brought it in step with `s`.
     pub fn metabolic(
         &self,
         terms: &ExcitationTerms,
@@ -174,7 +174,7 @@ impl Mtu {
         });
         let probe = self.probe.rates(&x, terms);
         MetabolicSample {
-            mechanism,
+            bridges: mechanism.is_some(),
             probe_inputs: x,
             rates: MetabolicRates::of(mechanism.as_ref(), &probe, self.probe.atp_free_energy_j),
         }

@@ -8,7 +8,7 @@
 //! were), the phenomenological models do (theirs are recomputed). What those compute from the
 //! excitation alone is computed once per command and kept with the energies.
 
-use crate::physics::energetics::metabolic::{MetabolicRates, MetabolicSample, MuscleProbe};
+use crate::physics::energetics::metabolic::{MetabolicSample, MuscleProbe};
 use crate::physics::energetics::probe::ExcitationTerms;
 
 /// One muscle's energetics carried from tick to tick.
@@ -35,22 +35,25 @@ impl MuscleEnergy {
         }
     }
 
-    /// The rates at the start of a tick under `excitation`: those the last tick ended with,
-    /// recomputed only if the excitation changed. The excitation's terms are kept for the
-    /// tick's end, computed anew only if it differs from the last command's.
-    pub fn rates_at_start(&mut self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
+    /// The terms of the tick's `excitation`, computed anew only if it differs from the last
+    /// command's.
+    pub fn excitation_terms(&mut self, probe: &MuscleProbe, excitation: f64) -> &ExcitationTerms {
         if excitation != self.terms.excitation {
             self.terms = probe.excitation_terms(excitation);
         }
-        if excitation == self.sample.probe_inputs.excitation {
-            self.sample.rates
-        } else {
-            self.sample.with_excitation(probe, &self.terms)
-        }
+        &self.terms
     }
 
-    /// After a tick of `dt` seconds that started at rates `start` and ended at `end`.
-    pub fn advance(&mut self, start: &MetabolicRates, end: MetabolicSample, dt: f64) {
+    /// At the end of a tick of `dt` seconds under the excitation of the last
+    /// [`MuscleEnergy::excitation_terms`], whose end state gives `end`: the powers at the
+    /// tick's start are the last sample's, the phenomenological model's evaluated again if the
+    /// excitation changed.
+    pub fn end_tick(&mut self, probe: &MuscleProbe, end: MetabolicSample, dt: f64) {
+        let start = if end.probe_inputs.excitation == self.sample.probe_inputs.excitation {
+            self.sample.powers()
+        } else {
+            self.sample.powers_with_excitation(probe, &self.terms)
+        };
         let r = &end.rates;
         self.metabolic_j += 0.5 * dt * (start.metabolic_w + r.metabolic_w);
         self.phenomenological_j += 0.5 * dt * (start.phenomenological_w + r.phenomenological_w);

@@ -5,7 +5,6 @@
 //! contractile model.
 
 use crate::integrator::Stats;
-use crate::physics::energetics::metabolic::MetabolicRates;
 use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
@@ -45,8 +44,6 @@ pub struct Simulation {
     tick: u64,
     /// Per muscle: the energetics carried from tick to tick (sim::energy).
     energy: Vec<MuscleEnergy>,
-    /// Per muscle: the rates at the current tick's start (scratch, kept to not allocate).
-    energy_start: Vec<MetabolicRates>,
 }
 
 impl Simulation {
@@ -96,7 +93,6 @@ impl Simulation {
             y: vec![0.0; n],
             tick: 0,
             energy: vec![MuscleEnergy::default(); m],
-            energy_start: vec![MetabolicRates::default(); m],
             parts,
             plant,
         };
@@ -172,10 +168,6 @@ impl Simulation {
     /// restores the previous state (of every part) and is reported.
     pub fn step(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
-        for (i, mtu) in self.plant.mtus.iter().enumerate() {
-            self.energy_start[i] =
-                self.energy[i].rates_at_start(&mtu.probe, self.inputs.excitation[i]);
-        }
         let mut ok = true;
         let mut stepped = 0;
         for p in &mut self.parts {
@@ -204,8 +196,9 @@ impl Simulation {
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
             for (k, &i) in p.muscles().iter().enumerate() {
-                let end = p.metabolic(k, &self.energy[i].terms);
-                self.energy[i].advance(&self.energy_start[i], end, dt);
+                let (e, probe) = (&mut self.energy[i], &self.plant.mtus[i].probe);
+                let end = p.metabolic(k, e.excitation_terms(probe, self.inputs.excitation[i]));
+                e.end_tick(probe, end, dt);
             }
         }
         // A driven joint shared by several parts: each integrated θ' = ω0 with its own

@@ -133,12 +133,21 @@ impl MetabolicRates {
     }
 }
 
-/// One muscle's energetics at an instant: the mechanism's rates (models with bridges), what
-/// the phenomenological model read, and the published rates.
+/// The two powers a run integrates into energies, W.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyPowers {
+    /// Metabolic power.
+    pub metabolic_w: f64,
+    /// The phenomenological model's total.
+    pub phenomenological_w: f64,
+}
+
+/// One muscle's energetics at an instant: the published rates, whether they are the
+/// mechanism's, and what the phenomenological model read.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct MetabolicSample {
-    /// The mechanism's rates, for a model with bridges.
-    pub mechanism: Option<MechanismRates>,
+    /// Whether the metabolic power is the mechanism's (a model with bridges).
+    pub bridges: bool,
     /// The phenomenological model's inputs.
     pub probe_inputs: ProbeInputs,
     /// The published rates.
@@ -146,18 +155,34 @@ pub struct MetabolicSample {
 }
 
 impl MetabolicSample {
-    /// The same instant under another excitation, given by its terms (a tick's start, where
-    /// the command changes): the bridges do not see the excitation, the phenomenological models
-    /// do.
-    pub fn with_excitation(&self, probe: &MuscleProbe, terms: &ExcitationTerms) -> MetabolicRates {
+    /// The two powers at this instant.
+    pub fn powers(&self) -> EnergyPowers {
+        EnergyPowers {
+            metabolic_w: self.rates.metabolic_w,
+            phenomenological_w: self.rates.phenomenological_w,
+        }
+    }
+
+    /// The two powers of the same instant under another excitation, given by its terms (a
+    /// tick's start, where the command changes): the bridges do not see the excitation, the
+    /// phenomenological models do.
+    pub fn powers_with_excitation(
+        &self,
+        probe: &MuscleProbe,
+        terms: &ExcitationTerms,
+    ) -> EnergyPowers {
         let x = ProbeInputs {
             excitation: terms.excitation,
             ..self.probe_inputs
         };
-        MetabolicRates::of(
-            self.mechanism.as_ref(),
-            &probe.rates(&x, terms),
-            probe.atp_free_energy_j,
-        )
+        let phenomenological_w = probe.rates(&x, terms).total_w();
+        EnergyPowers {
+            metabolic_w: if self.bridges {
+                self.rates.metabolic_w
+            } else {
+                phenomenological_w
+            },
+            phenomenological_w,
+        }
     }
 }
