@@ -6,7 +6,7 @@ use crate::physics::contractile::force_length::{force_length, force_length_slope
 use crate::physics::energetics::metabolic::{
     mechanism_rates, MetabolicRates, MetabolicSample, MuscleProbe,
 };
-use crate::physics::energetics::probe::ProbeInputs;
+use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
 use crate::physics::model::ModelKind;
 use crate::physics::muscle_model::{CeInputs, ContractileModel};
 use crate::physics::observables::MuscleSnapshot;
@@ -151,12 +151,18 @@ impl Mtu {
         }
     }
 
-    /// The metabolic rates at muscle state `s`, excitation u and activation a (docs/model.md
-    /// §11.6), with the mechanism's and the probe's inputs they came from. Models with state
-    /// outside the ODE must be asked after the sub-step hooks have brought it in step with `s`.
-    pub fn metabolic(&self, excitation: f64, activation: f64, s: &[f64]) -> MetabolicSample {
+    /// The metabolic rates at muscle state `s`, the excitation of `terms` (the probe's
+    /// [`MuscleProbe::excitation_terms`]) and activation a (docs/model.md §11.6), with the
+    /// probe's inputs they came from. Models with state outside the ODE must be asked after the
+    /// sub-step hooks have brought it in step with `s`.
+    pub fn metabolic(
+        &self,
+        terms: &ExcitationTerms,
+        activation: f64,
+        s: &[f64],
+    ) -> MetabolicSample {
         let ce = self.ce_inputs(activation, s[0], s[1]);
-        let x = self.probe_inputs(excitation, &ce, s);
+        let x = self.probe_inputs(terms.excitation, &ce, s);
         let mechanism = self.ce.bridge_energy(&ce, &s[2..]).map(|(fluxes, b)| {
             mechanism_rates(
                 b,
@@ -166,9 +172,9 @@ impl Mtu {
                 x.fibre_velocity_m_s,
             )
         });
-        let probe = self.probe.rates(&x);
+        let probe = self.probe.rates(&x, terms);
         MetabolicSample {
-            mechanism,
+            bridges: mechanism.is_some(),
             probe_inputs: x,
             rates: MetabolicRates::of(mechanism.as_ref(), &probe, self.probe.atp_free_energy_j),
         }

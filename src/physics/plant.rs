@@ -180,6 +180,7 @@ impl Plant {
     }
 
     /// Muscle i's path length `L_i(θ)`, m (None for a force-driven tendon).
+    #[inline]
     pub fn path_length(&self, y: &[f64], i: usize) -> Option<f64> {
         match &self.anchors[i] {
             Anchor::Path { path_length, spans } => Some(spans.iter().fold(*path_length, |l, s| {

@@ -5,12 +5,11 @@
 //! order, like the fixed sub-steps, and exact for the powers that vary linearly within a tick.
 //! The power at a tick's start is that of the state the previous tick ended in under this
 //! tick's excitation: the bridges do not see the excitation (their rates are carried as they
-//! were), the phenomenological models do (theirs are recomputed).
+//! were), the phenomenological models do (theirs are recomputed). What those compute from the
+//! excitation alone is computed once per command and kept with the energies.
 
-use crate::physics::energetics::metabolic::{
-    MechanismRates, MetabolicRates, MetabolicSample, MuscleProbe,
-};
-use crate::physics::energetics::probe::ProbeInputs;
+use crate::physics::energetics::metabolic::{MetabolicRates, MetabolicSample, MuscleProbe};
+use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
 use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
 /// One muscle's energetics carried from tick to tick.
@@ -18,6 +17,8 @@ use crate::state_bytes::{SavedState, StateReader, StateWriter};
 pub struct MuscleEnergy {
     /// At the last tick's end (or at rest after a reset).
     pub sample: MetabolicSample,
+    /// The phenomenological model's terms of the last command's excitation.
+    pub terms: ExcitationTerms,
     /// Metabolic energy since start, J (the integral of `rates.metabolic_w`).
     pub metabolic_j: f64,
     /// The phenomenological model's energy since start, J.
@@ -25,27 +26,35 @@ pub struct MuscleEnergy {
 }
 
 impl MuscleEnergy {
-    /// At rest: the sample of the resting state, no energy spent.
-    pub fn at_rest(sample: MetabolicSample) -> Self {
+    /// At rest: the sample of the resting state taken under `terms`, no energy spent.
+    pub fn at_rest(sample: MetabolicSample, terms: ExcitationTerms) -> Self {
         Self {
             sample,
+            terms,
             metabolic_j: 0.0,
             phenomenological_j: 0.0,
         }
     }
 
-    /// The rates at the start of a tick under `excitation`: those the last tick ended with,
-    /// recomputed only if the excitation changed.
-    pub fn rates_at_start(&self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
-        if excitation == self.sample.probe_inputs.excitation {
-            self.sample.rates
-        } else {
-            self.sample.with_excitation(probe, excitation)
+    /// The terms of the tick's `excitation`, computed anew only if it differs from the last
+    /// command's.
+    pub fn excitation_terms(&mut self, probe: &MuscleProbe, excitation: f64) -> &ExcitationTerms {
+        if excitation != self.terms.excitation {
+            self.terms = probe.excitation_terms(excitation);
         }
+        &self.terms
     }
 
-    /// After a tick of `dt` seconds that started at rates `start` and ended at `end`.
-    pub fn advance(&mut self, start: &MetabolicRates, end: MetabolicSample, dt: f64) {
+    /// At the end of a tick of `dt` seconds under the excitation of the last
+    /// [`MuscleEnergy::excitation_terms`], whose end state gives `end`: the powers at the
+    /// tick's start are the last sample's, the phenomenological model's evaluated again if the
+    /// excitation changed.
+    pub fn end_tick(&mut self, probe: &MuscleProbe, end: MetabolicSample, dt: f64) {
+        let start = if end.probe_inputs.excitation == self.sample.probe_inputs.excitation {
+            self.sample.powers()
+        } else {
+            self.sample.powers_with_excitation(probe, &self.terms)
+        };
         let r = &end.rates;
         self.metabolic_j += 0.5 * dt * (start.metabolic_w + r.metabolic_w);
         self.phenomenological_j += 0.5 * dt * (start.phenomenological_w + r.phenomenological_w);
@@ -53,33 +62,18 @@ impl MuscleEnergy {
     }
 }
 
-/// The last tick's sample (its mechanism's rates, what the probe read, the published rates;
-/// the next tick's start reads them) and the energies since start. Every field is named, so
-/// that a field added to these structs fails to compile here until it is saved.
+/// The last tick's sample (whether its rates are the bridges', what the probe read, the
+/// published rates; the next tick's start reads them), the last command's excitation terms and
+/// the energies since start. Every field is named, so that a field added to these structs fails
+/// to compile here until it is saved.
 impl SavedState for MuscleEnergy {
     fn save_state(&self, out: &mut StateWriter) {
         let MetabolicSample {
-            mechanism,
+            bridges,
             probe_inputs,
             rates,
         } = self.sample;
-        out.bool(mechanism.is_some());
-        let MechanismRates {
-            total_w,
-            activation_heat_w,
-            bridge_heat_w,
-            work_w,
-            storage_w,
-            atp_rate_mol_s,
-        } = mechanism.unwrap_or_default();
-        let m = [
-            total_w,
-            activation_heat_w,
-            bridge_heat_w,
-            work_w,
-            storage_w,
-            atp_rate_mol_s,
-        ];
+        out.bool(bridges);
         let ProbeInputs {
             excitation,
             activation,
@@ -116,7 +110,14 @@ impl SavedState for MuscleEnergy {
             atp_rate_mol_s,
             phenomenological_w,
         ];
-        for v in m.into_iter().chain(p).chain(r) {
+        let ExcitationTerms {
+            excitation: u,
+            recruited: (slow, fast),
+            recruited_share,
+            excitation_power,
+        } = self.terms;
+        let t = [u, slow, fast, recruited_share, excitation_power];
+        for v in p.into_iter().chain(r).chain(t) {
             out.f64(v);
         }
         out.f64(self.metabolic_j);
@@ -124,16 +125,8 @@ impl SavedState for MuscleEnergy {
     }
 
     fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
-        let has_mechanism = input.bool("energetics' mechanism flag")?;
+        let bridges = input.bool("energetics' bridges flag")?;
         let mut v = || input.f64("energetics");
-        let mechanism = MechanismRates {
-            total_w: v()?,
-            activation_heat_w: v()?,
-            bridge_heat_w: v()?,
-            work_w: v()?,
-            storage_w: v()?,
-            atp_rate_mol_s: v()?,
-        };
         let probe_inputs = ProbeInputs {
             excitation: v()?,
             activation: v()?,
@@ -152,12 +145,19 @@ impl SavedState for MuscleEnergy {
             atp_rate_mol_s: v()?,
             phenomenological_w: v()?,
         };
+        let terms = ExcitationTerms {
+            excitation: v()?,
+            recruited: (v()?, v()?),
+            recruited_share: v()?,
+            excitation_power: v()?,
+        };
         *self = MuscleEnergy {
             sample: MetabolicSample {
-                mechanism: has_mechanism.then_some(mechanism),
+                bridges,
                 probe_inputs,
                 rates,
             },
+            terms,
             metabolic_j: v()?,
             phenomenological_j: v()?,
         };

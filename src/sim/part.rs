@@ -7,6 +7,7 @@ use crate::integrator::{esdirk::Esdirk, tableau::Tableau};
 use crate::integrator::{OdeSystem, Stats};
 use crate::physics::activation::activation_after;
 use crate::physics::energetics::metabolic::MetabolicSample;
+use crate::physics::energetics::probe::ExcitationTerms;
 use crate::physics::muscle_model::SubstepMotion;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::stepping::Stepping;
@@ -174,12 +175,13 @@ impl Part {
     }
 
     /// Local muscle k's metabolic rates after a tick (its state, the activation at the tick's
-    /// end, the tick's excitation), from this part's own contractile elements (whose state
-    /// outside the ODE, the full model's grid, is the one stepped).
-    pub fn metabolic(&self, k: usize) -> MetabolicSample {
+    /// end, the tick's excitation given by the probe's `terms` of it), from this part's own
+    /// contractile elements (whose state outside the ODE, the full model's grid, is the one
+    /// stepped).
+    pub fn metabolic(&self, k: usize, terms: &ExcitationTerms) -> MetabolicSample {
         let a = self.memo.borrow().a[k];
         let s = self.plant.muscle_state(&self.y, k);
-        self.plant.mtus[k].metabolic(self.inputs.excitation[k], a, s)
+        self.plant.mtus[k].metabolic(terms, a, s)
     }
 
     /// Work counters of its stepper.

@@ -5,7 +5,6 @@
 //! contractile model.
 
 use crate::integrator::Stats;
-use crate::physics::energetics::metabolic::MetabolicRates;
 use crate::physics::model::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
@@ -46,8 +45,6 @@ pub struct Simulation {
     tick: u64,
     /// Per muscle: the energetics carried from tick to tick (sim::energy).
     energy: Vec<MuscleEnergy>,
-    /// Per muscle: the rates at the current tick's start (scratch, kept to not allocate).
-    energy_start: Vec<MetabolicRates>,
 }
 
 impl Simulation {
@@ -97,7 +94,6 @@ impl Simulation {
             y: vec![0.0; n],
             tick: 0,
             energy: vec![MuscleEnergy::default(); m],
-            energy_start: vec![MetabolicRates::default(); m],
             parts,
             plant,
         };
@@ -115,8 +111,9 @@ impl Simulation {
         }
         for (i, mtu) in self.plant.mtus.iter().enumerate() {
             let s = self.plant.muscle_state(&self.y, i);
-            let rest = mtu.metabolic(self.inputs.excitation[i], 0.0, s);
-            self.energy[i] = MuscleEnergy::at_rest(rest);
+            let terms = mtu.probe.excitation_terms(self.inputs.excitation[i]);
+            let rest = mtu.metabolic(&terms, 0.0, s);
+            self.energy[i] = MuscleEnergy::at_rest(rest, terms);
         }
         self.tick = 0;
     }
@@ -172,10 +169,6 @@ impl Simulation {
     /// restores the previous state (of every part) and is reported.
     pub fn step(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
-        for (i, mtu) in self.plant.mtus.iter().enumerate() {
-            self.energy_start[i] =
-                self.energy[i].rates_at_start(&mtu.probe, self.inputs.excitation[i]);
-        }
         let mut ok = true;
         let mut stepped = 0;
         for p in &mut self.parts {
@@ -204,7 +197,9 @@ impl Simulation {
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
             for (k, &i) in p.muscles().iter().enumerate() {
-                self.energy[i].advance(&self.energy_start[i], p.metabolic(k), dt);
+                let (e, probe) = (&mut self.energy[i], &self.plant.mtus[i].probe);
+                let end = p.metabolic(k, e.excitation_terms(probe, self.inputs.excitation[i]));
+                e.end_tick(probe, end, dt);
             }
         }
         // A driven joint shared by several parts: each integrated θ' = ω0 with its own

@@ -2,7 +2,7 @@
 //! `Bhargava2004MuscleMetabolicsProbe` computes them (docs/model.md §11.4), W.
 
 use crate::physics::energetics::probe::{
-    floor_heat, forbid_negative_total, probe_work_w, recruitment, ProbeInputs, ProbeMuscle,
+    floor_heat, forbid_negative_total, probe_work_w, ExcitationTerms, ProbeInputs, ProbeMuscle,
     ProbeRates,
 };
 
@@ -74,7 +74,19 @@ pub fn shortening_heat_w(force_dependent: bool, f_total: f64, f_iso: f64, v_m_s:
 
 /// The Bhargava rates of one muscle at one instant, W.
 pub fn bhargava_rates(o: &BhargavaOptions, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
-    let recruited = recruitment(x.excitation, m.slow_twitch_ratio);
+    let terms = ExcitationTerms::new(x.excitation, m.slow_twitch_ratio);
+    bhargava_rates_with(o, m, x, &terms)
+}
+
+/// The same with the excitation's terms computed beforehand (`terms.excitation` is
+/// `x.excitation`), W.
+pub fn bhargava_rates_with(
+    o: &BhargavaOptions,
+    m: &ProbeMuscle,
+    x: &ProbeInputs,
+    terms: &ExcitationTerms,
+) -> ProbeRates {
+    let recruited = terms.recruited;
     let activation = fibre_heat_w(m.mass_kg, o.activation_w_kg, recruited);
     let maintenance = maintenance_length_factor(x.fibre_length_norm)
         * fibre_heat_w(m.mass_kg, o.maintenance_w_kg, recruited);

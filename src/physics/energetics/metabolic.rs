@@ -8,7 +8,7 @@ use crate::physics::energetics::bridge_power::{
     activation_heat_w, bridge_powers, BridgeEnergyScale, AVOGADRO_PER_MOL,
 };
 use crate::physics::energetics::phenomenological::PhenomenologicalModel;
-use crate::physics::energetics::probe::{ProbeInputs, ProbeMuscle, ProbeRates};
+use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs, ProbeMuscle, ProbeRates};
 
 /// The cross-bridge energetics of one muscle's model: the scale from fluxes to watts and the
 /// bridges' isometric chemical power at full activation (the activation cost's scale), W.
@@ -74,9 +74,15 @@ pub struct MuscleProbe {
 }
 
 impl MuscleProbe {
-    /// Its rates at one instant.
-    pub fn rates(&self, x: &ProbeInputs) -> ProbeRates {
-        self.model.rates(&self.muscle, x)
+    /// What it computes from excitation u alone.
+    pub fn excitation_terms(&self, excitation: f64) -> ExcitationTerms {
+        ExcitationTerms::new(excitation, self.muscle.slow_twitch_ratio)
+    }
+
+    /// Its rates at one instant, given the terms of its excitation (`terms.excitation` is
+    /// `x.excitation`).
+    pub fn rates(&self, x: &ProbeInputs, terms: &ExcitationTerms) -> ProbeRates {
+        self.model.rates_with(&self.muscle, x, terms)
     }
 }
 
@@ -127,12 +133,21 @@ impl MetabolicRates {
     }
 }
 
-/// One muscle's energetics at an instant: the mechanism's rates (models with bridges), what
-/// the phenomenological model read, and the published rates.
+/// The two powers a run integrates into energies, W.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyPowers {
+    /// Metabolic power.
+    pub metabolic_w: f64,
+    /// The phenomenological model's total.
+    pub phenomenological_w: f64,
+}
+
+/// One muscle's energetics at an instant: the published rates, whether they are the
+/// mechanism's, and what the phenomenological model read.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct MetabolicSample {
-    /// The mechanism's rates, for a model with bridges.
-    pub mechanism: Option<MechanismRates>,
+    /// Whether the metabolic power is the mechanism's (a model with bridges).
+    pub bridges: bool,
     /// The phenomenological model's inputs.
     pub probe_inputs: ProbeInputs,
     /// The published rates.
@@ -140,17 +155,34 @@ pub struct MetabolicSample {
 }
 
 impl MetabolicSample {
-    /// The same instant under another excitation (a tick's start, where the command changes):
-    /// the bridges do not see the excitation, the phenomenological models do.
-    pub fn with_excitation(&self, probe: &MuscleProbe, excitation: f64) -> MetabolicRates {
+    /// The two powers at this instant.
+    pub fn powers(&self) -> EnergyPowers {
+        EnergyPowers {
+            metabolic_w: self.rates.metabolic_w,
+            phenomenological_w: self.rates.phenomenological_w,
+        }
+    }
+
+    /// The two powers of the same instant under another excitation, given by its terms (a
+    /// tick's start, where the command changes): the bridges do not see the excitation, the
+    /// phenomenological models do.
+    pub fn powers_with_excitation(
+        &self,
+        probe: &MuscleProbe,
+        terms: &ExcitationTerms,
+    ) -> EnergyPowers {
         let x = ProbeInputs {
-            excitation,
+            excitation: terms.excitation,
             ..self.probe_inputs
         };
-        MetabolicRates::of(
-            self.mechanism.as_ref(),
-            &probe.rates(&x),
-            probe.atp_free_energy_j,
-        )
+        let phenomenological_w = probe.rates(&x, terms).total_w();
+        EnergyPowers {
+            metabolic_w: if self.bridges {
+                self.rates.metabolic_w
+            } else {
+                phenomenological_w
+            },
+            phenomenological_w,
+        }
     }
 }

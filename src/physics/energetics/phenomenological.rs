@@ -2,7 +2,7 @@
 //! or Bhargava et al. (2004), each with its options.
 
 use crate::physics::energetics::bhargava::{self, BhargavaOptions};
-use crate::physics::energetics::probe::{ProbeInputs, ProbeMuscle, ProbeRates};
+use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs, ProbeMuscle, ProbeRates};
 use crate::physics::energetics::umberger::{self, UmbergerOptions};
 
 /// A phenomenological energy model, selectable.
@@ -23,9 +23,24 @@ impl PhenomenologicalModel {
 
     /// Its rates for one muscle at one instant.
     pub fn rates(&self, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
+        self.rates_with(
+            m,
+            x,
+            &ExcitationTerms::new(x.excitation, m.slow_twitch_ratio),
+        )
+    }
+
+    /// The same with the excitation's terms computed beforehand (`terms.excitation` is
+    /// `x.excitation`).
+    pub fn rates_with(
+        &self,
+        m: &ProbeMuscle,
+        x: &ProbeInputs,
+        terms: &ExcitationTerms,
+    ) -> ProbeRates {
         match self {
-            Self::Umberger(o) => umberger::umberger_rates(o, m, x),
-            Self::Bhargava(o) => bhargava::bhargava_rates(o, m, x),
+            Self::Umberger(o) => umberger::umberger_rates_with(o, m, x, terms),
+            Self::Bhargava(o) => bhargava::bhargava_rates_with(o, m, x, terms),
         }
     }
 }

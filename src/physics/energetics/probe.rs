@@ -1,7 +1,8 @@
 //! What the phenomenological heat-rate models share (docs/model.md §11.4), as OpenSim's
 //! metabolic probes (opensim-core, `Umberger2010MuscleMetabolicsProbe`,
 //! `Bhargava2004MuscleMetabolicsProbe`) compute them: the muscle mass, fibre recruitment, the
-//! inputs read from the muscle, the parts of the result, and the two clamps.
+//! inputs read from the muscle, what they compute from the excitation alone, the parts of the
+//! result, and the two clamps.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -28,6 +29,60 @@ pub fn recruitment(excitation: f64, slow_twitch_ratio: f64) -> (f64, f64) {
         slow_twitch_ratio * sin,
         (1.0 - slow_twitch_ratio) * (1.0 - cos),
     )
+}
+
+/// The recruited share of slow-twitch fibres `u_ST / (u_ST + u_FT)` (1 when u = 0), from the
+/// [`recruitment`] at u.
+pub fn recruited_share(excitation: f64, recruited: (f64, f64)) -> f64 {
+    if excitation == 0.0 {
+        return 1.0;
+    }
+    let (slow, fast) = recruited;
+    slow / (slow + fast)
+}
+
+/// Umberger's activation dependence of the activation and maintenance heat, `A^0.6`
+/// (Umberger et al. 2003).
+pub fn effort_power(effort: f64) -> f64 {
+    effort.powf(0.6)
+}
+
+/// What the probes compute from the excitation u alone: Bhargava's recruitment (a sine and a
+/// cosine) and its share of slow-twitch fibres, and Umberger's `A^0.6` for A = u. A run
+/// computes them once per command rather than at every instant; the rates are the same to the
+/// bit.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ExcitationTerms {
+    /// Excitation u, [0, 1].
+    pub excitation: f64,
+    /// [`recruitment`] at u: the slow- and fast-twitch fibres' excitations.
+    pub recruited: (f64, f64),
+    /// [`recruited_share`] at u.
+    pub recruited_share: f64,
+    /// [`effort_power`] of u.
+    pub excitation_power: f64,
+}
+
+impl ExcitationTerms {
+    /// The terms of excitation u for a share r of slow-twitch fibres.
+    pub fn new(excitation: f64, slow_twitch_ratio: f64) -> Self {
+        let recruited = recruitment(excitation, slow_twitch_ratio);
+        Self {
+            excitation,
+            recruited,
+            recruited_share: recruited_share(excitation, recruited),
+            excitation_power: effort_power(excitation),
+        }
+    }
+
+    /// [`effort_power`] of A, from the terms where A = u.
+    pub fn effort_power(&self, effort: f64) -> f64 {
+        if effort == self.excitation {
+            self.excitation_power
+        } else {
+            effort_power(effort)
+        }
+    }
 }
 
 /// One muscle's constants for a probe.

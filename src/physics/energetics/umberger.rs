@@ -4,7 +4,7 @@
 //! Rates per kg of muscle, then times the mass; v̄ = v / lopt in lopt/s, negative shortening.
 
 use crate::physics::energetics::probe::{
-    floor_heat, forbid_negative_total, probe_work_w, recruitment, ProbeInputs, ProbeMuscle,
+    floor_heat, forbid_negative_total, probe_work_w, ExcitationTerms, ProbeInputs, ProbeMuscle,
     ProbeRates,
 };
 
@@ -66,28 +66,31 @@ pub fn effort(excitation: f64, activation: f64) -> f64 {
 }
 
 /// The slow-twitch share used: r itself, or Bhargava's recruited share
-/// `u_ST / (u_ST + u_FT)` (1 when u = 0).
-pub fn slow_twitch_share(excitation: f64, ratio: f64, bhargava_recruitment: bool) -> f64 {
-    if !bhargava_recruitment {
-        return ratio;
+/// `u_ST / (u_ST + u_FT)` (1 when u = 0) from the excitation's terms.
+pub fn slow_twitch_share(terms: &ExcitationTerms, ratio: f64, bhargava_recruitment: bool) -> f64 {
+    if bhargava_recruitment {
+        terms.recruited_share
+    } else {
+        ratio
     }
-    if excitation == 0.0 {
-        return 1.0;
-    }
-    let (slow, fast) = recruitment(excitation, ratio);
-    slow / (slow + fast)
 }
 
 /// Activation and maintenance heat, W/kg: `S A^0.6 X`, `X = 128 (1 - r) + 25`; beyond lopt
-/// `X (0.4 + 0.6 F_iso)`.
-pub fn activation_maintenance_w_kg(s: f64, a: f64, share: f64, l_norm: f64, f_iso: f64) -> f64 {
+/// `X (0.4 + 0.6 F_iso)`; `a_power` is `A^0.6`.
+pub fn activation_maintenance_w_kg(
+    s: f64,
+    a_power: f64,
+    share: f64,
+    l_norm: f64,
+    f_iso: f64,
+) -> f64 {
     let x = 128.0 * (1.0 - share) + 25.0;
     let x = if l_norm <= 1.0 {
         x
     } else {
         x * (0.4 + 0.6 * f_iso)
     };
-    s * a.powf(0.6) * x
+    s * a_power * x
 }
 
 /// Shortening heat, W/kg, `v̄ ≤ 0`: `S A² [min(α_ST |v̄|, 100) r + α_FT |v̄| (1 - r)]` with
@@ -106,11 +109,24 @@ pub fn lengthening_w_kg(s: f64, a: f64, k: f64, v_norm: f64, v_max: f64) -> f64 
 
 /// The Umberger rates of one muscle at one instant, W.
 pub fn umberger_rates(o: &UmbergerOptions, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
+    let terms = ExcitationTerms::new(x.excitation, m.slow_twitch_ratio);
+    umberger_rates_with(o, m, x, &terms)
+}
+
+/// The same with the excitation's terms computed beforehand (`terms.excitation` is
+/// `x.excitation`), W.
+pub fn umberger_rates_with(
+    o: &UmbergerOptions,
+    m: &ProbeMuscle,
+    x: &ProbeInputs,
+    terms: &ExcitationTerms,
+) -> ProbeRates {
     let a = effort(x.excitation, x.activation);
-    let share = slow_twitch_share(x.excitation, m.slow_twitch_ratio, o.bhargava_recruitment);
+    let share = slow_twitch_share(terms, m.slow_twitch_ratio, o.bhargava_recruitment);
     let s = o.aerobic_factor;
     let v_norm = x.fibre_velocity_m_s / m.l_opt_m;
-    let am = activation_maintenance_w_kg(s, a, share, x.fibre_length_norm, x.force_length);
+    let a_power = terms.effort_power(a);
+    let am = activation_maintenance_w_kg(s, a_power, share, x.fibre_length_norm, x.force_length);
     let mut sh = if v_norm <= 0.0 {
         shortening_w_kg(s, a, share, v_norm, m.v_max_lopt_s)
     } else {
