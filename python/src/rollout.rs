@@ -15,9 +15,13 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
+use std::sync::{Arc, Mutex, OnceLock};
 
-/// The worker threads: `threads` (None: one per core), at least 1.
-fn pool(threads: Option<i64>) -> PyResult<rayon::ThreadPool> {
+/// The worker threads: `threads` (None: one per core), at least 1. A pool of each size is
+/// started once and kept (the last 4 sizes asked for), so that a call does not pay for starting
+/// threads.
+fn pool(threads: Option<i64>) -> PyResult<Arc<rayon::ThreadPool>> {
+    static POOLS: OnceLock<Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>>> = OnceLock::new();
     let n = match threads
         .map(|t| crate::config::count("threads", t))
         .transpose()?
@@ -26,10 +30,23 @@ fn pool(threads: Option<i64>) -> PyResult<rayon::ThreadPool> {
         Some(n) => n.min(1024),
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
-    rayon::ThreadPoolBuilder::new()
+    let mut pools = POOLS
+        .get_or_init(|| Mutex::new(Vec::new()))
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    if let Some((_, p)) = pools.iter().find(|(k, _)| *k == n) {
+        return Ok(p.clone());
+    }
+    let p = rayon::ThreadPoolBuilder::new()
         .num_threads(n)
         .build()
-        .map_err(|e| PyValueError::new_err(format!("cannot start {n} threads: {e}")))
+        .map_err(|e| PyValueError::new_err(format!("cannot start {n} threads: {e}")))?;
+    let p = Arc::new(p);
+    if pools.len() >= 4 {
+        pools.remove(0);
+    }
+    pools.push((n, p.clone()));
+    Ok(p)
 }
 
 /// Steps the actuators (all of the same muscles and joints) over the inputs and returns the
