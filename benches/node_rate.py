@@ -3,13 +3,17 @@
 publishing ~/state every tick, with an rclpy client commanding at 100 Hz. Reports the node's
 tick lateness p50/p99/max and missed ticks (from the node's own summary at exit), and the
 command-to-state latency seen by the client, beside an rclpy-to-rclpy echo round trip measured
-in the same run.
+in the same run. With --foxglove on, a Foxglove client (tests/foxglove/stream_bench.mjs, the
+app's own protocol client and decoder) subscribes to every channel of the live view, and its
+latency from a tick's stamp to the state's arrival is reported too; --foxglove off runs the
+node without the live view (foxglove_port 0).
 
 Run through benches/node_rate.sh (builds, sets up the venv, loopback-only network namespace).
 """
 
 import argparse
 import glob
+import socket
 import json
 import os
 import signal
@@ -70,6 +74,8 @@ def main():
     ap.add_argument("--json", help="write the figures here too")
     ap.add_argument("--record", choices=["on", "off"], default="on",
                     help="record to MCAP (the node's default) or not, to compare the tick lateness")
+    ap.add_argument("--foxglove", choices=["on", "off"], default="off",
+                    help="a Foxglove client subscribed to every channel of the live view, or no live view")
     ap.add_argument("--echo-server", action="store_true", help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.echo_server:
@@ -77,10 +83,11 @@ def main():
 
     env = dict(os.environ, MUSCLE_ACTUATOR_TICK_SUMMARY="1")
     a.record_dir = tempfile.mkdtemp(prefix="node_rate_")
+    a.port = free_port() if a.foxglove == "on" else 0
     node_proc = subprocess.Popen(
         [a.bin, "node", "--ros-args", "-r", "__ns:=/bench", "-p", f"model:={a.model}",
          "-p", f"rate_hz:={float(a.rate)}", "-p", f"record:={'true' if a.record == 'on' else 'false'}",
-         "-p", f"record_dir:={a.record_dir}", "--log-level", "error"],
+         "-p", f"record_dir:={a.record_dir}", "-p", f"foxglove_port:={a.port}", "--log-level", "error"],
         stderr=subprocess.PIPE, text=True, env=env,
     )
     echo_proc = subprocess.Popen([sys.executable, __file__, "--bin", a.bin, "--echo-server"])
@@ -90,6 +97,38 @@ def main():
         for p in (node_proc, echo_proc):
             if p.poll() is None:
                 p.kill()
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_stream_client(a):
+    """The Foxglove client of --foxglove on, subscribed to everything (connects once the node
+    listens)."""
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "foxglove",
+                          "stream_bench.mjs")
+    end = time.monotonic() + 30
+    while True:
+        try:
+            socket.create_connection(("127.0.0.1", a.port), timeout=1).close()
+            break
+        except OSError:
+            if time.monotonic() > end:
+                sys.exit("the live view never listened")
+            time.sleep(0.1)
+    return subprocess.Popen(["node", script, "--url", f"ws://127.0.0.1:{a.port}",
+                             "--state", "/bench/muscle_actuator/state"],
+                            stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+
+
+def stop_stream_client(proc):
+    proc.send_signal(signal.SIGTERM)
+    out, _ = proc.communicate(timeout=10)
+    lines = [ln for ln in out.splitlines() if ln.startswith("{")]
+    return json.loads(lines[-1]) if lines else {}
 
 
 def thread_cpu_seconds(pid, name):
@@ -146,6 +185,7 @@ def run_client(a, node_proc, echo_proc):
 
     wait(lambda: cmd.get_subscription_count() > 0 and states[0] > 0, "the node")
     wait(lambda: echo_pub.get_subscription_count() > 0, "the echo server")
+    stream = start_stream_client(a) if a.foxglove == "on" else None
     time.sleep(2.0)  # let both sides finish matching (first samples can be dropped)
 
     period = 1.0 / a.command_rate
@@ -175,6 +215,7 @@ def run_client(a, node_proc, echo_proc):
         time.sleep(max(0.0, next_t - time.monotonic()))
     time.sleep(0.5)
     wall = time.monotonic() - t_start
+    live = stop_stream_client(stream) if stream else None
     rec_cpu = thread_cpu_seconds(node_proc.pid, "recorder") - rec_cpu0
     n_states = states[0]
     node_proc.send_signal(signal.SIGINT)
@@ -198,7 +239,10 @@ def run_client(a, node_proc, echo_proc):
         "command_to_state": summary(lat),
         "rclpy_echo_round_trip": summary(echo),
         "record": a.record,
+        "foxglove": a.foxglove,
     }
+    if live is not None:
+        res["live_view"] = live
     if a.record == "on":
         files = glob.glob(os.path.join(a.record_dir, "*.mcap"))
         size = sum(os.path.getsize(f) for f in files)
@@ -206,8 +250,12 @@ def run_client(a, node_proc, echo_proc):
                             "bytes_per_s": size / wall if wall > 0 else float("nan"),
                             "recorder_thread_cpu_percent": 100.0 * rec_cpu / wall}
     t = tick
-    print(f"node {a.model} at {a.rate:.0f} Hz for {wall:.1f} s, recording {a.record}; "
-          f"client commanding at {a.command_rate:.0f} Hz")
+    print(f"node {a.model} at {a.rate:.0f} Hz for {wall:.1f} s, recording {a.record}, "
+          f"live view {a.foxglove}; client commanding at {a.command_rate:.0f} Hz")
+    if live:
+        lat = live.get("state_latency_ms", {})
+        print(f"  live view: {live.get('counts')}; tick stamp -> Foxglove client: n {lat.get('n')}, "
+              f"p50 {lat.get('p50')} ms, p99 {lat.get('p99')} ms, max {lat.get('max')} ms")
     if "recording" in res:
         r = res["recording"]
         print(f"  recording: {r['bytes'] / 1e6:.2f} MB in {r['files']} file(s), {r['bytes_per_s'] / 1e3:.1f} kB per s; "

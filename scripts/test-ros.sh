@@ -15,6 +15,23 @@ cd "$ROOT"
 
 VENV="$(python_env)"
 
+# The Foxglove test client's packages (tests/foxglove, for tests/python/test_foxglove.py), from
+# its lock file with `npm ci`; skipped while node_modules holds what the lock file says (a stamp
+# of its hash). Before the network namespace: npm needs the registry. A failure here fails that
+# test module only.
+FOX="$ROOT/tests/foxglove"
+fox_hash="$(sha256sum "$FOX/package-lock.json" | cut -c1-16)"
+if ! command -v npm >/dev/null; then
+  echo "[test-ros] no npm: tests/foxglove's packages not installed" >&2
+elif [ "$(cat "$FOX/node_modules/.stamp-lock" 2>/dev/null || true)" != "$fox_hash" ]; then
+  echo "[test-ros] installing the Foxglove test client's packages (npm ci)" >&2
+  if (cd "$FOX" && npm ci --no-audit --no-fund --loglevel=error >&2); then
+    echo "$fox_hash" >"$FOX/node_modules/.stamp-lock"
+  else
+    echo "[test-ros] npm ci failed in tests/foxglove: test_foxglove.py will fail" >&2
+  fi
+fi
+
 BIN="$(target_dir)/debug/muscle_actuator"
 # scripts/test-all.sh sets MUSCLE_ACTUATOR_BUILT=1: its `cargo test --all-targets` has just built
 # this binary (the integration tests run it), and a plain `cargo build` would compile the crate

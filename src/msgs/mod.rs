@@ -472,6 +472,10 @@ pub const DEFINITIONS: &[(&str, &str)] = &[
         "string label\nuint32 size\nuint32 stride\n",
     ),
     (
+        "rosgraph_msgs/msg/Clock",
+        "builtin_interfaces/Time clock\n",
+    ),
+    (
         "diagnostic_msgs/msg/DiagnosticArray",
         "std_msgs/Header header\nDiagnosticStatus[] status\n",
     ),

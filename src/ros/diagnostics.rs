@@ -4,6 +4,7 @@
 use super::args::Severity;
 use super::clock::{ClockMode, NodeClock};
 use super::input::Rejection;
+use super::live::{LiveStatus, LiveTap, Outlet};
 use super::logging::Reporter;
 use super::param_callbacks::Shared;
 use super::params::NodeParams;
@@ -157,6 +158,7 @@ fn diagnostics(
             tick_status,
             input_status(fqn, inputs, rejected, new_rejected),
             recorder_status,
+            live_status(fqn, &src.live),
         ],
     }
 }
@@ -360,6 +362,43 @@ pub(crate) struct DiagSources<'a> {
     pub(crate) recorder_error: &'a str,
     /// Stamps, and what a tick-less second means.
     pub(crate) clock: &'a NodeClock,
+    pub(crate) live: LiveStatus<'a>,
+}
+
+/// The live view's `/diagnostics` status: clients, what was dropped for slow clients, who was
+/// disconnected for what they sent.
+fn live_status(fqn: &str, s: &LiveStatus<'_>) -> crate::msgs::DiagnosticStatus {
+    let (level, message, values) = match s {
+        LiveStatus::Off => (DiagnosticStatus::OK, "off (foxglove_port 0)".to_string(), vec![]),
+        LiveStatus::Failed(why) => (DiagnosticStatus::WARN, format!("not serving: {why}"), vec![]),
+        LiveStatus::Serving(st, addr) => {
+            let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
+            let dropped = ld(&st.dropped);
+            (
+                if dropped > 0 {
+                    DiagnosticStatus::WARN
+                } else {
+                    DiagnosticStatus::OK
+                },
+                format!("serving ws://{addr}"),
+                vec![
+                    kv("clients", st.clients.load(Ordering::Relaxed)),
+                    kv("connections", ld(&st.connections)),
+                    kv("dropped", dropped),
+                    kv("disconnected_for_bad_frames", ld(&st.kicked)),
+                    kv("refused", ld(&st.refused)),
+                    kv("requests_dropped", ld(&st.requests_dropped)),
+                ],
+            )
+        }
+    };
+    DiagnosticStatus {
+        level,
+        name: format!("{fqn}: live view (foxglove)"),
+        message,
+        hardware_id: fqn.into(),
+        values,
+    }
 }
 
 /// How often `/diagnostics` is published.
@@ -372,6 +411,7 @@ pub(crate) async fn publish_task(
     publisher: &Publisher<DiagnosticArray>,
     log: &Reporter,
     rec: Option<RecordTx>,
+    live: Option<LiveTap>,
 ) {
     let mut prev = DiagPrev::default();
     let mut failure_reported = false;
@@ -406,6 +446,9 @@ pub(crate) async fn publish_task(
         }
         if let Some(r) = &rec {
             r.put(Channel::Diagnostics, msg.header.stamp.to_nanos(), &msg);
+        }
+        if let Some(l) = &live {
+            l.put(Outlet::Diagnostics, msg.header.stamp.to_nanos(), &msg);
         }
         if let Err(e) = publisher.async_publish(msg).await {
             log.logger

@@ -4,6 +4,7 @@
 
 use super::args::Severity;
 use super::clock::NodeClock;
+use super::live::{LiveTap, Outlet};
 use super::record::RecordTx;
 use crate::msgs::Log;
 use crate::runs::Channel;
@@ -23,6 +24,8 @@ pub struct Logger {
     pub(crate) name: String,
     /// The recording, once it has started: the `/rosout` lines go into it too.
     pub(crate) recording: Arc<OnceLock<RecordTx>>,
+    /// The live view, once it has started: the `/rosout` lines go to its clients too.
+    pub(crate) live: Arc<OnceLock<LiveTap>>,
     /// Stamps of the `/rosout` lines.
     pub(crate) clock: Arc<NodeClock>,
 }
@@ -61,7 +64,8 @@ impl Logger {
             };
             let stamp = Time::from_nanos(self.clock.now_ns());
             h.rosout_raw(stamp, level, &self.name, msg, file!(), "", line!());
-            if let Some(r) = self.recording.get() {
+            let (rec, live) = (self.recording.get(), self.live.get());
+            if rec.is_some() || live.is_some() {
                 let line = Log {
                     stamp,
                     level: level as u8,
@@ -71,7 +75,12 @@ impl Logger {
                     function: String::new(),
                     line: line!(),
                 };
-                r.put(Channel::Rosout, stamp.to_nanos(), &line);
+                if let Some(r) = rec {
+                    r.put(Channel::Rosout, stamp.to_nanos(), &line);
+                }
+                if let Some(l) = live {
+                    l.put(Outlet::Rosout, stamp.to_nanos(), &line);
+                }
             }
         }
     }

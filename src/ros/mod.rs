@@ -16,6 +16,8 @@
 //! - [`diagnostics`]: `/diagnostics`, once a second;
 //! - [`logging`]: stderr, `/rosout` and the recording's log;
 //! - [`record`]: the node's MCAP recording (off the tick thread);
+//! - `live`: the live view, a Foxglove WebSocket server (off the tick thread);
+//!   `live_requests`: what its clients ask, answered on the executor;
 //! - `signals`: SIGINT and SIGTERM;
 //! - [`node`]: the node's main, which wires these together.
 
@@ -24,6 +26,8 @@ pub mod clock;
 pub mod dds;
 pub mod diagnostics;
 pub mod input;
+pub(crate) mod live;
+mod live_requests;
 pub mod logging;
 pub mod node;
 mod param_callbacks;

@@ -5,6 +5,8 @@ use super::args::Severity;
 use super::clock::{ClockMode, NodeClock};
 use super::dds::{Dds, EndpointNames, Endpoints, Served};
 use super::diagnostics::{self, DiagSources, InputStats};
+use super::live::{Catalogue, LiveOptions, LiveStatus, LiveView, Request, Topics};
+use super::live_requests;
 use super::logging::{Logger, Reporter};
 use super::param_callbacks::Shared;
 use super::record::{self, NodeRecorder, RecordTx};
@@ -46,6 +48,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         !actuator.driven_joints().is_empty(),
         &logger,
     )?;
+    let (live, live_error) = start_live(&setup, &dds, &endpoints.names, clock.mode(), &logger);
     let spinner = node
         .spinner()
         .map_err(|e| format!("cannot start the node's spinner: {e:?}"))?;
@@ -68,6 +71,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         commands: cmd_rx,
         published: endpoints.published,
         rec: rec.clone(),
+        live: live.as_ref().map(LiveView::tap),
         tick_origin_ns,
         pacing: Pacing {
             clock: clock.clone(),
@@ -98,10 +102,69 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             logger: &logger,
             rec: rec.clone(),
             signals: &signals,
+            node: &node,
+            live: live.as_ref(),
+            live_error: &live_error,
         },
         spinner,
     );
+    if let Some(l) = live {
+        l.stop();
+    }
     stop(threads, recorder, rec, &signals, &logger)
+}
+
+/// The live view the parameters ask for, or why it could not start (a warning: the node runs
+/// on without it).
+fn start_live(
+    setup: &Setup,
+    dds: &Dds,
+    n: &EndpointNames,
+    mode: ClockMode,
+    logger: &Logger,
+) -> (Option<LiveView>, String) {
+    let port = setup.params.foxglove_port;
+    if port == 0 {
+        return (None, String::new());
+    }
+    let topics = Topics {
+        state: n.state.clone(),
+        joint_states: n.joint_states.clone(),
+        activation: n.activation.clone(),
+        activation_array: n.activation_array.clone(),
+        muscle_commands: n.muscle_commands.clone(),
+        load: n.load.clone(),
+        reset: n.reset.clone(),
+        step: n.step.clone(),
+        joint_efforts: n.driven.as_ref().map(|(_, e)| e.clone()),
+    };
+    let started = Catalogue::new(&topics, mode.publishes_clock()).and_then(|catalogue| {
+        LiveView::start(LiveOptions {
+            port,
+            local: dds.local,
+            catalogue,
+            name: &setup.fqn,
+            sim_time: mode.publishes_clock(),
+        })
+    });
+    match started {
+        Ok(v) => {
+            let _ = logger.live.set(v.tap());
+            logger.info(&format!(
+                "live view: ws://{} (in Foxglove or Lichtblick: Open connection, Foxglove \
+                 WebSocket)",
+                v.addr
+            ));
+            (Some(v), String::new())
+        }
+        Err(e) => {
+            logger.warn(&format!(
+                "live view (foxglove) not started: {e}; the node runs on without it \
+                 (-p foxglove_port:=N for another port, 0 for none)"
+            ));
+            (None, e)
+        }
+    }
 }
 
 /// The node on DDS, its parameter services started (`use_sim_time` declared when given).
@@ -178,6 +241,9 @@ struct Executor<'a> {
     logger: &'a Logger,
     rec: Option<RecordTx>,
     signals: &'a StopSignals,
+    node: &'a ros2_client::Node,
+    live: Option<&'a LiveView>,
+    live_error: &'a str,
 }
 
 /// The executor: spinner, inputs, services, diagnostics and events, until a stop signal.
@@ -201,6 +267,20 @@ fn serve(x: Executor<'_>, spinner: Spinner) {
         recorder: x.recorder.map(|r| &r.recorder),
         recorder_error: x.recorder_error,
         clock: x.clock,
+        live: match x.live {
+            Some(l) => LiveStatus::Serving(l.stats(), l.addr),
+            None if !x.live_error.is_empty() => LiveStatus::Failed(x.live_error),
+            None => LiveStatus::Off,
+        },
+    };
+    let muscle_topics: Vec<String> = e.muscle_commands.iter().map(|(m, _)| m.clone()).collect();
+    let lcx = live_requests::Context {
+        inputs: &cx,
+        node: x.node,
+        shared: x.shared,
+        mode: x.clock.mode(),
+        log: &log,
+        muscle_topics: &muscle_topics,
     };
     // Biased: each wake polls the inputs before the step service, so that inputs received
     // before a step request take effect at its first tick.
@@ -222,7 +302,10 @@ fn serve(x: Executor<'_>, spinner: Spinner) {
                     x.logger.error(&format!("the node's spinner failed: {e:?}"));
                 }
             },
-            _ = diagnostics::publish_task(diag, &e.diagnostics, &log, x.rec.clone()).fuse() => {},
+            _ = diagnostics::publish_task(
+                diag, &e.diagnostics, &log, x.rec.clone(), x.live.map(LiveView::tap)
+            ).fuse() => {},
+            _ = live_in(x.live.map(|l| &l.requests), &lcx).fuse() => {},
             _ = tasks::events(x.events, &x.threads.stats, &log, x.rec.as_ref()).fuse() => {},
         }
     });
@@ -257,6 +340,14 @@ async fn joint_states_in(
     }
 }
 
+/// The live view's requests when it runs; otherwise nothing, for ever.
+async fn live_in(rx: Option<&smol::channel::Receiver<Request>>, cx: &live_requests::Context<'_>) {
+    match rx {
+        Some(rx) => live_requests::serve(rx, cx).await,
+        None => futures::future::pending().await,
+    }
+}
+
 /// `/clock` when following one (`use_sim_time`); otherwise nothing, for ever.
 async fn clock_in(
     sub: Option<&ros2_client::Subscription<crate::msgs::Clock>>,
@@ -277,6 +368,7 @@ fn logger(setup: &Setup, node: &ros2_client::Node, clock: &Arc<NodeClock>) -> Lo
         stdout: !a.disable_stdout,
         name: setup.fqn.trim_start_matches('/').replace('/', "."),
         recording: Arc::new(OnceLock::new()),
+        live: Arc::new(OnceLock::new()),
         clock: clock.clone(),
     }
 }

@@ -154,7 +154,15 @@ fn validate_param(
         .map_err(|_| "internal error: parameter lock poisoned".to_string())?
         .clone();
     let before = candidate.clock;
+    let port_before = candidate.foxglove_port;
     candidate.set(name, value, false)?;
+    if candidate.foxglove_port != port_before {
+        return Err(format!(
+            "foxglove_port is chosen at start-up (this node serves port {port_before}); restart \
+             the node with -p foxglove_port:={}",
+            candidate.foxglove_port
+        ));
+    }
     if candidate.clock != before {
         return Err(format!(
             "clock is chosen at start-up (this node runs clock:={}); restart the node with \

@@ -19,8 +19,9 @@ pub const REAL_TIME_FACTOR: &str = "real_time_factor";
 pub const CLOCK_RATE_HZ: &str = "clock_rate_hz";
 pub const JOINT_STATE_TIMEOUT_TICKS: &str = "joint_state_timeout_ticks";
 pub const ENERGY_MODEL: &str = "energy_model";
+pub const FOXGLOVE_PORT: &str = "foxglove_port";
 /// All of them, in the order they are declared.
-pub const ALL: [&str; 11] = [
+pub const ALL: [&str; 12] = [
     MODEL,
     RATE_HZ,
     PUBLISH_RATE_HZ,
@@ -32,7 +33,11 @@ pub const ALL: [&str; 11] = [
     CLOCK_RATE_HZ,
     JOINT_STATE_TIMEOUT_TICKS,
     ENERGY_MODEL,
+    FOXGLOVE_PORT,
 ];
+/// The live view's port unless set: Foxglove's own default for a WebSocket connection
+/// (`ws://localhost:8765`), so that a first-time user connects without looking it up.
+pub const DEFAULT_FOXGLOVE_PORT: u16 = 8765;
 /// Highest `real_time_factor` (beyond it, 0 = as fast as possible is the honest value).
 pub const MAX_REAL_TIME_FACTOR: f64 = 1e6;
 
@@ -69,6 +74,9 @@ pub struct NodeParams {
     /// The phenomenological energy model of every muscle; `None` (the parameter empty): each
     /// muscle's `energetics.energy_model` from the configuration.
     pub energy_model: Option<EnergyModel>,
+    /// The live view's TCP port (the Foxglove WebSocket protocol, docs/live-view.md); 0 = off
+    /// (fixed at start-up).
+    pub foxglove_port: u16,
 }
 
 impl Default for NodeParams {
@@ -85,6 +93,7 @@ impl Default for NodeParams {
             clock_rate_hz: 100.0,
             joint_state_timeout_ticks: 100,
             energy_model: None,
+            foxglove_port: DEFAULT_FOXGLOVE_PORT,
         }
     }
 }
@@ -108,6 +117,7 @@ impl NodeParams {
                     .map(|m| m.name().to_string())
                     .unwrap_or_default(),
             ),
+            FOXGLOVE_PORT => ParameterValue::Integer(i64::from(self.foxglove_port)),
             _ => return None,
         })
     }
@@ -200,6 +210,19 @@ impl NodeParams {
                     })?)
                 };
             }
+            FOXGLOVE_PORT => match value {
+                ParameterValue::Integer(n) if (0..=i64::from(u16::MAX)).contains(n) => {
+                    self.foxglove_port = *n as u16
+                }
+                other => {
+                    return Err(format!(
+                        "parameter \"foxglove_port\" must be an integer from 0 (off) to {}, \
+                         got {}",
+                        u16::MAX,
+                        describe(other)
+                    ))
+                }
+            },
             other => {
                 return Err(format!(
                     "unknown parameter {:?} (known: {})",

@@ -38,7 +38,7 @@ pub(crate) struct InputContext<'a> {
 
 impl InputContext<'_> {
     /// An input problem: kept as the last one for `/diagnostics`, and logged (rate-limited).
-    fn problem(&self, key: &str, msg: String) {
+    pub(crate) fn problem(&self, key: &str, msg: String) {
         if let Ok(mut l) = self.stats.last_problem.lock() {
             *l = msg.clone();
         }
@@ -109,7 +109,7 @@ impl InputContext<'_> {
         }
     }
 
-    fn unreadable(&self, what: &str, e: String) {
+    pub(crate) fn unreadable(&self, what: &str, e: String) {
         self.stats.malformed.fetch_add(1, Ordering::Relaxed);
         self.log.report(
             "malformed",
@@ -131,16 +131,21 @@ fn stamped(stamp_ns: Option<i64>, input: Command) -> Command {
 /// `~/activation`: excitations by muscle name.
 pub(crate) async fn activation(sub: &Subscription<ActivationCommand>, cx: &InputContext<'_>) {
     cx.each(sub, "activation", &cx.stats.activation_received, |msg| {
-        cx.record(Channel::Activation, msg.header.stamp.to_nanos(), &msg);
-        let stamp = msg.header.stamp.to_nanos();
-        cx.excite(
-            &msg.muscle,
-            &msg.excitation,
-            &cx.shared.muscles(),
-            Some(stamp),
-        );
+        on_activation(cx, msg)
     })
     .await
+}
+
+/// One `~/activation` message (from DDS or the live view): recorded, validated, applied.
+pub(crate) fn on_activation(cx: &InputContext<'_>, msg: ActivationCommand) {
+    cx.record(Channel::Activation, msg.header.stamp.to_nanos(), &msg);
+    let stamp = msg.header.stamp.to_nanos();
+    cx.excite(
+        &msg.muscle,
+        &msg.excitation,
+        &cx.shared.muscles(),
+        Some(stamp),
+    );
 }
 
 /// `~/activation_array`: every muscle's excitation, in the configuration's order.
@@ -149,28 +154,31 @@ pub(crate) async fn activation_array(sub: &Subscription<Float64MultiArray>, cx: 
         sub,
         "activation_array",
         &cx.stats.activation_received,
-        |msg| {
-            cx.record(Channel::ActivationArray, time::now_ns(), &msg);
-            let known = cx.shared.muscles();
-            if msg.data.len() != known.len() {
-                let rej = Rejection::LengthMismatch {
-                    names: known.len(),
-                    values: msg.data.len(),
-                };
-                let m = format!(
-                    "activation_array rejected: {} values for {} muscles (in order: {})",
-                    msg.data.len(),
-                    known.len(),
-                    crate::text::excerpt(&known.join(", "))
-                );
-                cx.rejected(&cx.stats.activation_rejected, &rej, m);
-                return;
-            }
-            // All of them, in order: the names are the configuration's own.
-            cx.excite(&known, &msg.data, &known, None);
-        },
+        |msg| on_activation_array(cx, msg),
     )
     .await
+}
+
+/// One `~/activation_array` message (from DDS or the live view).
+pub(crate) fn on_activation_array(cx: &InputContext<'_>, msg: Float64MultiArray) {
+    cx.record(Channel::ActivationArray, time::now_ns(), &msg);
+    let known = cx.shared.muscles();
+    if msg.data.len() != known.len() {
+        let rej = Rejection::LengthMismatch {
+            names: known.len(),
+            values: msg.data.len(),
+        };
+        let m = format!(
+            "activation_array rejected: {} values for {} muscles (in order: {})",
+            msg.data.len(),
+            known.len(),
+            crate::text::excerpt(&known.join(", "))
+        );
+        cx.rejected(&cx.stats.activation_rejected, &rej, m);
+        return;
+    }
+    // All of them, in order: the names are the configuration's own.
+    cx.excite(&known, &msg.data, &known, None);
 }
 
 /// `~/<muscle>/cmd_activation`: one muscle's excitation, on one topic per muscle.
@@ -186,15 +194,7 @@ pub(crate) async fn muscle_commands(
     while let Some((k, name, r)) = all.next().await {
         cx.stats.activation_received.fetch_add(1, Ordering::Relaxed);
         match r {
-            Ok((msg, _info)) => {
-                cx.record(Channel::MuscleCommand(k), time::now_ns(), &msg);
-                cx.excite(
-                    std::slice::from_ref(name),
-                    &[msg.data],
-                    &cx.shared.muscles(),
-                    None,
-                );
-            }
+            Ok((msg, _info)) => on_muscle_command(cx, k, name, msg),
             Err(e) => cx.unreadable("cmd_activation", format!("{e:?}")),
         }
     }
@@ -203,23 +203,40 @@ pub(crate) async fn muscle_commands(
     futures::future::pending::<()>().await;
 }
 
+/// One `~/<muscle>/cmd_activation` message, the k-th muscle topic's (from DDS or the live
+/// view).
+pub(crate) fn on_muscle_command(cx: &InputContext<'_>, k: usize, muscle: &str, msg: Float64) {
+    cx.record(Channel::MuscleCommand(k), time::now_ns(), &msg);
+    cx.excite(
+        &[muscle.to_string()],
+        &[msg.data],
+        &cx.shared.muscles(),
+        None,
+    );
+}
+
 /// `~/external_load`: torques by joint name.
 pub(crate) async fn load(sub: &Subscription<ExternalLoad>, cx: &InputContext<'_>) {
     cx.each(sub, "external load", &cx.stats.load_received, |msg| {
-        cx.record(Channel::Load, msg.header.stamp.to_nanos(), &msg);
-        match input::validate_load(&msg.joint, &msg.torque, &cx.shared.joints()) {
-            Ok(acc) => cx.shared.send(stamped(
-                Some(msg.header.stamp.to_nanos()),
-                Command::Load(acc.values),
-            )),
-            Err(rej) => cx.rejected(
-                &cx.stats.load_rejected,
-                &rej,
-                format!("external load rejected: {rej}"),
-            ),
-        }
+        on_load(cx, msg)
     })
     .await
+}
+
+/// One `~/external_load` message (from DDS or the live view).
+pub(crate) fn on_load(cx: &InputContext<'_>, msg: ExternalLoad) {
+    cx.record(Channel::Load, msg.header.stamp.to_nanos(), &msg);
+    match input::validate_load(&msg.joint, &msg.torque, &cx.shared.joints()) {
+        Ok(acc) => cx.shared.send(stamped(
+            Some(msg.header.stamp.to_nanos()),
+            Command::Load(acc.values),
+        )),
+        Err(rej) => cx.rejected(
+            &cx.stats.load_rejected,
+            &rej,
+            format!("external load rejected: {rej}"),
+        ),
+    }
 }
 
 /// `~/joint_states_in` (`sensor_msgs/JointState`): the driven joints' angle and velocity, by
@@ -288,32 +305,37 @@ pub(crate) async fn reset(
         let Ok((id, _req)) = r else {
             continue;
         };
-        let (tx, rx) = futures::channel::oneshot::channel();
-        shared.send(Command::Reset(Some(tx)));
-        let timeout = smol::Timer::after(RESET_ANSWER_TIMEOUT);
-        let resp = futures::select! {
-            r = rx.fuse() => match r {
-                Ok(before) => TriggerResponse {
-                    success: true,
-                    message: format!("reset to the initial state after {before} ticks"),
-                },
-                Err(_) => TriggerResponse {
-                    success: false,
-                    message: "the tick loop is not running".into(),
-                },
-            },
-            _ = FutureExt::fuse(timeout) => TriggerResponse {
-                success: false,
-                message: format!(
-                    "the tick loop did not answer within {} s",
-                    RESET_ANSWER_TIMEOUT.as_secs()
-                ),
-            },
-        };
+        let resp = reset_answer(shared).await;
         if let Err(e) = server.async_send_response(id, resp).await {
             log.logger
                 .warn(&format!("reset: cannot send the response: {e:?}"));
         }
+    }
+}
+
+/// Resets the actuator and answers as `~/reset` does (from DDS or the live view).
+pub(crate) async fn reset_answer(shared: &Shared) -> TriggerResponse {
+    let (tx, rx) = futures::channel::oneshot::channel();
+    shared.send(Command::Reset(Some(tx)));
+    let timeout = smol::Timer::after(RESET_ANSWER_TIMEOUT);
+    futures::select! {
+        r = rx.fuse() => match r {
+            Ok(before) => TriggerResponse {
+                success: true,
+                message: format!("reset to the initial state after {before} ticks"),
+            },
+            Err(_) => TriggerResponse {
+                success: false,
+                message: "the tick loop is not running".into(),
+            },
+        },
+        _ = FutureExt::fuse(timeout) => TriggerResponse {
+            success: false,
+            message: format!(
+                "the tick loop did not answer within {} s",
+                RESET_ANSWER_TIMEOUT.as_secs()
+            ),
+        },
     }
 }
 
@@ -395,7 +417,7 @@ pub(crate) async fn events(
 pub(crate) const MAX_STEP_TICKS: i64 = 10_000_000;
 
 /// Why a step of `ticks` cannot be done in `mode`, if it cannot.
-fn step_refusal(mode: ClockMode, ticks: i64) -> Option<String> {
+pub(crate) fn step_refusal(mode: ClockMode, ticks: i64) -> Option<String> {
     if mode != ClockMode::Lockstep {
         return Some(format!(
             "~/step needs clock:=lockstep; this node runs clock:={}",
@@ -410,7 +432,7 @@ fn step_refusal(mode: ClockMode, ticks: i64) -> Option<String> {
     None
 }
 
-fn step_failed(message: String) -> StepResponse {
+pub(crate) fn step_failed(message: String) -> StepResponse {
     StepResponse {
         success: false,
         message,

@@ -3,6 +3,7 @@
 //! order, the tick loop first, each ending when its input channel closes.
 
 use super::dds::Published;
+use super::live::{LiveTap, Outlet};
 use super::logging::Logger;
 use super::record::{self, RecordTx};
 use super::tick::{
@@ -60,6 +61,8 @@ struct Outlets {
     efforts: Option<Publisher<Float64MultiArray>>,
     errors: Arc<AtomicU64>,
     rec: Option<RecordTx>,
+    /// The live view's clients.
+    live: Option<LiveTap>,
 }
 
 /// The publisher thread: takes states and times from the tick thread, records and publishes
@@ -78,6 +81,10 @@ fn publish_loop(rx: Receiver<Output>, out: Outlets) {
                     r.put_tick(Channel::State, s.stamp_ns, &state);
                     r.put_tick(Channel::JointStates, s.stamp_ns, &js);
                 }
+                if let Some(l) = &out.live {
+                    l.put(Outlet::State, s.stamp_ns, &state);
+                    l.put(Outlet::JointStates, s.stamp_ns, &js);
+                }
                 failed(out.state.publish(state).is_ok());
                 failed(out.joint_states.publish(js).is_ok());
                 if let (Some(p), false) = (&out.efforts, s.driven.is_empty()) {
@@ -85,17 +92,22 @@ fn publish_loop(rx: Receiver<Output>, out: Outlets) {
                     if let Some(r) = &out.rec {
                         r.put_tick(Channel::JointEfforts, s.stamp_ns, &efforts);
                     }
+                    if let Some(l) = &out.live {
+                        l.put(Outlet::JointEfforts, s.stamp_ns, &efforts);
+                    }
                     failed(p.publish(efforts).is_ok());
                 }
             }
             Output::Clock(ns) => {
+                let clock = Clock {
+                    clock: Time::from_nanos(ns),
+                };
+                if let Some(l) = &out.live {
+                    l.put(Outlet::Clock, ns, &clock);
+                    l.time(ns);
+                }
                 if let Some(p) = &out.clock {
-                    failed(
-                        p.publish(Clock {
-                            clock: Time::from_nanos(ns),
-                        })
-                        .is_ok(),
-                    );
+                    failed(p.publish(clock).is_ok());
                 }
             }
         }
@@ -109,6 +121,7 @@ pub(crate) struct ThreadInputs {
     pub(crate) commands: CommandReceiver,
     pub(crate) published: Published,
     pub(crate) rec: Option<RecordTx>,
+    pub(crate) live: Option<LiveTap>,
     /// The stamp of tick 0, ns (since the Unix epoch for the wall clock).
     pub(crate) tick_origin_ns: i64,
     pub(crate) pacing: Pacing,
@@ -151,6 +164,7 @@ impl Threads {
             efforts: t.published.joint_efforts,
             errors: publish_errors.clone(),
             rec: t.rec.clone(),
+            live: t.live,
         };
         let publisher = std::thread::Builder::new()
             .name("publish".into())

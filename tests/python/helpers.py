@@ -83,6 +83,10 @@ class NodeProcess:
 
     def command(self):
         args = [self.binary(), "node", "--ros-args"]
+        # The live view (docs/live-view.md) listens on one port per host: nodes of the other
+        # tests run without it, so that several can run at once; test_foxglove.py gives ports.
+        if not any("foxglove_port" in a for a in self.ros_args):
+            args += ["-p", "foxglove_port:=0"]
         if self.namespace != "/":
             args += ["-r", f"__ns:={self.namespace}"]
         if self.name != "muscle_actuator":
