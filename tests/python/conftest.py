@@ -63,3 +63,19 @@ def node_factory(request):
     yield start
     for n in started:
         n.stop()
+
+
+@pytest.fixture
+def short_lived():
+    """Starts nodes for one test (as node_factory does for a module) and stops them at its end,
+    so that they load no later test."""
+    started = []
+
+    def start(namespace, *ros_args, env=None):
+        n = NodeProcess(namespace, list(ros_args), env=env).start()
+        started.append(n)
+        return n
+
+    yield start
+    for n in started:
+        n.stop()
