@@ -369,8 +369,16 @@ pub(crate) struct DiagSources<'a> {
 /// disconnected for what they sent.
 fn live_status(fqn: &str, s: &LiveStatus<'_>) -> crate::msgs::DiagnosticStatus {
     let (level, message, values) = match s {
-        LiveStatus::Off => (DiagnosticStatus::OK, "off (foxglove_port 0)".to_string(), vec![]),
-        LiveStatus::Failed(why) => (DiagnosticStatus::WARN, format!("not serving: {why}"), vec![]),
+        LiveStatus::Off => (
+            DiagnosticStatus::OK,
+            "off (foxglove_port 0)".to_string(),
+            vec![],
+        ),
+        LiveStatus::Failed(why) => (
+            DiagnosticStatus::WARN,
+            format!("not serving: {why}"),
+            vec![],
+        ),
         LiveStatus::Serving(st, addr) => {
             let ld = |a: &AtomicU64| a.load(Ordering::Relaxed);
             let dropped = ld(&st.dropped);

@@ -180,7 +180,9 @@ fn step<'a>(
                     tick: s.tick,
                     state: sample_to_msgs(&s).0,
                 },
-                Err(_) => tasks::step_failed("the tick loop stopped before the step was done".into()),
+                Err(_) => {
+                    tasks::step_failed("the tick loop stopped before the step was done".into())
+                }
             };
             running.set(false);
             reply(&answer, Service::Step, call_id, &resp);
@@ -214,8 +216,8 @@ fn to_json(name: &str, v: &ParameterValue) -> Value {
 /// parameter is one (Foxglove's parameter panel sends `500` for a double of 500.0), else an
 /// integer when it is whole.
 fn from_json(p: &ParameterIn, current: Option<&ParameterValue>) -> Result<ParameterValue, String> {
-    let double = p.ty.as_deref() == Some("float64")
-        || matches!(current, Some(ParameterValue::Double(_)));
+    let double =
+        p.ty.as_deref() == Some("float64") || matches!(current, Some(ParameterValue::Double(_)));
     Ok(match &p.value {
         Value::Bool(b) => ParameterValue::Boolean(*b),
         Value::String(s) => ParameterValue::String(s.clone()),
@@ -296,14 +298,23 @@ mod tests {
     fn numbers_take_the_parameters_type() {
         let d = ParameterValue::Double(1.0);
         let i = ParameterValue::Integer(1);
-        assert_eq!(from_json(&p(json!(500), None), Some(&d)), Ok(ParameterValue::Double(500.0)));
-        assert_eq!(from_json(&p(json!(500), None), Some(&i)), Ok(ParameterValue::Integer(500)));
+        assert_eq!(
+            from_json(&p(json!(500), None), Some(&d)),
+            Ok(ParameterValue::Double(500.0))
+        );
+        assert_eq!(
+            from_json(&p(json!(500), None), Some(&i)),
+            Ok(ParameterValue::Integer(500))
+        );
         assert_eq!(
             from_json(&p(json!(5), Some("float64")), None),
             Ok(ParameterValue::Double(5.0))
         );
         // A fraction for an integer stays a double: the store refuses it with its own reason.
-        assert_eq!(from_json(&p(json!(0.5), None), Some(&i)), Ok(ParameterValue::Double(0.5)));
+        assert_eq!(
+            from_json(&p(json!(0.5), None), Some(&i)),
+            Ok(ParameterValue::Double(0.5))
+        );
         assert!(from_json(&p(Value::Null, None), Some(&i)).is_err());
         assert_eq!(to_json("r", &d)["type"], "float64");
         assert!(to_json("r", &i).get("type").is_none());

@@ -115,16 +115,17 @@ impl Catalogue {
     /// The node's channels under its resolved names; `/clock` with a simulated clock.
     pub(crate) fn new(names: &Topics, publishes_clock: bool) -> Result<Self, String> {
         let mut channels = Vec::new();
-        let mut add = |outlet: Outlet, topic: &str, type_name: &'static str| -> Result<(), String> {
-            channels.push(ChannelInfo {
-                outlet,
-                id: outlet.index() as u32 + 1,
-                topic: topic.into(),
-                type_name,
-                schema: ros2msg_schema(type_name, &definition)?,
-            });
-            Ok(())
-        };
+        let mut add =
+            |outlet: Outlet, topic: &str, type_name: &'static str| -> Result<(), String> {
+                channels.push(ChannelInfo {
+                    outlet,
+                    id: outlet.index() as u32 + 1,
+                    topic: topic.into(),
+                    type_name,
+                    schema: ros2msg_schema(type_name, &definition)?,
+                });
+                Ok(())
+            };
         add(Outlet::State, &names.state, STATE_TYPE)?;
         add(Outlet::JointStates, &names.joint_states, JOINT_STATE_TYPE)?;
         add(Outlet::Diagnostics, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE)?;
@@ -136,7 +137,11 @@ impl Catalogue {
             add(Outlet::JointEfforts, efforts, FLOAT64_ARRAY_TYPE)?;
         }
         let mut inputs = vec![
-            (names.activation.clone(), InputTopic::Activation, ACTIVATION_TYPE),
+            (
+                names.activation.clone(),
+                InputTopic::Activation,
+                ACTIVATION_TYPE,
+            ),
             (
                 names.activation_array.clone(),
                 InputTopic::ActivationArray,
@@ -226,7 +231,13 @@ fn part(schema_name: &str, lookup_name: &str) -> Result<(Value, String), String>
 fn services_json(names: &Topics) -> Result<String, String> {
     let mut services = Vec::new();
     for (service, name, ty, pkg, srv) in [
-        (Service::Reset, &names.reset, "std_srvs/srv/Trigger", "std_srvs", "Trigger"),
+        (
+            Service::Reset,
+            &names.reset,
+            "std_srvs/srv/Trigger",
+            "std_srvs",
+            "Trigger",
+        ),
         (
             Service::Step,
             &names.step,
@@ -278,11 +289,25 @@ mod tests {
     fn channels_carry_the_recordings_schemas() {
         let c = Catalogue::new(&names(), true).unwrap();
         let topics: Vec<&str> = c.channels.iter().map(|c| c.topic.as_str()).collect();
-        assert_eq!(topics, ["/m/state", "/joint_states", "/diagnostics", "/rosout", "/clock"]);
+        assert_eq!(
+            topics,
+            [
+                "/m/state",
+                "/joint_states",
+                "/diagnostics",
+                "/rosout",
+                "/clock"
+            ]
+        );
         let state = crate::runs::channels::channel("/m/state", STATE_TYPE).unwrap();
         assert_eq!(c.channels[0].schema, state.schema);
-        assert!(c.channels[4].schema.starts_with("builtin_interfaces/Time clock\n"));
-        assert!(Catalogue::new(&names(), false).unwrap().channel(5).is_none());
+        assert!(c.channels[4]
+            .schema
+            .starts_with("builtin_interfaces/Time clock\n"));
+        assert!(Catalogue::new(&names(), false)
+            .unwrap()
+            .channel(5)
+            .is_none());
     }
 
     #[test]
@@ -291,9 +316,15 @@ mod tests {
         let v: Value = serde_json::from_str(&c.services_json).unwrap();
         let step = &v["services"][1];
         assert_eq!(step["name"], "/m/step");
-        assert!(step["request"]["schema"].as_str().unwrap().contains("int64 ticks"));
+        assert!(step["request"]["schema"]
+            .as_str()
+            .unwrap()
+            .contains("int64 ticks"));
         let resp = step["response"]["schema"].as_str().unwrap();
-        assert!(resp.contains("MSG: muscle_actuator_msgs/ActuatorState"), "{resp}");
+        assert!(
+            resp.contains("MSG: muscle_actuator_msgs/ActuatorState"),
+            "{resp}"
+        );
         assert_eq!(v["services"][0]["request"]["schema"], "\n");
     }
 
@@ -316,7 +347,10 @@ mod tests {
                 let (topic, rest) = v.split_once('.').unwrap();
                 let ch = c.channels.iter().find(|ch| ch.topic == topic).expect(v);
                 // `a[0].b` → the root's field `a`, then `b` of the muscles' type.
-                let parts: Vec<&str> = rest.split('.').map(|p| p.split('[').next().unwrap()).collect();
+                let parts: Vec<&str> = rest
+                    .split('.')
+                    .map(|p| p.split('[').next().unwrap())
+                    .collect();
                 let root = field_names(&ch.schema, ch.type_name, true).unwrap();
                 assert!(root.contains(&parts[0].to_string()), "{id}: {v}");
                 if let Some(inner) = parts.get(1) {

@@ -58,7 +58,12 @@ pub(crate) fn serve(stream: TcpStream, hub: Arc<Hub>) {
     };
     let (tx, rx) = mpsc::sync_channel(CLIENT_QUEUE);
     let client = hub.add(tx);
-    log(&hub, "live_client", false, format!("live view: client {addr} connected"));
+    log(
+        &hub,
+        "live_client",
+        false,
+        format!("live view: client {addr} connected"),
+    );
     let mut conn = Connection {
         hub: hub.clone(),
         client: client.clone(),
@@ -69,7 +74,12 @@ pub(crate) fn serve(stream: TcpStream, hub: Arc<Hub>) {
     // The answer to a client's close frame, which tungstenite has queued.
     let _ = ws.flush();
     match end {
-        End::Closed => log(&hub, "live_client", false, format!("live view: client {addr} left")),
+        End::Closed => log(
+            &hub,
+            "live_client",
+            false,
+            format!("live view: client {addr} left"),
+        ),
         End::Kicked(why) => {
             hub.stats.kicked.fetch_add(1, Ordering::Relaxed);
             let _ = ws.close(None);
@@ -81,7 +91,12 @@ pub(crate) fn serve(stream: TcpStream, hub: Arc<Hub>) {
                 format!("live view: client {addr} disconnected: it sent {why}"),
             )
         }
-        End::Failed(e) => log(&hub, "live_client", false, format!("live view: client {addr}: {e}")),
+        End::Failed(e) => log(
+            &hub,
+            "live_client",
+            false,
+            format!("live view: client {addr}: {e}"),
+        ),
     }
 }
 
@@ -140,8 +155,10 @@ struct Connection {
 
 impl Connection {
     fn status(&self, level: Level, msg: &str, id: Option<&str>) {
-        self.client
-            .send(Frame::Text(protocol::status(level, msg, id)), &self.hub.stats);
+        self.client.send(
+            Frame::Text(protocol::status(level, msg, id)),
+            &self.hub.stats,
+        );
     }
 
     /// The greeting, then reads and writes until the connection ends.

@@ -21,7 +21,11 @@ pub(crate) struct Unreadable {
 }
 
 /// The message `payload` carries for an input topic.
-pub(crate) fn decode_input(kind: InputTopic, json: bool, payload: &[u8]) -> Result<Input, Unreadable> {
+pub(crate) fn decode_input(
+    kind: InputTopic,
+    json: bool,
+    payload: &[u8],
+) -> Result<Input, Unreadable> {
     let what = match kind {
         InputTopic::Activation => "activation",
         InputTopic::ActivationArray => "activation_array",
@@ -32,7 +36,9 @@ pub(crate) fn decode_input(kind: InputTopic, json: bool, payload: &[u8]) -> Resu
     Ok(match kind {
         InputTopic::Activation => Input::Activation(decode(json, payload).map_err(err)?),
         InputTopic::ActivationArray => Input::ActivationArray(decode(json, payload).map_err(err)?),
-        InputTopic::MuscleCommand(k) => Input::MuscleCommand(k, decode(json, payload).map_err(err)?),
+        InputTopic::MuscleCommand(k) => {
+            Input::MuscleCommand(k, decode(json, payload).map_err(err)?)
+        }
         InputTopic::Load => Input::Load(decode(json, payload).map_err(err)?),
     })
 }
@@ -85,7 +91,8 @@ mod tests {
             ..Default::default()
         };
         let cdr = encode_cdr(&msg).unwrap();
-        let Input::Activation(a) = decode_input(InputTopic::Activation, false, &cdr).unwrap() else {
+        let Input::Activation(a) = decode_input(InputTopic::Activation, false, &cdr).unwrap()
+        else {
             panic!()
         };
         assert_eq!(a, msg);
@@ -94,8 +101,10 @@ mod tests {
             panic!()
         };
         assert_eq!(b, msg);
-        let stamped = br#"{"header": {"stamp": {"sec": 2, "nanosec": 5}}, "muscle": [], "excitation": []}"#;
-        let Input::Activation(c) = decode_input(InputTopic::Activation, true, stamped).unwrap() else {
+        let stamped =
+            br#"{"header": {"stamp": {"sec": 2, "nanosec": 5}}, "muscle": [], "excitation": []}"#;
+        let Input::Activation(c) = decode_input(InputTopic::Activation, true, stamped).unwrap()
+        else {
             panic!()
         };
         assert_eq!(c.header.stamp.to_nanos(), 2_000_000_005);

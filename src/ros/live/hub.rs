@@ -70,7 +70,6 @@ impl Hub {
         self.stats.clients.fetch_sub(1, Ordering::Relaxed);
     }
 
-
     /// Subscribes `c` to `outlet` under its id `sub`; false when the id is taken.
     pub(crate) fn subscribe(&self, c: &Client, sub: u32, outlet: Outlet) -> bool {
         let Ok(mut subs) = c.subscriptions.lock() else {
@@ -127,7 +126,11 @@ impl LiveTap {
         };
         for c in clients.iter() {
             let subs: Vec<u32> = match c.subscriptions.lock() {
-                Ok(s) => s.iter().filter(|(_, o)| *o == outlet).map(|(s, _)| *s).collect(),
+                Ok(s) => s
+                    .iter()
+                    .filter(|(_, o)| *o == outlet)
+                    .map(|(s, _)| *s)
+                    .collect(),
                 Err(_) => continue,
             };
             for subscription in subs {

@@ -19,7 +19,9 @@ use serde_json::{json, Value};
 pub(crate) const SUBPROTOCOLS: [&str; 2] = ["foxglove.sdk.v1", "foxglove.websocket.v1"];
 
 /// The subprotocol to answer for a client's `Sec-WebSocket-Protocol` header values.
-pub(crate) fn choose_subprotocol<'a>(offered: impl Iterator<Item = &'a str>) -> Option<&'static str> {
+pub(crate) fn choose_subprotocol<'a>(
+    offered: impl Iterator<Item = &'a str>,
+) -> Option<&'static str> {
     offered
         .flat_map(|h| h.split(','))
         .map(str::trim)
@@ -68,8 +70,8 @@ impl ClientOp {
     /// Parses a text frame. The client's `advertise` is named `advertise` in the specification
     /// and `clientAdvertise` in some clients: both are taken.
     pub(crate) fn parse(text: &str) -> Result<Self, String> {
-        let mut v: Value =
-            serde_json::from_str(text).map_err(|e| format!("a text frame that is not JSON ({e})"))?;
+        let mut v: Value = serde_json::from_str(text)
+            .map_err(|e| format!("a text frame that is not JSON ({e})"))?;
         let op = v.get("op").and_then(Value::as_str).map(str::to_owned);
         let Some(op) = op else {
             return Err("a text frame without an \"op\"".into());
@@ -142,7 +144,12 @@ fn u32_at(b: &[u8], at: usize) -> Option<u32> {
 impl<'a> ClientBinary<'a> {
     /// Parses a binary frame; an unknown opcode or a short frame is an error.
     pub(crate) fn parse(b: &'a [u8]) -> Result<Self, String> {
-        let short = || format!("a binary frame of {} bytes, too short for its opcode", b.len());
+        let short = || {
+            format!(
+                "a binary frame of {} bytes, too short for its opcode",
+                b.len()
+            )
+        };
         match b.first() {
             Some(0x01) => Ok(Self::MessageData {
                 channel_id: u32_at(b, 1).ok_or_else(short)?,
@@ -228,8 +235,14 @@ mod tests {
     fn both_subprotocol_names_are_served_and_others_refused() {
         let pick = |h: &[&str]| choose_subprotocol(h.iter().copied());
         assert_eq!(pick(&["foxglove.sdk.v1"]), Some("foxglove.sdk.v1"));
-        assert_eq!(pick(&["foxglove.websocket.v1"]), Some("foxglove.websocket.v1"));
-        assert_eq!(pick(&["x, foxglove.websocket.v1"]), Some("foxglove.websocket.v1"));
+        assert_eq!(
+            pick(&["foxglove.websocket.v1"]),
+            Some("foxglove.websocket.v1")
+        );
+        assert_eq!(
+            pick(&["x, foxglove.websocket.v1"]),
+            Some("foxglove.websocket.v1")
+        );
         assert_eq!(pick(&["foxglove.sdk.v1.1"]), None);
         assert_eq!(pick(&[]), None);
     }
@@ -244,7 +257,13 @@ mod tests {
         )
         .unwrap();
         assert!(matches!(op, ClientOp::Advertise { channels } if channels[0].topic == "/a"));
-        for bad in ["", "[1]", r#"{"op":"explode"}"#, r#"{"op":"subscribe"}"#, "{}"] {
+        for bad in [
+            "",
+            "[1]",
+            r#"{"op":"explode"}"#,
+            r#"{"op":"subscribe"}"#,
+            "{}",
+        ] {
             assert!(ClientOp::parse(bad).is_err(), "{bad}");
         }
         // A very long op name is quoted as an excerpt.

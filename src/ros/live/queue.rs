@@ -79,4 +79,3 @@ pub(crate) struct LiveStats {
     /// Client requests the executor's full queue could not take.
     pub(crate) requests_dropped: AtomicU64,
 }
-

@@ -63,4 +63,3 @@ pub(crate) enum Request {
         line: String,
     },
 }
-

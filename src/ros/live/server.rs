@@ -137,9 +137,7 @@ fn accept_loop(listener: TcpListener, hub: Arc<Hub>) {
                     hub.stats.refused.fetch_add(1, Ordering::Relaxed);
                 }
             }
-            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
-                std::thread::sleep(ACCEPT_POLL)
-            }
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => std::thread::sleep(ACCEPT_POLL),
             // A connection that failed before it was accepted, or no descriptors left: wait.
             Err(_) => std::thread::sleep(ACCEPT_POLL),
         }
