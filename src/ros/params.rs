@@ -361,7 +361,22 @@ mod tests {
         assert_eq!(publish_every(1000.0, 0.0), 1);
         assert_eq!(publish_every(1000.0, 100.0), 10);
         assert_eq!(publish_every(1000.0, 2000.0), 1);
-        assert_eq!(p.values().len(), 11);
+        assert_eq!(p.values().len(), ALL.len());
+        assert_eq!(p.values().len(), 12);
+        // foxglove_port: 0 (off) to 65535, integers only.
+        assert!(p
+            .set(FOXGLOVE_PORT, &ParameterValue::Integer(0), false)
+            .is_ok());
+        assert_eq!(p.foxglove_port, 0);
+        assert!(p
+            .set(FOXGLOVE_PORT, &ParameterValue::Integer(65536), false)
+            .is_err());
+        assert!(p
+            .set(FOXGLOVE_PORT, &ParameterValue::Integer(-1), false)
+            .is_err());
+        assert!(p
+            .set(FOXGLOVE_PORT, &ParameterValue::Double(8765.0), false)
+            .is_err());
         // energy_model: a name overrides every muscle's, empty keeps the configuration's.
         let s = |v: &str| ParameterValue::String(v.into());
         assert!(p.set(ENERGY_MODEL, &s("bhargava"), false).is_ok());
