@@ -51,7 +51,7 @@ pub fn write_csv_to(run: &Run, path: &Path) -> Result<(), String> {
 }
 
 /// Writes a CSV table by `body` to the file `path` (`-`: standard output), buffered; the error
-/// names the file.
+/// names the file. A file is written whole or not at all ([`crate::files::AtomicFile`]).
 pub fn write_text_to(
     path: &Path,
     body: impl Fn(&mut std::io::BufWriter<&mut dyn Write>) -> std::io::Result<()>,
@@ -64,9 +64,9 @@ pub fn write_text_to(
     if path.as_os_str() == "-" {
         write(&mut std::io::stdout().lock())
     } else {
-        let mut f = std::fs::File::create(path)
+        let mut f = crate::files::AtomicFile::create(path)
             .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-        write(&mut f)
+        write(f.file()).and_then(|()| f.commit())
     }
     .map_err(|e| format!("cannot write CSV {}: {e}", path.display()))
 }

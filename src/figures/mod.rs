@@ -56,7 +56,8 @@ fn swing(run: &Run, t0: f64, t1: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64
     hi - lo
 }
 
-/// Writes every figure and `summary.md` into `dir`.
+/// Writes every figure and `summary.md` into `dir`, each file whole or not at all
+/// ([`crate::files::AtomicFile`]).
 pub fn write_all(dir: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let cfg = ActuatorConfig::default();
@@ -66,7 +67,7 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     force_velocity_figure(dir, &cfg, &mut summary)?;
     energetics::steady_energetics_figure(dir, &cfg.muscles[0].params, &mut summary)?;
     cost::stiffness_cost_figure(dir, &cfg, &mut summary)?;
-    std::fs::write(dir.join("summary.md"), &summary)
+    crate::files::write_atomically(&dir.join("summary.md"), summary.as_bytes())
         .map_err(|e| format!("cannot write {}: {e}", dir.join("summary.md").display()))?;
     print!("{summary}");
     Ok(())

@@ -1,7 +1,9 @@
 //! A line chart written as PNG and SVG (plotters), with axes, units and a legend; several side
 //! by side as the panels of one figure, with markers over their curves.
 
+use crate::files::AtomicFile;
 use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -208,31 +210,51 @@ where
 
 /// Writes `stem.png` and `stem.svg` in `dir`.
 pub fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> Result<(), String> {
-    register_font();
-    let png = dir.join(format!("{stem}.png"));
-    let svg = dir.join(format!("{stem}.svg"));
-    draw(
-        BitMapBackend::new(&png, (1000, 600)).into_drawing_area(),
-        chart,
+    write_png_svg(
+        dir,
+        stem,
+        (1000, 600),
+        |area| draw(area, chart),
+        |area| draw(area, chart),
     )
-    .map_err(|e| format!("{}: {e}", png.display()))?;
-    draw(
-        SVGBackend::new(&svg, (1000, 600)).into_drawing_area(),
-        chart,
-    )
-    .map_err(|e| format!("{}: {e}", svg.display()))?;
-    Ok(())
 }
 
 /// Writes `stem.png` and `stem.svg` in `dir`: the panels side by side, each `PANEL_PX` (pixels).
 pub fn write_panels(dir: &Path, stem: &str, panels: &[Panel]) -> Result<(), String> {
-    register_font();
     let size = (PANEL_PX.0 * panels.len().max(1) as u32, PANEL_PX.1);
-    let png = dir.join(format!("{stem}.png"));
-    let svg = dir.join(format!("{stem}.svg"));
-    draw_panels(BitMapBackend::new(&png, size).into_drawing_area(), panels)
-        .map_err(|e| format!("{}: {e}", png.display()))?;
-    draw_panels(SVGBackend::new(&svg, size).into_drawing_area(), panels)
-        .map_err(|e| format!("{}: {e}", svg.display()))?;
+    write_png_svg(
+        dir,
+        stem,
+        size,
+        |area| draw_panels(area, panels),
+        |area| draw_panels(area, panels),
+    )
+}
+
+/// Draws `stem.png` by `png` and `stem.svg` by `svg` in `dir`, each under a temporary name
+/// beside it ([`AtomicFile`]: the backends pick the format by the extension, which it keeps),
+/// and renames both into place once both are drawn: a failure leaves neither.
+fn write_png_svg(
+    dir: &Path,
+    stem: &str,
+    size: (u32, u32),
+    png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
+    svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<(), String> {
+    register_font();
+    let create = |ext: &str| {
+        let path = dir.join(format!("{stem}.{ext}"));
+        AtomicFile::create(&path).map_err(|e| format!("cannot create {}: {e}", path.display()))
+    };
+    let (png_out, svg_out) = (create("png")?, create("svg")?);
+    png(BitMapBackend::new(png_out.path(), size).into_drawing_area())
+        .map_err(|e| format!("{}: {e}", png_out.target().display()))?;
+    svg(SVGBackend::new(svg_out.path(), size).into_drawing_area())
+        .map_err(|e| format!("{}: {e}", svg_out.target().display()))?;
+    for out in [png_out, svg_out] {
+        let path = out.target().to_path_buf();
+        out.commit()
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
     Ok(())
 }

@@ -5,14 +5,14 @@
 //!
 //! The input is read as `replay` and `compare` read it ([`read_run_file`]), under every check of
 //! the reader; a file with no readable message is refused. The output is written beside `OUT`
-//! under a temporary name and renamed into place once complete, so a failure leaves no partial
-//! file; `OUT` may not be `IN`.
+//! under a temporary name and renamed into place once complete ([`crate::files::AtomicFile`]),
+//! so a failure leaves no partial file; `OUT` may not be `IN`.
 
 use super::reader::{read_run_file, Recording};
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufWriter;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// What `recover` wrote.
 #[derive(Debug, Clone)]
@@ -62,14 +62,11 @@ pub fn recover(input: &Path, out: &Path) -> Result<Recovered, String> {
             input.display()
         ));
     }
-    let tmp = temp_path(out);
-    let written = write(&rec, &tmp).map_err(|e| format!("recovering into {}: {e}", out.display()));
-    if let Err(e) = written.and_then(|()| {
-        std::fs::rename(&tmp, out).map_err(|e| format!("cannot create {}: {e}", out.display()))
-    }) {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
+    let into = |e: &dyn std::fmt::Display| format!("recovering into {}: {e}", out.display());
+    let mut file = crate::files::AtomicFile::create(out).map_err(|e| into(&e))?;
+    write(&rec, file.file()).map_err(|e| into(&e))?;
+    file.commit()
+        .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     Ok(Recovered {
         messages: rec.messages.len(),
         channels: rec.channels.len(),
@@ -79,18 +76,8 @@ pub fn recover(input: &Path, out: &Path) -> Result<Recovered, String> {
     })
 }
 
-/// `out` with a hidden temporary name in its directory.
-fn temp_path(out: &Path) -> PathBuf {
-    let name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    out.with_file_name(format!(".{name}.recovering-{}", std::process::id()))
-}
-
-/// Writes `rec` to `path` as the recorder does (zstd chunks, indexed summary).
-fn write(rec: &Recording, path: &Path) -> Result<(), String> {
-    let file = File::create(path).map_err(|e| e.to_string())?;
+/// Writes `rec` into `file` as the recorder does (zstd chunks, indexed summary).
+fn write(rec: &Recording, file: &mut File) -> Result<(), String> {
     let options = super::writer::RecorderOptions::default();
     let mut w = mcap::WriteOptions::new()
         .profile(rec.profile.clone())
@@ -144,9 +131,8 @@ fn write(rec: &Recording, path: &Path) -> Result<(), String> {
         w.write_metadata(md).map_err(err)?;
     }
     w.finish().map_err(err)?;
-    let file = w
-        .into_inner()
+    w.into_inner()
         .into_inner()
         .map_err(|e| e.error().to_string())?;
-    file.sync_all().map_err(|e| e.to_string())
+    Ok(())
 }

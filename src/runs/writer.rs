@@ -7,6 +7,7 @@ use super::channels::{
     JOINT_STATES_TOPIC, JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, STATE_TOPIC, STATE_TYPE,
 };
 use super::metadata::{RunMeta, METADATA_NAME};
+use crate::files::AtomicFile;
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
 use crate::msgs::{state_messages, Header, JointState};
 use crate::physics::model::ModelKind;
@@ -46,8 +47,13 @@ fn stamp(ns: u64) -> Header {
 }
 
 /// Writes a run to MCAP tick by tick: states, joint states (with a joint) and inputs (when they
-/// change), log time = simulated time.
+/// change), log time = simulated time. The recorder writes a temporary beside the output
+/// ([`AtomicFile`]), renamed into place by [`RunWriter::finish`]: a run that fails or is killed
+/// leaves no partial recording under the output's name. (The node's own recordings are written
+/// in place, readable up to a crash: `recover` is for those.)
 pub(super) struct RunWriter {
+    /// Declared before `out`: dropped first, so the recorder has closed the temporary before an
+    /// unfinished run's is removed.
     rec: Recorder,
     layout: Layout,
     has_joint: bool,
@@ -58,6 +64,7 @@ pub(super) struct RunWriter {
     /// The driven joints (indices): their motion is written every tick.
     driven: Vec<usize>,
     last: Option<Inputs>,
+    out: AtomicFile,
 }
 
 impl RunWriter {
@@ -81,12 +88,18 @@ impl RunWriter {
                 JOINT_STATE_TYPE,
             )?;
         }
+        let what = |e: &dyn std::fmt::Display| format!("recording {}: {e}", path.display());
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| what(&e))?;
+        }
+        let out = AtomicFile::create(path).map_err(|e| what(&e))?;
         let rec = Recorder::start(
-            path,
+            out.path(),
             layout.specs(),
             vec![(METADATA_NAME.into(), meta.to_map()?)],
             RecorderOptions::default(),
-        )?;
+        )
+        .map_err(|e| named(&out, e))?;
         Ok(Self {
             rec,
             layout,
@@ -101,6 +114,7 @@ impl RunWriter {
             },
             driven,
             last: None,
+            out,
         })
     }
 
@@ -114,7 +128,7 @@ impl RunWriter {
             Ok(())
         } else {
             Err(match self.rec.stats().state() {
-                RecorderState::Failed(e) => e,
+                RecorderState::Failed(e) => named(&self.out, e),
                 _ => "the recording stopped".into(),
             })
         }
@@ -192,10 +206,22 @@ impl RunWriter {
         Ok(())
     }
 
+    /// Finishes the recording and renames it into place.
     pub(super) fn finish(self) -> Result<(), String> {
-        match self.rec.finish() {
-            RecorderState::Failed(e) => Err(e),
-            _ => Ok(()),
+        if let RecorderState::Failed(e) = self.rec.finish() {
+            return Err(named(&self.out, e));
         }
+        let path = self.out.target().display().to_string();
+        self.out
+            .commit()
+            .map_err(|e| format!("recording {path}: {e}"))
     }
+}
+
+/// The recorder's message `e` about the temporary, naming the output instead.
+fn named(out: &AtomicFile, e: String) -> String {
+    e.replace(
+        &out.path().display().to_string(),
+        &out.target().display().to_string(),
+    )
 }
