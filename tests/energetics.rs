@@ -146,11 +146,18 @@ fn parts_sum_to_totals_and_energies_integrate_powers() {
     }
 }
 
-/// What a run publishes is what the muscle's end state gives when evaluated afresh, to the bit:
-/// the phenomenological model's terms of the excitation, computed once per command, change
-/// nothing. The command changes every tick, and the activation crosses it both ways; each
-/// tick's energy is the trapezoid between the previous end state under the new excitation and
-/// the new end state.
+/// a and b within `rel` of the larger in size.
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs())
+}
+
+/// What a run publishes is what the muscle's end state gives when evaluated afresh: to the bit
+/// for Hill (the phenomenological model's terms of the excitation, computed once per command,
+/// change nothing), and to rounding (1e-14 of the largest power) for DM, whose bridges' fluxes take the error
+/// function and exponential at the closure's limits from the stepper's last closure evaluation
+/// by a Taylor series (docs/model.md §11.1, Cost). The command changes every tick, and the
+/// activation crosses it both ways; each tick's energy is the trapezoid between the previous
+/// end state under the new excitation and the new end state.
 #[test]
 fn published_rates_and_energies_are_those_of_a_fresh_evaluation() {
     for energy_model in EnergyModel::ALL {
@@ -194,15 +201,25 @@ fn published_rates_and_energies_are_those_of_a_fresh_evaluation() {
                         r.atp_rate_mol_s,
                         r.phenomenological_w,
                     ];
-                    assert_eq!(
-                        published, fresh,
-                        "{model} {energy_model:?} tick {k} muscle {i}"
-                    );
+                    let what = format!("{model} {energy_model:?} tick {k} muscle {i}");
                     energy[i] += 0.5 * dt * (start.rates.metabolic_w + r.metabolic_w);
-                    assert_eq!(
-                        m.metabolic_energy, energy[i],
-                        "{model} {energy_model:?} tick {k}"
-                    );
+                    if model == ModelKind::HILL {
+                        assert_eq!(published, fresh, "{what}");
+                        assert_eq!(m.metabolic_energy, energy[i], "{what}");
+                    } else {
+                        // The powers to rounding of the largest (the storage rate is a
+                        // difference of larger ones), the ATP rate of itself.
+                        let watts = published.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+                        for (j, (p, f)) in published.iter().zip(fresh).enumerate() {
+                            let ok = if j == 5 {
+                                close(*p, f, 1e-14)
+                            } else {
+                                (p - f).abs() <= 1e-14 * watts
+                            };
+                            assert!(ok, "{what}: {published:?} vs {fresh:?}");
+                        }
+                        assert!(close(m.metabolic_energy, energy[i], 1e-13), "{what}");
+                    }
                 }
             }
         }

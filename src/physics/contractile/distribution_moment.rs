@@ -1,6 +1,7 @@
 //! Zahalak's Distribution-Moment (DM) approximation of the Huxley model (docs/model.md §6,
 //! paper eqs. 9–12): the bond distribution is taken Gaussian with the moments Q0, Q1, Q2.
 
+use crate::physics::contractile::closure_limits::ClosureLimits;
 use crate::physics::contractile::crossbridge::Rates;
 use nalgebra::{Matrix3, Vector3};
 
@@ -117,7 +118,11 @@ fn horner(c: &[f64], s: f64) -> f64 {
 
 /// Partial moments `J_k(τ) = ∫_{-∞}^{p+qτ} ξ^k N(ξ; p, q²) dξ`, k = 0..3 (docs/model.md §6).
 pub fn partial_moments(p: f64, q: f64, tau: f64) -> [f64; 4] {
-    let (cdf, pdf) = normal_cdf_pdf(tau);
+    partial_moments_of(p, q, tau, normal_cdf_pdf(tau))
+}
+
+/// [`partial_moments`] from (Φ(τ), ϕ(τ)) given.
+pub fn partial_moments_of(p: f64, q: f64, tau: f64, (cdf, pdf): (f64, f64)) -> [f64; 4] {
     let q2 = q * q;
     [
         cdf,
@@ -141,6 +146,12 @@ pub fn full_moments(p: f64, q: f64) -> [f64; 4] {
 /// remainder that relaxes linearly at the mean rate `(f1 + g1)/2` (docs/model.md §6). The split is
 /// continuous in `q`, so the implicit solver's Newton iteration sees no jump as Q0 crosses zero.
 pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+    closure_keeping(rates, q, None)
+}
+
+/// [`closure`], keeping Φ and ϕ at its two limits in `limits` when given (for the fluxes at the
+/// tick's end, [`crate::physics::contractile::closure_limits`]).
+pub fn closure_keeping(rates: &Rates, q: &[f64; 3], limits: Option<&ClosureLimits>) -> [f64; 3] {
     let k = 0.5 * (rates.f1 + rates.g1);
     let q0 = q[0];
     if q0 <= 0.0 {
@@ -151,8 +162,13 @@ pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
     let sd = var.sqrt();
     let tau0 = -p / sd;
     let tau1 = (1.0 - p) / sd;
-    let j0 = partial_moments(p, sd, tau0);
-    let j1 = partial_moments(p, sd, tau1);
+    let (l0, l1) = (normal_cdf_pdf(tau0), normal_cdf_pdf(tau1));
+    if let Some(kept) = limits {
+        kept.keep(0, tau0, l0);
+        kept.keep(1, tau1, l1);
+    }
+    let j0 = partial_moments_of(p, sd, tau0, l0);
+    let j1 = partial_moments_of(p, sd, tau1, l1);
     let m = full_moments(p, sd);
     let mut phi = [0.0; 3];
     for (k, out) in phi.iter_mut().enumerate() {
@@ -171,7 +187,18 @@ pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
 /// Moment equations (12): `dQ_k/dt = r β_k - φ_k - k u Q_{k-1}`; `u` is the shortening rate in
 /// h/s (u > 0 shortening), `r` the attachment factor a·λ(l_m).
 pub fn moment_rates(rates: &Rates, q: &[f64; 3], r: f64, u: f64) -> [f64; 3] {
-    let phi = closure(rates, q);
+    moment_rates_keeping(rates, q, r, u, None)
+}
+
+/// [`moment_rates`], its closure keeping its limits' values in `limits` when given.
+pub fn moment_rates_keeping(
+    rates: &Rates,
+    q: &[f64; 3],
+    r: f64,
+    u: f64,
+    limits: Option<&ClosureLimits>,
+) -> [f64; 3] {
+    let phi = closure_keeping(rates, q, limits);
     [
         r * rates.beta(0) - phi[0],
         r * rates.beta(1) - phi[1] - u * q[0],

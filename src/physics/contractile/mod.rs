@@ -4,6 +4,7 @@
 //! - [`force_length`]: f(l_m), shared by both kinds; [`hill`]: the Hill element (§3);
 //! - [`crossbridge`]: Huxley's attachment and detachment rates (§6);
 //! - [`distribution_moment`]: Zahalak's moment equations and their closure (§6);
+//!   [`closure_limits`]: its limits' values kept for the fluxes at a tick's end (§11.1);
 //! - [`huxley_grid`]: the full model's bond distribution by characteristics (§7);
 //!   [`huxley_exact`]: its closed-form steady states (§7);
 //! - [`calibration`]: the cross-bridge models scaled to a muscle's Fmax and vmax (§6–7).
@@ -11,6 +12,7 @@
 //! Sections are those of docs/model.md.
 
 pub mod calibration;
+pub mod closure_limits;
 pub mod crossbridge;
 pub mod distribution_moment;
 pub mod force_length;

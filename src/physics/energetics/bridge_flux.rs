@@ -12,9 +12,10 @@
 //! `∫ ξ^k f n + D_k = φ_k`, the closure of eq. (12), so `dQ_k/dt = A_k - D_k - k u Q_{k-1}`.
 //! Units are those of the moments per second: per unit density of bridges in ξ.
 
+use crate::physics::contractile::closure_limits::ClosureLimits;
 use crate::physics::contractile::crossbridge::Rates;
 use crate::physics::contractile::distribution_moment::{
-    full_moments, partial_moments, MEAN_BOUND, Q_VARIANCE_FLOOR, VARIANCE_BOUND,
+    full_moments, normal_cdf_pdf, partial_moments_of, MEAN_BOUND, Q_VARIANCE_FLOOR, VARIANCE_BOUND,
 };
 use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
 
@@ -95,24 +96,36 @@ fn closure_gaussian(q: &[f64; 3]) -> Option<(f64, f64, f64)> {
 /// Gaussian does not carry (zero for physical moments), which the closure relaxes at
 /// `(f1 + g1)/2`, counts as detachment, so that `gaussian_bound_attachment + this = φ` exactly.
 pub fn gaussian_detachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
-    gaussian_parts(rates, q).1
+    gaussian_parts(rates, q, None).1
 }
 
 /// DM bound part of the attachment integral, `∫ ξ^k f n dξ = Q0 f1 [J_{k+1}(τ1) - J_{k+1}(τ0)]`
 /// (zero without a Gaussian part).
 pub fn gaussian_bound_attachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
-    gaussian_parts(rates, q).0
+    gaussian_parts(rates, q, None).0
 }
 
 /// Both DM integrals, (bound attachment, detachment), from one evaluation of the Gaussian's
 /// partial moments (the error functions and exponentials are the cost).
-fn gaussian_parts(rates: &Rates, q: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+/// Φ and ϕ at the limits are taken from `limits` where it keeps them near enough
+/// ([`ClosureLimits::near`]), else evaluated.
+fn gaussian_parts(
+    rates: &Rates,
+    q: &[f64; 3],
+    limits: Option<&ClosureLimits>,
+) -> ([f64; 3], [f64; 3]) {
     let relax = 0.5 * (rates.f1 + rates.g1);
     let Some((q0, p, sd)) = closure_gaussian(q) else {
         return ([0.0; 3], q.map(|x| relax * x));
     };
-    let j0 = partial_moments(p, sd, -p / sd);
-    let j1 = partial_moments(p, sd, (1.0 - p) / sd);
+    let at = |i: usize, tau: f64| {
+        let values = limits
+            .and_then(|l| l.near(i, tau))
+            .unwrap_or_else(|| normal_cdf_pdf(tau));
+        partial_moments_of(p, sd, tau, values)
+    };
+    let j0 = at(0, -p / sd);
+    let j1 = at(1, (1.0 - p) / sd);
     let m = full_moments(p, sd);
     let bound = [0, 1, 2].map(|k| q0 * rates.f1 * (j1[k + 1] - j0[k + 1]));
     let mut d = [0.0; 3];
@@ -129,7 +142,18 @@ fn gaussian_parts(rates: &Rates, q: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
 
 /// Both fluxes of the DM model at moments `q` and attachment factor `r`.
 pub fn gaussian_fluxes(rates: &Rates, r: f64, q: &[f64; 3]) -> BridgeFluxes {
-    let (bound, detachment) = gaussian_parts(rates, q);
+    gaussian_fluxes_near(rates, r, q, None)
+}
+
+/// [`gaussian_fluxes`] with Φ and ϕ at the limits from the last closure evaluation's where they
+/// are near enough (docs/model.md §11.1, Cost): equal to a fresh evaluation to rounding.
+pub fn gaussian_fluxes_near(
+    rates: &Rates,
+    r: f64,
+    q: &[f64; 3],
+    limits: Option<&ClosureLimits>,
+) -> BridgeFluxes {
+    let (bound, detachment) = gaussian_parts(rates, q, limits);
     BridgeFluxes {
         attachment: attachment(rates, r, bound),
         detachment,

@@ -3,8 +3,9 @@
 //! closure, calibrated from its own steady states.
 
 use crate::physics::contractile::calibration::{self, CrossBridgeScale};
-use crate::physics::contractile::distribution_moment::moment_rates;
-use crate::physics::energetics::bridge_flux::{gaussian_fluxes, EnergyFluxes};
+use crate::physics::contractile::closure_limits::ClosureLimits;
+use crate::physics::contractile::distribution_moment::moment_rates_keeping;
+use crate::physics::energetics::bridge_flux::{gaussian_fluxes_near, EnergyFluxes};
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::energetics::steady::dm_isometric_bridge_w;
@@ -38,6 +39,8 @@ pub struct DistributionMoment {
     pub scale: CrossBridgeScale,
     /// Its bridges' energetics (docs/model.md §11.2).
     pub energetics: BridgeEnergetics,
+    /// Φ and ϕ at the closure's limits in its last evaluation, for the fluxes (not state).
+    limits: ClosureLimits,
 }
 
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
@@ -47,7 +50,11 @@ fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
         scale: e,
         isometric_bridge_w: dm_isometric_bridge_w(&scale, &e),
     };
-    Ok(Box::new(DistributionMoment { scale, energetics }))
+    Ok(Box::new(DistributionMoment {
+        scale,
+        energetics,
+        limits: ClosureLimits::default(),
+    }))
 }
 
 fn q(x: &[f64]) -> [f64; 3] {
@@ -70,7 +77,8 @@ impl ContractileModel for DistributionMoment {
     fn rates(&self, _t: f64, ce: &CeInputs, x: &[f64], dx: &mut [f64]) {
         let r = ce.activation * ce.overlap;
         let u = self.scale.shortening_rate(ce.fibre_velocity);
-        dx[..3].copy_from_slice(&moment_rates(&self.scale.rates, &q(x), r, u));
+        let kept = Some(&self.limits);
+        dx[..3].copy_from_slice(&moment_rates_keeping(&self.scale.rates, &q(x), r, u, kept));
     }
     fn stiffness(&self, _ce: &CeInputs, x: &[f64]) -> f64 {
         self.scale.stiffness(x[0])
@@ -81,10 +89,13 @@ impl ContractileModel for DistributionMoment {
     fn moments(&self, x: &[f64]) -> [f64; 3] {
         q(x)
     }
-    /// The Gaussian closure's fluxes in closed form (docs/model.md §11.1).
+    /// The Gaussian closure's fluxes in closed form (docs/model.md §11.1), with the error
+    /// function and exponential at its limits carried from the last closure evaluation where
+    /// that was near (at a tick's end, the stepper's last Newton iterate).
     fn bridge_energy(&self, ce: &CeInputs, x: &[f64]) -> Option<(EnergyFluxes, &BridgeEnergetics)> {
         let r = ce.activation * ce.overlap;
-        let fluxes = gaussian_fluxes(&self.scale.rates, r, &q(x)).energy();
+        let fluxes = gaussian_fluxes_near(&self.scale.rates, r, &q(x), Some(&self.limits));
+        let fluxes = fluxes.energy();
         Some((fluxes, &self.energetics))
     }
     fn clone_box(&self) -> Box<dyn ContractileModel> {

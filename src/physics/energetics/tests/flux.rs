@@ -180,3 +180,38 @@ fn grid_fluxes_of_the_isometric_state_are_exact() {
         "D_2",
     );
 }
+
+/// The fluxes at a state a small step from the last closure evaluation's take Φ and ϕ from that
+/// evaluation (closure_limits): equal to a fresh evaluation to rounding, for steps as large as
+/// the series' reach and from both models' guards' side; a step beyond the reach is evaluated.
+#[test]
+fn dm_fluxes_near_the_last_closure_are_a_fresh_evaluation_to_rounding() {
+    use crate::physics::contractile::closure_limits::ClosureLimits;
+    let with_g3 = Rates { g3: 57.0, ..HUXLEY };
+    for rates in [HUXLEY, with_g3] {
+        for (q0, p, sd) in GAUSSIANS {
+            for step in [1e-9, 1e-7, 3e-6, 2e-5, 1e-3] {
+                let limits = ClosureLimits::default();
+                let before = moments(q0, p, sd);
+                dm::closure_keeping(&rates, &before, Some(&limits));
+                let after = moments(q0 * (1.0 + step), p + step * sd, sd * (1.0 - step));
+                let near = gaussian_fluxes_near(&rates, 0.8, &after, Some(&limits));
+                let fresh = gaussian_fluxes(&rates, 0.8, &after);
+                for k in 0..3 {
+                    let scale = [q0, q0 * p.abs().max(sd), q0 * (p * p + sd * sd)][k];
+                    for (a, b) in [
+                        (near.attachment[k], fresh.attachment[k]),
+                        (near.detachment[k], fresh.detachment[k]),
+                    ] {
+                        let tol = 1e-14 * scale * (rates.f1 + rates.g2);
+                        assert!(
+                            (a - b).abs() <= tol,
+                            "k = {k}, step {step:e} at {:?}: {a:e} vs {b:e}",
+                            (q0, p, sd)
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
