@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# The steady tick's work in instructions, this checkout beside another commit: the loop of
+# examples/steady_ticks.rs (the steady tick of benches/tick.rs) built in both, run under
+# valgrind's callgrind (instructions executed, exactly; no hardware counters needed, which a VM
+# may not expose) for two lengths, and the difference per tick, so that set-up is not counted.
+# Unlike times, instruction counts do not drift with the machine's load; they are not times
+# either (a cache miss or a division costs more than an addition).
+#
+#   benches/tick_instructions.sh COMMIT       (needs valgrind; builds COMMIT in a git worktree)
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+COMMIT="${1:?usage: benches/tick_instructions.sh COMMIT}"
+command -v valgrind >/dev/null || { echo "tick_instructions: needs valgrind" >&2; exit 1; }
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
+TMP="$(mktemp -d)"
+cleanup() {
+  git -C "$ROOT" worktree remove --force "$TMP/other" 2>/dev/null || true
+  rm -rf "$TMP"
+}
+trap cleanup EXIT
+
+built() { # the example's executable, built in the checkout $1
+  (cd "$1" && cargo build --release --example steady_ticks --message-format=json 2>/dev/null) |
+    grep '"kind":\["example"\]' | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1
+}
+git -C "$ROOT" worktree add --detach --quiet "$TMP/other" "$COMMIT"
+cp "$ROOT/examples/steady_ticks.rs" "$TMP/other/examples/"
+# Another version number gives the other crate its own artifacts in the shared target dir.
+sed -i 's/^version = "\(.*\)"$/version = "\1-other"/' "$TMP/other/Cargo.toml"
+cp "$(built "$ROOT")" "$TMP/this"
+cp "$(built "$TMP/other")" "$TMP/other_bin"
+
+count() { # instructions of `$1 MODEL TICKS`
+  valgrind --tool=callgrind --callgrind-out-file=/dev/null "$1" "$2" "$3" 2>&1 >/dev/null |
+    sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
+}
+short=2000
+long=22000
+printf '%-8s %16s %16s %8s\n' model "this /tick" "$COMMIT /tick" ratio
+for model in hill huxley; do
+  per_tick() {
+    local a b
+    a="$(count "$1" "$model" "$short")"
+    b="$(count "$1" "$model" "$long")"
+    echo $(((b - a) / (long - short)))
+  }
+  t="$(per_tick "$TMP/this")"
+  o="$(per_tick "$TMP/other_bin")"
+  printf '%-8s %16s %16s %8s\n' "$model" "$t" "$o" "$(awk -v a="$t" -v b="$o" 'BEGIN { printf "%.3f", a / b }')"
+done
