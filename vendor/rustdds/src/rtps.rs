@@ -2,6 +2,7 @@
 pub(crate) mod constant;
 
 pub(crate) mod dp_event_loop;
+pub(crate) mod early_data;
 pub(crate) mod fragment_assembler;
 pub(crate) mod message_receiver;
 pub(crate) mod outbound;
