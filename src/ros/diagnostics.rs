@@ -159,6 +159,7 @@ fn diagnostics(
             input_status(fqn, inputs, rejected, new_rejected),
             recorder_status,
             live_status(fqn, &src.live),
+            services_status(fqn, src.participant.held_reply_counts()),
         ],
     }
 }
@@ -363,6 +364,33 @@ pub(crate) struct DiagSources<'a> {
     /// Stamps, and what a tick-less second means.
     pub(crate) clock: &'a NodeClock,
     pub(crate) live: LiveStatus<'a>,
+    /// The DDS participant: its counts of service replies held for a client not yet matched.
+    pub(crate) participant: &'a rustdds::DomainParticipant,
+}
+
+/// The services' status (`~/reset`, `~/step`, the parameter services): replies held because the
+/// client's reply reader was not matched yet when the answer was written, sent when it matched,
+/// or dropped after the hold time (vendor/rustdds/PATCHED.md). A warning once any was dropped.
+fn services_status(fqn: &str, c: rustdds::HeldReplyCounts) -> DiagnosticStatus {
+    DiagnosticStatus {
+        level: if c.dropped > 0 {
+            DiagnosticStatus::WARN
+        } else {
+            DiagnosticStatus::OK
+        },
+        name: format!("{fqn}: services"),
+        message: if c.dropped > 0 {
+            format!("{} replies dropped: their client never matched", c.dropped)
+        } else {
+            "ok".into()
+        },
+        hardware_id: fqn.into(),
+        values: vec![
+            kv("replies_held", c.held),
+            kv("replies_held_sent", c.delivered),
+            kv("replies_dropped", c.dropped),
+        ],
+    }
 }
 
 /// The live view's `/diagnostics` status: clients, what was dropped for slow clients, who was

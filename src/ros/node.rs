@@ -105,6 +105,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
             node: &node,
             live: live.as_ref(),
             live_error: &live_error,
+            participant: dds.context.domain_participant(),
         },
         spinner,
     );
@@ -244,6 +245,8 @@ struct Executor<'a> {
     node: &'a ros2_client::Node,
     live: Option<&'a LiveView>,
     live_error: &'a str,
+    /// For its counts of service replies held (`/diagnostics`).
+    participant: rustdds::DomainParticipant,
 }
 
 /// The executor: spinner, inputs, services, diagnostics and events, until a stop signal.
@@ -272,6 +275,7 @@ fn serve(x: Executor<'_>, spinner: Spinner) {
             None if !x.live_error.is_empty() => LiveStatus::Failed(x.live_error),
             None => LiveStatus::Off,
         },
+        participant: &x.participant,
     };
     let muscle_topics: Vec<String> = e.muscle_commands.iter().map(|(m, _)| m.clone()).collect();
     let lcx = live_requests::Context {

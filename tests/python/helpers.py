@@ -23,8 +23,8 @@ from spun import SpunNode
 
 ROOT = Path(__file__).resolve().parents[2]
 
-# Service calls to a RustDDS server: the first one can take ~3 s (discovery of the service's
-# two topics).
+# Service calls: a first call is answered within milliseconds too (test_services_fresh.py); the
+# margin is for a loaded machine.
 SERVICE_TIMEOUT = 15.0
 DISCOVERY_TIMEOUT = 20.0
 

@@ -150,43 +150,15 @@ def lockstep(node_factory):
     )
 
 
-_answering = set()
-
-
-def answering(peer, node):
-    """Until the node's reply writer has matched this client, an answer can be lost for good
-    (a volatile reply written before the match; a discovery race of any RustDDS pair). Ask
-    something that changes nothing (0 ticks, refused) until an answer comes back."""
-    if node.fqn in _answering:
-        return
-    req = Step.Request()
-    req.ticks = 0
-    for _ in range(10):
-        try:
-            r = peer.call(Step, node.topic("~/step"), req, timeout=3.0)
-        except AssertionError:
-            continue
-        assert not r.success
-        _answering.add(node.fqn)
-        return
-    raise AssertionError(f"{node.fqn}/step never answered")
-
-
 def reset(peer, node):
-    """`~/reset`, asked again if the answer is lost (the first call's race, as above; a reset
-    twice is the same reset)."""
-    for _ in range(10):
-        try:
-            r = peer.call(Trigger, node.topic("~/reset"), Trigger.Request(), timeout=3.0)
-        except AssertionError:
-            continue
-        assert r.success, r.message
-        return r
-    raise AssertionError(f"{node.fqn}/reset never answered")
+    """`~/reset`, asked once: a first call is answered, however soon after the node appears
+    (test_services_fresh.py)."""
+    r = peer.call(Trigger, node.topic("~/reset"), Trigger.Request(), timeout=SERVICE_TIMEOUT)
+    assert r.success, r.message
+    return r
 
 
 def step(peer, node, ticks):
-    answering(peer, node)
     req = Step.Request()
     req.ticks = ticks
     return peer.call(Step, node.topic("~/step"), req, timeout=SERVICE_TIMEOUT)

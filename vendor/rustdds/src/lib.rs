@@ -233,6 +233,9 @@ pub use serialization::{
 };
 /// Part of RTPS DATA submessage: 4-byte header + serialized data
 pub use messages::submessages::elements::serialized_payload::SerializedPayload;
+/// Counts of the service replies held for a reader not yet matched (see
+/// `DomainParticipant::held_reply_counts`).
+pub use rtps::held_replies::HeldReplyCounts;
 pub use structure::{
   duration::Duration, entity::RTPSEntity, guid::GUID, rpc::SampleIdentity,
   sequence_number::SequenceNumber, time::Timestamp,

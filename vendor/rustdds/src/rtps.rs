@@ -2,7 +2,9 @@
 pub(crate) mod constant;
 
 pub(crate) mod dp_event_loop;
+pub(crate) mod early_data;
 pub(crate) mod fragment_assembler;
+pub(crate) mod held_replies;
 pub(crate) mod message_receiver;
 pub(crate) mod outbound;
 pub(crate) mod reader;

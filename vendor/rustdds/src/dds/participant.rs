@@ -45,6 +45,7 @@ use crate::{
   rtps::{
     constant::*,
     dp_event_loop::{DPEventLoop, DomainInfo, EventLoopCommand},
+    held_replies::{HeldReplyCounts, HeldReplyStats},
     reader::*,
     writer::WriterIngredients,
   },
@@ -558,6 +559,19 @@ impl DomainParticipant {
 
   pub(crate) fn only_networks(&self) -> Option<Arc<[IpAddr]>> {
     self.dpi.lock().ok().and_then(|g| g.only_networks())
+  }
+
+  /// How many replies this participant's Writers have held since its creation
+  /// because the reader a reply was for had not matched yet, and how many of
+  /// those were sent when it matched or dropped. A reply is a sample written
+  /// with a `related_sample_identity` (as a service server writes its
+  /// responses); see `PATCHED.md` of this vendored copy.
+  pub fn held_reply_counts(&self) -> HeldReplyCounts {
+    self
+      .dpi
+      .lock()
+      .map(|g| g.held_reply_counts())
+      .unwrap_or_default()
   }
 
   /// Gets all DiscoveredTopics from DDS network
@@ -1106,6 +1120,10 @@ impl DomainParticipantDisc {
     self.dpi.only_networks()
   }
 
+  pub fn held_reply_counts(&self) -> HeldReplyCounts {
+    self.dpi.held_reply_counts()
+  }
+
   #[cfg(feature = "security")] // just to avoid warning
   pub(crate) fn qos(&self) -> QosPolicies {
     self.dpi.qos()
@@ -1215,6 +1233,8 @@ pub(crate) struct DomainParticipantInner {
   security_plugins_handle: Option<SecurityPluginsHandle>,
 
   only_networks: Option<Arc<[IpAddr]>>,
+
+  held_reply_stats: Arc<HeldReplyStats>,
 }
 
 impl Drop for DomainParticipantInner {
@@ -1405,6 +1425,10 @@ impl DomainParticipantInner {
 
     let (ev_ready_tx, ev_ready_rx) = std::sync::mpsc::sync_channel::<CreateResult<()>>(1);
 
+    // Counts of the replies the Writers hold for unmatched readers.
+    let held_reply_stats = Arc::new(HeldReplyStats::default());
+    let held_reply_stats_clone = Arc::clone(&held_reply_stats);
+
     // Launch the background thread for DomainParticipant
     let disc_db_clone = discovery_db.clone();
     let security_plugins_clone = security_plugins_handle.clone();
@@ -1447,6 +1471,7 @@ impl DomainParticipantInner {
           reader_ready_rx,
           writer_ready_rx,
           dp_waker,
+          held_reply_stats_clone,
         ) {
           Ok(dp_event_loop) => {
             let _ = ev_ready_tx.send(Ok(()));
@@ -1496,11 +1521,16 @@ impl DomainParticipantInner {
       self_locators,
       security_plugins_handle,
       only_networks,
+      held_reply_stats,
     })
   }
 
   pub fn dds_cache(&self) -> Arc<RwLock<DDSCache>> {
     self.dds_cache.clone()
+  }
+
+  pub fn held_reply_counts(&self) -> HeldReplyCounts {
+    self.held_reply_stats.counts()
   }
 
   pub(crate) fn only_networks(&self) -> Option<Arc<[IpAddr]>> {

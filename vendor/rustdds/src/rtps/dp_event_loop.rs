@@ -43,6 +43,7 @@ use crate::{
     rtps_writer_proxy::RtpsWriterProxy,
     timed_event::DpTimerEvent,
     transmit::InterfaceObservations,
+    held_replies::HeldReplyStats,
     writer::{Writer, WriterIngredients},
   },
   structure::{
@@ -103,6 +104,9 @@ pub struct DPEventLoop {
   reader_ready: ReadyReceiver<EntityId>,
   writer_ready: ReadyReceiver<EntityId>,
   waker: LoopWaker,
+  /// The participant's counts of replies held for unmatched readers, shared
+  /// with every Writer.
+  held_reply_stats: Arc<HeldReplyStats>,
 
   writers: HashMap<EntityId, Writer>,
   udp_sender: Rc<UDPSender>,
@@ -168,6 +172,7 @@ impl DPEventLoop {
     reader_ready: ReadyReceiver<EntityId>,
     writer_ready: ReadyReceiver<EntityId>,
     waker: LoopWaker,
+    held_reply_stats: Arc<HeldReplyStats>,
   ) -> CreateResult<Self> {
     macro_rules! try_init {
       ($result:expr, $msg:literal) => {
@@ -254,6 +259,7 @@ impl DPEventLoop {
       reader_ready,
       writer_ready,
       waker,
+      held_reply_stats,
       writers: HashMap::new(),
       bulk_ready: BTreeMap::new(),
       writable_armed: BTreeSet::new(),
@@ -1157,6 +1163,7 @@ impl DPEventLoop {
     // - every writer may route a confirmed same-host peer over loopback.
     // See `src/rtps/loopback_same_host_design.md`.
     new_writer.set_prefer_loopback_same_host(self.same_host_loopback);
+    new_writer.set_held_reply_stats(Arc::clone(&self.held_reply_stats));
     if self.same_host_loopback
       && new_writer.guid().entity_id == EntityId::SPDP_BUILTIN_PARTICIPANT_WRITER
     {
@@ -1392,6 +1399,7 @@ mod tests {
         reader_ready,
         writer_ready,
         waker,
+        Arc::default(),
       )
       .expect("DPEventLoop::new in test");
       dp_event_loop.event_loop();

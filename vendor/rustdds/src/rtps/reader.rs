@@ -1,10 +1,10 @@
 use std::{
-  collections::BTreeMap,
+  collections::{BTreeMap, BTreeSet},
   fmt, iter,
   rc::Rc,
   sync::{Arc, Mutex, MutexGuard},
   task::Waker,
-  time::Duration as StdDuration,
+  time::{Duration as StdDuration, Instant},
 };
 
 use mio1::Token;
@@ -42,8 +42,12 @@ use crate::{
   network::udp_sender::UDPSender,
   polling::{ReadySender, SharedTimer, WakeReceiver},
   rtps::{
-    fragment_assembler::FragmentAssembler, message_receiver::MessageReceiverState,
-    rtps_writer_proxy::RtpsWriterProxy, timed_event::DpTimerEvent, Message,
+    early_data::{EarlyData, EARLY_DATA_RETRIES, EARLY_DATA_RETRY_INTERVAL},
+    fragment_assembler::FragmentAssembler,
+    message_receiver::MessageReceiverState,
+    rtps_writer_proxy::RtpsWriterProxy,
+    timed_event::DpTimerEvent,
+    Message,
   },
   structure::{
     cache_change::{CacheChange, ChangeKind},
@@ -66,6 +70,14 @@ use crate::no_security::SecurityPluginsHandle;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum TimedEvent {
   DeadlineMissedCheck,
+  /// DATA asked for when its Writer matched (early_data.rs) has not all come:
+  /// ask again for what is still missing of `first..=last`.
+  AskEarlyDataAgain {
+    writer: GUID,
+    first: SequenceNumber,
+    last: SequenceNumber,
+    retries_left: u8,
+  },
 }
 
 // Some pieces necessary to construct a reader.
@@ -137,6 +149,9 @@ pub(crate) struct Reader {
   last_fragment_garbage_collect: Timestamp,
   matched_writers: BTreeMap<GUID, RtpsWriterProxy>,
   writer_match_count_total: i32, // total count, never decreases
+  /// DATA dropped from Writers not matched yet, asked for again when they
+  /// match (early_data.rs).
+  early_data: EarlyData,
 
   requested_deadline_missed_count: i32,
   offered_incompatible_qos_count: i32,
@@ -204,6 +219,7 @@ impl Reader {
       last_fragment_garbage_collect: Timestamp::now(),
       matched_writers: BTreeMap::new(),
       writer_match_count_total: 0,
+      early_data: EarlyData::default(),
       requested_deadline_missed_count: 0,
       offered_incompatible_qos_count: 0,
       timed_event_timer,
@@ -324,6 +340,27 @@ impl Reader {
         self.handle_requested_deadline_event();
         self.set_requested_deadline_check_timer(); // re-prime timer
       }
+      TimedEvent::AskEarlyDataAgain {
+        writer,
+        first,
+        last,
+        retries_left,
+      } => {
+        let Some(mut writer_proxy) = self.matched_writers.remove(&writer) else {
+          return; // the Writer is gone
+        };
+        let missing: Vec<SequenceNumber> = SequenceNumber::range_inclusive(first, last)
+          .into_iter()
+          .filter(|sn| !writer_proxy.should_ignore_change(*sn))
+          .collect();
+        if !missing.is_empty() {
+          self.send_early_data_acknack(&mut writer_proxy, &missing);
+          if retries_left > 1 {
+            self.schedule_early_data_retry(writer, first, last, retries_left - 1);
+          }
+        }
+        self.matched_writers.insert(writer, writer_proxy);
+      }
     }
   }
 
@@ -420,9 +457,15 @@ impl Reader {
           // knew it, so that HEARTBEAT was discarded. Without a request the next
           // one comes only after the writer's heartbeat period, and a Reliable
           // reader withholds all samples received in the meantime.
+          //
+          // If DATA from it was dropped before the match (early_data.rs), ask for
+          // exactly that instead.
           if self.reliability != policy::Reliability::BestEffort {
             if let Some(mut writer_proxy) = self.matched_writers.remove(&writer) {
-              self.send_preemptive_acknack_to(&mut writer_proxy);
+              match self.early_data.take(writer, Instant::now()) {
+                Some(dropped) => self.ask_for_early_data(&mut writer_proxy, &dropped),
+                None => self.send_preemptive_acknack_to(&mut writer_proxy),
+              }
               self.matched_writers.insert(writer, writer_proxy);
             }
           }
@@ -753,6 +796,12 @@ impl Reader {
         // We just ignore the data in such a case
         // ... unless it is Discovery traffic.
         if writer_guid.entity_id.entity_kind.is_user_defined() {
+          // It may also be from a Writer of our topic whose SEDP announcement
+          // has not reached us yet: note it, to ask for it when the Writer
+          // matches (early_data.rs).
+          if self.reliability != policy::Reliability::BestEffort {
+            self.early_data.note(writer_guid, writer_sn, Instant::now());
+          }
           return;
         }
       }
@@ -1419,6 +1468,94 @@ impl Reader {
     self.matched_writers = writer_proxies;
   }
 
+  // A Writer has just matched whose DATA `dropped` (sorted, within 256 of the
+  // first) was dropped before the match. Everything before the first one was
+  // written before the Writer matched us (it sends a matched Reader every
+  // sample from then on), so it is not for us: as a HEARTBEAT with that first
+  // sequence number would (RTPS 2.5 §8.4.10.4), mark it irrelevant, and
+  // request the dropped ones in an ACKNACK with that base (§8.3.7.1). The
+  // Writer resends them after its nack_response_delay (§8.4.7.1.1) instead of
+  // after its next HEARTBEAT.
+  fn ask_for_early_data(&mut self, writer_proxy: &mut RtpsWriterProxy, dropped: &[SequenceNumber]) {
+    let Some(&first) = dropped.first() else {
+      return;
+    };
+    let writer_guid = writer_proxy.remote_writer_guid;
+    writer_proxy.irrelevant_changes_up_to(first);
+    let marker_moved = self
+      .acquire_the_topic_cache_guard()
+      .mark_reliably_received_before(writer_guid, writer_proxy.all_ackable_before());
+    if marker_moved {
+      self.notify_cache_change();
+    }
+    debug!(
+      "Asking newly matched writer {writer_guid:?} for {dropped:?}, dropped before the match. \
+       topic={:?}",
+      self.topic_name
+    );
+    self.send_early_data_acknack(writer_proxy, dropped);
+    let last = *dropped.last().unwrap_or(&first);
+    self.schedule_early_data_retry(writer_guid, first, last, EARLY_DATA_RETRIES);
+  }
+
+  // The ACKNACK of ask_for_early_data: `missing` (sorted, non-empty) requested,
+  // what precedes the first acknowledged.
+  fn send_early_data_acknack(
+    &self,
+    writer_proxy: &mut RtpsWriterProxy,
+    missing: &[SequenceNumber],
+  ) {
+    let Some(&first) = missing.first() else {
+      return;
+    };
+    let writer_guid = writer_proxy.remote_writer_guid;
+    let flags = BitFlags::<ACKNACK_Flags>::from_flag(ACKNACK_Flags::Endianness);
+    let count = writer_proxy.next_ack_nack_sequence_number();
+    self.send_acknack_to(
+      flags,
+      AckNack {
+        reader_id: self.entity_id(),
+        writer_id: writer_guid.entity_id,
+        reader_sn_state: SequenceNumberSet::from_base_and_set(
+          first,
+          &missing.iter().copied().collect::<BTreeSet<_>>(),
+        ),
+        count,
+      },
+      InfoDestination {
+        guid_prefix: writer_guid.prefix,
+      },
+      &writer_proxy.unicast_locator_list,
+      writer_guid,
+    );
+  }
+
+  // A Writer may not act on a request for a sample it has only just sent:
+  // Fast DDS resends only samples it counts as unacknowledged, and a sample
+  // stays "underway" for a moment after its push. Whatever has not come after
+  // EARLY_DATA_RETRY_INTERVAL is asked for again, up to EARLY_DATA_RETRIES
+  // times in all.
+  fn schedule_early_data_retry(
+    &self,
+    writer: GUID,
+    first: SequenceNumber,
+    last: SequenceNumber,
+    retries_left: u8,
+  ) {
+    self.timed_event_timer.borrow_mut().set_timeout(
+      EARLY_DATA_RETRY_INTERVAL,
+      DpTimerEvent::Reader {
+        entity_id: self.my_guid.entity_id,
+        event: TimedEvent::AskEarlyDataAgain {
+          writer,
+          first,
+          last,
+          retries_left,
+        },
+      },
+    );
+  }
+
   // An ACKNACK without the final flag requests an immediate HEARTBEAT from the
   // writer.
   fn send_preemptive_acknack_to(&self, writer_proxy: &mut RtpsWriterProxy) {
@@ -1803,6 +1940,132 @@ mod tests {
       .matched_writer(writer_guid)
       .expect("Did not find a matched writer");
     assert_eq!(writer_proxy.sent_ack_nack_count, 3);
+  }
+
+  #[test]
+  fn data_dropped_before_its_writer_matched_is_asked_for_on_the_match() {
+    // A reliable reader, as in reader_handles_heartbeats.
+    let dds_cache = Arc::new(RwLock::new(DDSCache::new()));
+    let topic_name = "test_name";
+    let reliable_qos = QosPolicyBuilder::new()
+      .reliability(Reliability::Reliable {
+        max_blocking_time: Duration::from_millis(100),
+      })
+      .build();
+    let topic_cache_handle = dds_cache.write().unwrap().add_new_topic(
+      topic_name.to_string(),
+      TypeDesc::new("test_type".to_string()),
+      &reliable_qos,
+    );
+    let (notification_sender, _notification_receiver) =
+      crate::mio_source::notification_channel(100);
+    let (_notification_event_source, notification_event_sender) =
+      mio_source::make_poll_channel().unwrap();
+    let (status_sender, _status_receiver) = sync_status_channel::<DataReaderStatus>(4).unwrap();
+    let (participant_status_sender, _participant_status_receiver) =
+      sync_status_channel(16).unwrap();
+    let (_reader_command_sender, reader_command_receiver) =
+      wake_channel::<ReaderCommand>(10, &LoopWaker::new());
+    let reader_guid = GUID::dummy_test_guid(EntityKind::READER_NO_KEY_USER_DEFINED);
+    let timer = new_shared_timer();
+    let mut reader = Reader::new(
+      ReaderIngredients {
+        guid: reader_guid,
+        notification_sender,
+        status_sender,
+        topic_name: topic_name.to_string(),
+        topic_cache_handle,
+        like_stateless: false,
+        qos_policy: reliable_qos.clone(),
+        data_reader_command_receiver: reader_command_receiver,
+        data_reader_waker: Arc::new(Mutex::new(None)),
+        poll_event_sender: notification_event_sender,
+        security_plugins: None,
+        discovery_notify: None,
+      },
+      Rc::new(UDPSender::new(0).unwrap()),
+      Rc::clone(&timer),
+      participant_status_sender,
+    );
+    let writer_guid = GUID::dummy_test_guid(EntityKind::WRITER_NO_KEY_USER_DEFINED);
+    let mr_state = MessageReceiverState {
+      source_guid_prefix: writer_guid.prefix,
+      ..Default::default()
+    };
+    // The next AskEarlyDataAgain the reader has scheduled (within a second).
+    let next_retry = || {
+      let give_up = Instant::now() + StdDuration::from_secs(1);
+      loop {
+        if let Some(DpTimerEvent::Reader {
+          event: event @ TimedEvent::AskEarlyDataAgain { .. },
+          ..
+        }) = timer.borrow_mut().poll()
+        {
+          return Some(event);
+        }
+        if Instant::now() >= give_up {
+          return None;
+        }
+        std::thread::sleep(StdDuration::from_millis(1));
+      }
+    };
+    let data = Data {
+      reader_id: reader_guid.entity_id,
+      writer_id: writer_guid.entity_id,
+      writer_sn: SequenceNumber::new(3),
+      ..Data::default()
+    };
+    let data_flags = BitFlags::<DATA_Flags>::from_flag(DATA_Flags::Data);
+
+    // Before the match: dropped, and noted.
+    reader.handle_data_msg(data.clone(), data_flags, &mr_state);
+    assert!(reader.seqnum_instant_map.is_empty());
+
+    // The match asks for it (the first ACKNACK, count 1) and gives up what came before it.
+    reader.matched_writer_add(
+      writer_guid,
+      EntityId::UNKNOWN,
+      vec![],
+      vec![],
+      &reliable_qos,
+    );
+    let wp = reader.matched_writer(writer_guid).unwrap();
+    assert_eq!(wp.sent_ack_nack_count, 1);
+    assert_eq!(wp.all_ackable_before(), SequenceNumber::new(3));
+    assert!(reader
+      .early_data
+      .take(writer_guid, Instant::now())
+      .is_none());
+
+    // Not come yet: asked again.
+    let retry = next_retry().expect("no retry scheduled");
+    reader.handle_timed_event(retry);
+    assert_eq!(
+      reader
+        .matched_writer(writer_guid)
+        .unwrap()
+        .sent_ack_nack_count,
+      2
+    );
+
+    // The writer's answer is taken, with nothing missing before it.
+    reader.handle_data_msg(data, data_flags, &mr_state);
+    assert!(reader
+      .seqnum_instant_map
+      .contains_key(&SequenceNumber::new(3)));
+    let wp = reader.matched_writer(writer_guid).unwrap();
+    assert_eq!(wp.all_ackable_before(), SequenceNumber::new(4));
+    // Come: the next retry asks nothing and ends the retries.
+    let retry = next_retry().expect("no retry scheduled");
+    reader.handle_timed_event(retry);
+    assert_eq!(
+      reader
+        .matched_writer(writer_guid)
+        .unwrap()
+        .sent_ack_nack_count,
+      2
+    );
+    assert!(next_retry().is_none());
   }
 
   #[test]

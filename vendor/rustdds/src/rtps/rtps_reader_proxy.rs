@@ -511,6 +511,12 @@ impl RtpsReaderProxy {
     self.pending_gap.extend(gap_sn_set);
   }
 
+  // A reply held for this reader (held_replies.rs): send it rather than a GAP.
+  pub fn unhold(&mut self, seq_num: SequenceNumber) {
+    self.pending_gap.remove(&seq_num);
+    self.unsent_changes.insert(seq_num);
+  }
+
   pub fn get_pending_gap(&self) -> &BTreeSet<SequenceNumber> {
     &self.pending_gap
   }

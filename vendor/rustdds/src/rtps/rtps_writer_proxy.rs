@@ -100,10 +100,15 @@ impl RtpsWriterProxy {
     }
   }
 
+  // The count of the next ACKNACK (or NACK_FRAG) to this Writer: 1 for the
+  // first, then one more each time (RTPS 2.5 §8.3.7.1 leaves the start open).
+  // It must not start at 0: Fast DDS accepts an ACKNACK only if its count is
+  // greater than the last one's, which it starts at 0, so it would ignore our
+  // first ACKNACK (the pre-emptive one on matching, or the answer to its first
+  // HEARTBEAT) and repair only after its next HEARTBEAT.
   pub fn next_ack_nack_sequence_number(&mut self) -> i32 {
-    let c = self.sent_ack_nack_count;
     self.sent_ack_nack_count += 1;
-    c
+    self.sent_ack_nack_count
   }
 
   // Returns a bound, below which everything can be acknowledged, i.e.

@@ -4,7 +4,8 @@ use std::{
   collections::{BTreeMap, BTreeSet},
   ops::Bound::Included,
   rc::Rc,
-  sync::{atomic, mpsc::TrySendError},
+  sync::{atomic, mpsc::TrySendError, Arc},
+  time::Instant,
 };
 
 #[allow(unused_imports)]
@@ -27,6 +28,7 @@ use crate::{
   network::{udp_sender::UDPSender, util::IfAddr},
   polling::SharedTimer,
   rtps::{
+    held_replies::{HeldReplies, HeldReplyStats, HoldTarget},
     constant::{
       DEFAULT_WRITER_MAX_SAMPLES, FALLBACK_MAX_AGGREGATED_DATAGRAM_SIZE, FRAGMENT_SIZE,
       HEARTBEAT_PERIOD_FAST, HEARTBEAT_PERIOD_SLOW, HEARTBEAT_SUBMESSAGE_SERIALIZED_SIZE,
@@ -114,8 +116,14 @@ pub(crate) enum SendProgress {
 pub(crate) enum TimedEvent {
   Heartbeat,
   CacheCleaning,
-  SendRepairData { to_reader: GUID },
-  SendRepairFrags { to_reader: GUID },
+  SendRepairData {
+    to_reader: GUID,
+  },
+  SendRepairFrags {
+    to_reader: GUID,
+  },
+  /// Replies held for an unmatched reader are due to expire (held_replies.rs).
+  ExpireHeldReplies,
 }
 
 // This is used to construct an actual Writer.
@@ -265,6 +273,10 @@ pub(crate) struct Writer {
   participant_status_sender: StatusChannelSender<DomainParticipantStatusEvent>,
 
   security_plugins: Option<SecurityPluginsHandle>,
+
+  /// Replies written before the reader they are for had matched, kept for it
+  /// for a while (held_replies.rs).
+  held_replies: HeldReplies,
 }
 
 impl Writer {
@@ -364,7 +376,76 @@ impl Writer {
       participant_status_sender,
 
       security_plugins: i.security_plugins,
+      held_replies: HeldReplies::new(Arc::default()),
     }
+  }
+
+  /// Counts this Writer's held replies in `stats` (the participant's).
+  pub fn set_held_reply_stats(&mut self, stats: Arc<HeldReplyStats>) {
+    self.held_replies = HeldReplies::new(stats);
+  }
+
+  // A reply whose reader has not matched yet is noted, so that the reader gets
+  // it when it matches (held_replies.rs). Only volatile reliable user Writers
+  // need this: a transient-local one sends its history to a late reader
+  // anyway, a best-effort one promises nothing.
+  fn hold_if_unaddressed(&mut self, cc: &CacheChange) {
+    if !self.is_reliable()
+      || self.like_stateless
+      || !self.qos_policies.is_volatile()
+      || !self.my_guid.entity_id.kind().is_user_defined()
+    {
+      return;
+    }
+    let readers = &self.readers;
+    let now = Instant::now();
+    let expiry = self.held_replies.consider(
+      cc,
+      |target| match target {
+        HoldTarget::Reader(guid) => readers.contains_key(guid),
+        HoldTarget::Participant(prefix) => readers.range(prefix.range()).next().is_some(),
+      },
+      now,
+    );
+    if let Some(at) = expiry {
+      self.schedule_timed_event(
+        at.saturating_duration_since(now),
+        TimedEvent::ExpireHeldReplies,
+      );
+    }
+  }
+
+  // A newly matched reader gets the replies held for it: not the GAP that a
+  // volatile Writer gives a new reader for what was written before the match
+  // (RTPS 2.5 §8.7.2.2.1), but the DATA, in a repair round started at once
+  // (as if the reader had requested them, §8.4.7.1.1). A reply no longer in
+  // the history is counted as dropped.
+  fn send_held_replies(&mut self, reader_guid: GUID) {
+    let released = self.held_replies.release_for(reader_guid, Instant::now());
+    if released.is_empty() {
+      return;
+    }
+    let (present, gone): (Vec<SequenceNumber>, Vec<SequenceNumber>) = released
+      .into_iter()
+      .partition(|sn| self.send_buffer.get_by_sn(*sn).is_some());
+    self.held_replies.lost(gone.len());
+    let Some(rp) = self.readers.get_mut(&reader_guid) else {
+      self.held_replies.lost(present.len());
+      return;
+    };
+    for sn in &present {
+      rp.unhold(*sn);
+    }
+    if present.is_empty() {
+      return;
+    }
+    rp.repair_mode = true;
+    self.held_replies.delivered(present.len());
+    debug!(
+      "Sending held replies {present:?} to newly matched reader {reader_guid:?} topic={:?}",
+      self.my_topic_name
+    );
+    self.schedule_repair_data(reader_guid, std::time::Duration::ZERO);
   }
 
   /// Entity id encoded as a mio token. The internal poll no longer registers
@@ -541,6 +622,15 @@ impl Writer {
           self.schedule_repair_frags(reader_guid, self.repair_interval());
         }
       } // SendRepairFrags
+      TimedEvent::ExpireHeldReplies => {
+        let now = Instant::now();
+        if let Some(at) = self.held_replies.on_timer(now) {
+          self.schedule_timed_event(
+            at.saturating_duration_since(now),
+            TimedEvent::ExpireHeldReplies,
+          );
+        }
+      }
     } // match
   } // fn
 
@@ -695,6 +785,7 @@ impl Writer {
       if !self.is_aggregatable(&cc) {
         break;
       }
+      self.hold_if_unaddressed(&cc);
 
       // Build this sample's INFO_TS? + DATA submessages and check the budget.
       let mut sample = MessageBuilder::new();
@@ -826,6 +917,7 @@ impl Writer {
         continue;
       };
       let write_options = cc.write_options.clone();
+      self.hold_if_unaddressed(&cc);
 
       // Notify reader proxies once per sample (only when starting it fresh).
       if self.sample_cursor == SampleCursor::Fresh && !self.like_stateless {
@@ -2031,6 +2123,7 @@ impl Writer {
               );
             }
           }
+          self.send_held_replies(reader_proxy.remote_reader_guid);
           info!(
             "Matched new remote reader on topic={:?} reader={:?}",
             self.topic_name(),
@@ -2900,7 +2993,9 @@ mod tests {
               let to_reader = match event {
                 TimedEvent::SendRepairData { to_reader }
                 | TimedEvent::SendRepairFrags { to_reader } => Some(to_reader),
-                TimedEvent::Heartbeat | TimedEvent::CacheCleaning => None,
+                TimedEvent::Heartbeat
+                | TimedEvent::CacheCleaning
+                | TimedEvent::ExpireHeldReplies => None,
               };
               if to_reader == Some(self.reader_guid) {
                 found.push(event);
@@ -3028,6 +3123,106 @@ mod tests {
       f.ack_nack(1..=5, 2);
       assert_eq!(f.unsent(), 5);
       assert_eq!(f.repair_round(), 5);
+    }
+
+    // A reply written while the reader it is for was not matched goes to that
+    // reader, as DATA, when it matches; the samples before it stay GAPs.
+    #[test]
+    fn reply_written_before_its_reader_matched_is_sent_when_it_matches() {
+      use crate::{
+        dds::with_key::datawriter::WriteOptionsBuilder,
+        rtps::held_replies::{HeldReplyCounts, HeldReplyStats},
+        structure::rpc::SampleIdentity,
+      };
+      let qos = QosPolicyBuilder::new()
+        .reliability(Reliability::Reliable {
+          max_blocking_time: Duration::from_millis(100),
+        })
+        .history(History::KeepLast { depth: 10 })
+        .durability(Durability::Volatile)
+        .build();
+      // Matched with another client's reader (prefix 2) only.
+      let mut f = Fixture::new(
+        EntityId::new([0, 0, 1], EntityKind::WRITER_NO_KEY_USER_DEFINED),
+        qos.clone(),
+        EntityId::new([0, 0, 2], EntityKind::READER_NO_KEY_USER_DEFINED),
+        &qos,
+        0,
+        8,
+        None,
+      );
+      let stats = Arc::new(HeldReplyStats::default());
+      f.writer.set_held_reply_stats(Arc::clone(&stats));
+      let client_reader = GUID::new(
+        GuidPrefix::new(&[3; 12]),
+        EntityId::new([0, 0, 4], EntityKind::READER_NO_KEY_USER_DEFINED),
+      );
+      let write = |f: &mut Fixture, opts: WriteOptions| {
+        let data = DDSData::new(SerializedPayload::new(
+          RepresentationIdentifier::CDR_LE,
+          vec![0; 8],
+        ));
+        assert!(matches!(
+          f.writer
+            .send_buffer
+            .admit_blocking(opts, data, Some(StdDuration::ZERO)),
+          Admission::Admitted(_)
+        ));
+        f.writer.process_pending();
+      };
+      write(&mut f, WriteOptions::default());
+      let reply = WriteOptionsBuilder::new()
+        .related_sample_identity(SampleIdentity {
+          writer_guid: client_reader,
+          sequence_number: SequenceNumber::new(1),
+        })
+        .build();
+      write(&mut f, reply);
+      // A reply to the matched reader is not held.
+      let to_matched = WriteOptionsBuilder::new()
+        .related_sample_identity(SampleIdentity {
+          writer_guid: f.reader_guid,
+          sequence_number: SequenceNumber::new(1),
+        })
+        .build();
+      write(&mut f, to_matched);
+      assert_eq!(stats.counts().held, 1);
+
+      let proxy = RtpsReaderProxy::new(client_reader, qos.clone(), false);
+      f.writer.update_reader_proxy(&proxy, &qos);
+      let rp = &f.writer.readers[&client_reader];
+      let gaps: Vec<i64> = rp
+        .get_pending_gap()
+        .iter()
+        .map(|sn| i64::from(*sn))
+        .collect();
+      assert_eq!(gaps, vec![1, 3]);
+      assert_eq!(rp.unsent_changes_debug(), vec![SequenceNumber::new(2)]);
+      assert!(rp.repair_mode);
+      assert_eq!(
+        stats.counts(),
+        HeldReplyCounts {
+          held: 1,
+          delivered: 1,
+          dropped: 0
+        }
+      );
+      // The repair round, started at once, sends it.
+      let give_up = Instant::now() + StdDuration::from_secs(5);
+      let event = loop {
+        assert!(Instant::now() < give_up, "SendRepairData was not scheduled");
+        let fired = f.timer.borrow_mut().poll();
+        match fired {
+          Some(DpTimerEvent::Writer {
+            event: TimedEvent::SendRepairData { to_reader },
+            ..
+          }) if to_reader == client_reader => break TimedEvent::SendRepairData { to_reader },
+          Some(_) => {}
+          None => std::thread::sleep(StdDuration::from_millis(1)),
+        }
+      };
+      f.writer.handle_timed_event(event);
+      assert_eq!(f.writer.readers[&client_reader].unsent_changes_count(), 0);
     }
 
     // While the reader's send socket has queued control datagrams, a round
