@@ -3,10 +3,10 @@
 //!
 //! The closure and the bridges' fluxes integrate the Gaussian between the same limits,
 //! τ0 = -p/q and τ1 = (1-p)/q, and their cost is the error function and the exponential there
-//! (`distribution_moment::normal_cdf_pdf`). A run asks for the fluxes once per tick, at the tick's end state, and
-//! the stepper's last closure evaluation was at its last Newton iterate, a correction below the
-//! Newton tolerance away. There the fluxes take Φ and ϕ from the kept values by the Taylor
-//! series to third order,
+//! (`distribution_moment::normal_cdf_pdf`). A run asks for the fluxes once per tick, at the
+//! tick's end state, and the stepper's last closure evaluation was at its last Newton iterate,
+//! a correction below the Newton tolerance away. There the fluxes take Φ and ϕ from the kept
+//! values by the Taylor series to third order,
 //!
 //! ```text
 //! Φ(τ+Δ) = Φ + ϕ (Δ - τ Δ²/2 + (τ² - 1) Δ³/6),   ϕ(τ+Δ) = ϕ (1 - τ Δ + (τ² - 1) Δ²/2 - (τ³ - 3τ) Δ³/6)
