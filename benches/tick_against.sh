@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # `benches/tick.rs` of this checkout beside the same benchmark of another commit, in one run:
 # benches/tick_against.sh COMMIT [ROUNDS] [FILTER] (ROUNDS default 3; FILTER a criterion filter,
-# default the per-tick groups). Builds COMMIT from a git worktree in a temporary directory, in
-# the same CARGO_TARGET_DIR (dependencies shared, the other crate under its own version number),
-# runs both binaries ROUNDS times interleaved and prints per benchmark the best (least) median
+# default the per-tick groups). Builds COMMIT from a git worktree in a temporary directory, in a
+# target dir of its own kept between runs (benches/other_commit.sh), runs both binaries ROUNDS times interleaved and prints per benchmark the best (least) median
 # time of each and their ratio, this / COMMIT. Prints the load average before and after: on a
 # shared machine compare only ratios measured in one run.
 set -euo pipefail
@@ -11,24 +10,11 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 COMMIT="${1:?usage: benches/tick_against.sh COMMIT [ROUNDS] [FILTER]}"
 ROUNDS="${2:-3}"
 FILTER="${3:-tick_default_actuator|twenty_ticks_after_excitation_step}"
-export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
-TMP="$(mktemp -d)"
-cleanup() {
-  git -C "$ROOT" worktree remove --force "$TMP/other" 2>/dev/null || true
-  rm -rf "$TMP"
-}
-trap cleanup EXIT
-
-executable() {
-  grep '"kind":\["bench"\]' | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1
-}
-
-git -C "$ROOT" worktree add --detach --quiet "$TMP/other" "$COMMIT"
-# Another version number gives the other crate its own artifacts in the shared target dir.
-sed -i 's/^version = "\(.*\)"$/version = "\1-other"/' "$TMP/other/Cargo.toml"
-THIS_BIN="$(cd "$ROOT" && cargo bench --bench tick --no-run --message-format=json 2>/dev/null | executable)"
+source "$ROOT/benches/other_commit.sh"
+other_checkout "$COMMIT"
+THIS_BIN="$(cd "$ROOT" && cargo bench --bench tick --no-run --message-format=json 2>/dev/null | executable_of bench)"
 cp "$THIS_BIN" "$TMP/this"
-OTHER_BIN="$(cd "$TMP/other" && cargo bench --bench tick --no-run --message-format=json 2>/dev/null | executable)"
+OTHER_BIN="$(cd "$TMP/other" && CARGO_TARGET_DIR="$OTHER_TARGET_DIR" cargo bench --bench tick --no-run --message-format=json 2>/dev/null | executable_of bench)"
 cp "$OTHER_BIN" "$TMP/other_bin"
 
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"

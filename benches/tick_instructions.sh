@@ -11,24 +11,15 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 COMMIT="${1:?usage: benches/tick_instructions.sh COMMIT}"
 command -v valgrind >/dev/null || { echo "tick_instructions: needs valgrind" >&2; exit 1; }
-export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
-TMP="$(mktemp -d)"
-cleanup() {
-  git -C "$ROOT" worktree remove --force "$TMP/other" 2>/dev/null || true
-  rm -rf "$TMP"
-}
-trap cleanup EXIT
-
+source "$ROOT/benches/other_commit.sh"
 built() { # the example's executable, built in the checkout $1
   (cd "$1" && cargo build --release --example steady_ticks --message-format=json 2>/dev/null) |
-    grep '"kind":\["example"\]' | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1
+    executable_of example
 }
-git -C "$ROOT" worktree add --detach --quiet "$TMP/other" "$COMMIT"
+other_checkout "$COMMIT"
 cp "$ROOT/examples/steady_ticks.rs" "$TMP/other/examples/"
-# Another version number gives the other crate its own artifacts in the shared target dir.
-sed -i 's/^version = "\(.*\)"$/version = "\1-other"/' "$TMP/other/Cargo.toml"
 cp "$(built "$ROOT")" "$TMP/this"
-cp "$(built "$TMP/other")" "$TMP/other_bin"
+cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other")" "$TMP/other_bin"
 
 count() { # instructions of `$1 MODEL TICKS`
   valgrind --tool=callgrind --callgrind-out-file=/dev/null "$1" "$2" "$3" 2>&1 >/dev/null |
