@@ -176,7 +176,7 @@ def test_reconnections_keep_the_rate_the_memory_and_the_other_clients(rough, rou
     def late(a, b):
         return (b["overruns"] - a["overruns"]) / max(b["ticks_total"] - a["ticks_total"], 1)
     background = late(quiet[1], d0)
-    assert late(d0, d1) <= 2 * background + 0.01, (quiet[1], d0, d1)
+    assert late(d0, d1) <= 2 * background + 0.02, (quiet[1], d0, d1)
     # Memory comes back.
     wait_until(lambda: rss_mb(rough.proc.pid) < baseline + 10.0, 15.0, interval=0.5,
                what=f"the node's RSS back within 10 MB of {baseline:.1f} MB "
