@@ -87,13 +87,16 @@ impl ClosureLimits {
     }
 }
 
+/// 1/6, the third-order terms' factor (a product rather than a division by 6).
+const SIXTH: f64 = 1.0 / 6.0;
+
 /// Φ and ϕ at τ + Δ from their values at τ, the series of the module's comment.
 pub fn taylor(tau: f64, cdf: f64, pdf: f64, d: f64) -> (f64, f64) {
     let t2 = tau * tau - 1.0;
     let d2 = d * d;
-    let d3 = d2 * d;
-    let cdf_step = d - 0.5 * tau * d2 + t2 * d3 / 6.0;
-    let pdf_factor = 1.0 - tau * d + 0.5 * t2 * d2 - (tau * tau * tau - 3.0 * tau) * d3 / 6.0;
+    let d3_6 = d2 * d * SIXTH;
+    let cdf_step = d - 0.5 * tau * d2 + t2 * d3_6;
+    let pdf_factor = 1.0 - tau * d + 0.5 * t2 * d2 - (tau * tau * tau - 3.0 * tau) * d3_6;
     (cdf + pdf * cdf_step, pdf * pdf_factor)
 }
 

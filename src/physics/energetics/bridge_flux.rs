@@ -75,14 +75,18 @@ pub fn attachment(rates: &Rates, r: f64, bound_attachment: [f64; 3]) -> [f64; 3]
 
 /// The Gaussian the DM closure takes for moments `q`, as `distribution_moment::closure` clamps
 /// it: `(Q0, p, q)` with `p = Q1/Q0` in [-10, 10] and `q² = Q2/Q0 - p²` in [1e-10, 100]
-/// (docs/model.md §6, Guards); `None` when Q0 ≤ 0 (no Gaussian part).
-fn closure_gaussian(q: &[f64; 3]) -> Option<(f64, f64, f64)> {
+/// (docs/model.md §6, Guards), with `1/q`; `None` when Q0 ≤ 0 (no Gaussian part). One division
+/// for the two ratios and one for `1/q`: a tick's end evaluates this for every muscle, and a
+/// division's latency is what its time is made of.
+fn closure_gaussian(q: &[f64; 3]) -> Option<(f64, f64, f64, f64)> {
     if q[0] <= 0.0 {
         return None;
     }
-    let p = (q[1] / q[0]).clamp(-MEAN_BOUND, MEAN_BOUND);
-    let var = (q[2] / q[0] - p * p).clamp(Q_VARIANCE_FLOOR, VARIANCE_BOUND);
-    Some((q[0], p, var.sqrt()))
+    let inv_q0 = 1.0 / q[0];
+    let p = (q[1] * inv_q0).clamp(-MEAN_BOUND, MEAN_BOUND);
+    let var = (q[2] * inv_q0 - p * p).clamp(Q_VARIANCE_FLOOR, VARIANCE_BOUND);
+    let sd = var.sqrt();
+    Some((q[0], p, sd, 1.0 / sd))
 }
 
 /// DM detachment moments `D_k = ∫ ξ^k g n dξ` for the Gaussian n with moments `q`:
@@ -115,7 +119,7 @@ fn gaussian_parts(
     limits: Option<&ClosureLimits>,
 ) -> ([f64; 3], [f64; 3]) {
     let relax = 0.5 * (rates.f1 + rates.g1);
-    let Some((q0, p, sd)) = closure_gaussian(q) else {
+    let Some((q0, p, sd, inv_sd)) = closure_gaussian(q) else {
         return ([0.0; 3], q.map(|x| relax * x));
     };
     let at = |i: usize, tau: f64| {
@@ -124,8 +128,8 @@ fn gaussian_parts(
             .unwrap_or_else(|| normal_cdf_pdf(tau));
         partial_moments_of(p, sd, tau, values)
     };
-    let j0 = at(0, -p / sd);
-    let j1 = at(1, (1.0 - p) / sd);
+    let j0 = at(0, -p * inv_sd);
+    let j1 = at(1, (1.0 - p) * inv_sd);
     let m = full_moments(p, sd);
     let bound = [0, 1, 2].map(|k| q0 * rates.f1 * (j1[k + 1] - j0[k + 1]));
     let mut d = [0.0; 3];

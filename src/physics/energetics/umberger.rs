@@ -96,15 +96,17 @@ pub fn activation_maintenance_w_kg(
 /// Shortening heat, W/kg, `v̄ ≤ 0`: `S A² [min(α_ST |v̄|, 100) r + α_FT |v̄| (1 - r)]` with
 /// `α_ST = 100 / (V_max/2.5)`, `α_FT = 153 / V_max` (V_max, v̄ in lopt/s).
 pub fn shortening_w_kg(s: f64, a: f64, share: f64, v_norm: f64, v_max: f64) -> f64 {
-    let alpha_slow = 100.0 / (v_max / 2.5);
-    let alpha_fast = 153.0 / v_max;
+    // One division: 100 / (V_max / 2.5) = 250 / V_max.
+    let inv_v_max = 1.0 / v_max;
+    let alpha_slow = 250.0 * inv_v_max;
+    let alpha_fast = 153.0 * inv_v_max;
     let slow = (alpha_slow * -v_norm).min(100.0);
     s * a * a * (slow * share + alpha_fast * -v_norm * (1.0 - share))
 }
 
 /// Lengthening heat, W/kg, `v̄ > 0`: `S A k α_ST v̄`.
 pub fn lengthening_w_kg(s: f64, a: f64, k: f64, v_norm: f64, v_max: f64) -> f64 {
-    s * a * k * 100.0 / (v_max / 2.5) * v_norm
+    s * a * k * (250.0 / v_max) * v_norm
 }
 
 /// The Umberger rates of one muscle at one instant, W.
