@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The speed ratios of issue 7: this program's `benches/limb.rs` (k-elbow banks in one limb, and
+# The speed against the program this project grew from: this program's `benches/limb.rs` (k-elbow banks in one limb, and
 # the `arm`) against the previous two-muscle program, commit dcf2021 (TR-BDF2, dense 12 × 12
 # matrix), stepping k separate actuators: benches/previous.sh [RUNS] (default 3).
 #
