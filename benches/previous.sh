@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The speed against the program this project grew from: this program's `benches/limb.rs` (k-elbow banks in one limb, and
-# the `arm`) against the previous two-muscle program, commit dcf2021 (TR-BDF2, dense 12 × 12
-# matrix), stepping k separate actuators: benches/previous.sh [RUNS] (default 3).
+# The speed against the program this project grew from: this program's `benches/limb.rs`
+# (k-elbow banks in one limb, and the `arm`) against the previous two-muscle program, commit
+# dcf2021 (TR-BDF2, dense 12 × 12 matrix), stepping k separate actuators:
+# benches/previous.sh [RUNS] (default 3).
 #
 # Builds both release (the previous one from a git worktree of dcf2021 in a temporary directory,
 # with benches/previous/limb_separate.rs dropped in as its benches/limb_previous.rs, in the same
