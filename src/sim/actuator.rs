@@ -140,6 +140,11 @@ impl Actuator {
         self.sim.fill_snapshot(&mut self.state);
         Ok(())
     }
+    /// Steps its independent parts on `threads` threads ([`Simulation::set_threads`]: the same
+    /// results to the bit; 1, the default, steps them on the caller's thread).
+    pub fn set_threads(&mut self, threads: usize) -> Result<(), String> {
+        self.sim.set_threads(threads)
+    }
     /// Back to the initial state (inputs zeroed, driven joints at their initial angles and at
     /// rest, tick 0).
     pub fn reset(&mut self) {

@@ -11,8 +11,13 @@ use crate::sim::energy::MuscleEnergy;
 use crate::sim::part::Part;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use rayon::prelude::*;
+use std::sync::Arc;
 
 pub use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS, MAX_SUBSTEPS};
+
+/// Most threads a simulation steps its parts on.
+pub const MAX_THREADS: usize = 256;
 
 /// Highest tick rate, Hz (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;
@@ -45,6 +50,8 @@ pub struct Simulation {
     tick: u64,
     /// Per muscle: the energetics carried from tick to tick (sim::energy).
     energy: Vec<MuscleEnergy>,
+    /// The threads its parts are stepped on (None: the caller's thread alone).
+    pool: Option<Arc<rayon::ThreadPool>>,
 }
 
 impl Simulation {
@@ -94,6 +101,7 @@ impl Simulation {
             y: vec![0.0; n],
             tick: 0,
             energy: vec![MuscleEnergy::default(); m],
+            pool: None,
             parts,
             plant,
         };
@@ -165,20 +173,73 @@ impl Simulation {
             .fold(Stats::default(), |a, p| a + p.stats())
     }
 
+    /// Steps the parts on `threads` threads (1: on the caller's thread, the default). The parts
+    /// are independent and each is stepped by the same code wherever it runs, so the results
+    /// are the same to the bit for any number of threads; a limb of one part gains nothing.
+    pub fn set_threads(&mut self, threads: usize) -> Result<(), String> {
+        if !(1..=MAX_THREADS).contains(&threads) {
+            return Err(format!(
+                "invalid threads = {threads}: must be 1 to {MAX_THREADS}"
+            ));
+        }
+        self.pool = match threads {
+            1 => None,
+            n => Some(Arc::new(
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .thread_name(|i| format!("parts-{i}"))
+                    .build()
+                    .map_err(|e| format!("cannot start {n} threads: {e}"))?,
+            )),
+        };
+        Ok(())
+    }
+
+    /// The threads its parts are stepped on.
+    pub fn threads(&self) -> usize {
+        self.pool.as_ref().map_or(1, |p| p.current_num_threads())
+    }
+
+    /// Gathers and steps every part over dt: whether all succeeded, and how many were stepped
+    /// (on one thread the parts after a failed one are not).
+    fn step_parts(&mut self, dt: f64) -> (bool, usize) {
+        let Self {
+            parts,
+            y,
+            activation,
+            inputs,
+            stepping,
+            pool,
+            ..
+        } = self;
+        let one = |p: &mut Part| {
+            p.gather(y, activation, inputs);
+            p.step(dt, *stepping)
+        };
+        match pool {
+            Some(pool) if parts.len() > 1 => {
+                let ok =
+                    pool.install(|| parts.par_iter_mut().map(one).reduce(|| true, |a, b| a && b));
+                (ok, parts.len())
+            }
+            _ => {
+                let mut stepped = 0;
+                for p in parts.iter_mut() {
+                    stepped += 1;
+                    if !one(p) {
+                        return (false, stepped);
+                    }
+                }
+                (true, stepped)
+            }
+        }
+    }
+
     /// Advances one tick, each part with its own sub-steps. A failed or non-finite result
     /// restores the previous state (of every part) and is reported.
     pub fn step(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
-        let mut ok = true;
-        let mut stepped = 0;
-        for p in &mut self.parts {
-            p.gather(&self.y, &self.activation, &self.inputs);
-            ok = p.step(dt, self.stepping);
-            stepped += 1;
-            if !ok {
-                break;
-            }
-        }
+        let (ok, stepped) = self.step_parts(dt);
         let finite = ok && self.parts.iter().all(|p| p.is_finite());
         if !finite {
             let reason = if ok {
