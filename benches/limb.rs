@@ -14,41 +14,15 @@
 //! several repetitions, with the right-hand-side evaluations, linear solves, factorisations and
 //! sub-steps per tick beside them.
 
-use muscle_actuator::config::{ActuatorConfig, MuscleConfig, SpanConfig};
+#[path = "common/bank.rs"]
+mod bank;
+
+use bank::{bank, Lcg};
+use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
-use muscle_actuator::physics::moment_arm::MomentArm;
-use muscle_actuator::physics::params::{JointParams, MuscleParams};
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;
-
-/// k antagonistic elbows, independent.
-fn bank(k: usize) -> ActuatorConfig {
-    let mut cfg = ActuatorConfig {
-        joints: vec![],
-        muscles: vec![],
-    };
-    for j in 0..k {
-        let name = format!("joint{j}");
-        cfg.joints.push(JointParams {
-            name: name.clone(),
-            ..JointParams::default()
-        });
-        for (m, r) in [("flexor", 0.03), ("extensor", -0.03)] {
-            cfg.muscles.push(MuscleConfig {
-                name: format!("{m}{j}"),
-                params: MuscleParams::default(),
-                path_length: None,
-                spans: vec![SpanConfig {
-                    joint: name.clone(),
-                    moment_arm: MomentArm::Constant(r),
-                    changes_sign: false,
-                }],
-            });
-        }
-    }
-    cfg
-}
 
 /// What is stepped: one limb, or k separate default actuators.
 #[allow(clippy::large_enum_variant)]
@@ -111,18 +85,6 @@ impl Clone for Plantset {
             Plantset::Limb(a) => Plantset::Limb(a.clone()),
             Plantset::Separate(v) => Plantset::Separate(v.clone()),
         }
-    }
-}
-
-/// A deterministic generator in [0, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 

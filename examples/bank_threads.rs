@@ -6,59 +6,26 @@
 //!   cargo run --release --example bank_threads -- [ELBOWS] [THREADS] [ROUNDS] [MODEL]
 //!   (defaults: 100 elbows, 2 threads, 5 rounds, huxley)
 
-use muscle_actuator::config::{ActuatorConfig, MuscleConfig, SpanConfig};
+#[path = "../benches/common/bank.rs"]
+mod bank;
+
+use bank::{bank, Lcg};
 use muscle_actuator::physics::model::ModelKind;
-use muscle_actuator::physics::moment_arm::MomentArm;
-use muscle_actuator::physics::params::{JointParams, MuscleParams};
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;
-
-/// k antagonistic elbows, independent (as `benches/limb.rs` builds them).
-fn bank(k: usize) -> ActuatorConfig {
-    let mut cfg = ActuatorConfig {
-        joints: vec![],
-        muscles: vec![],
-    };
-    for j in 0..k {
-        let name = format!("joint{j}");
-        cfg.joints.push(JointParams {
-            name: name.clone(),
-            ..JointParams::default()
-        });
-        for (m, r) in [("flexor", 0.03), ("extensor", -0.03)] {
-            cfg.muscles.push(MuscleConfig {
-                name: format!("{m}{j}"),
-                params: MuscleParams::default(),
-                path_length: None,
-                spans: vec![SpanConfig {
-                    joint: name.clone(),
-                    moment_arm: MomentArm::Constant(r),
-                    changes_sign: false,
-                }],
-            });
-        }
-    }
-    cfg
-}
 
 /// µs per tick over `ticks` ticks of the realistic load, from a settled start.
 fn realistic(act: &Actuator, ticks: usize, seed: u64) -> f64 {
     let mut a = act.clone();
     let joints = a.joint_names().len();
-    let mut rng = seed;
-    let mut next = || {
-        rng = rng
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Lcg(seed);
     let t0 = Instant::now();
     for k in 0..ticks {
         for j in 0..joints {
             if (k + j * 100 / joints).is_multiple_of(100) {
-                a.set_excitation(2 * j, next());
-                a.set_excitation(2 * j + 1, next());
+                a.set_excitation(2 * j, rng.next());
+                a.set_excitation(2 * j + 1, rng.next());
             }
         }
         a.step().unwrap();
@@ -81,7 +48,6 @@ fn main() {
     }
     let mut many = one.clone();
     many.set_threads(threads).unwrap();
-    one.set_threads(1).unwrap();
     let load = || std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!("load average before: {}", load().trim());
     let (mut best_one, mut best_many) = (f64::INFINITY, f64::INFINITY);
