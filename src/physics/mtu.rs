@@ -3,6 +3,7 @@
 //! tendon between the mass and the load. Written once for every contractile model.
 
 use crate::physics::contractile::force_length::{force_length, force_length_slope};
+use crate::physics::energetics::bridge_power::atp_mol_per_j;
 use crate::physics::energetics::metabolic::{
     mechanism_rates, MetabolicRates, MetabolicSample, MuscleProbe,
 };
@@ -45,7 +46,7 @@ impl Mtu {
                 muscle: params
                     .energetics
                     .probe_muscle(params.f_max, params.l_opt, params.v_max),
-                atp_free_energy_j: params.energetics.atp_free_energy,
+                atp_mol_per_j: atp_mol_per_j(params.energetics.atp_free_energy),
             },
         })
     }
@@ -176,7 +177,7 @@ impl Mtu {
         MetabolicSample {
             bridges: mechanism.is_some(),
             probe_inputs: x,
-            rates: MetabolicRates::of(mechanism.as_ref(), &probe, self.probe.atp_free_energy_j),
+            rates: MetabolicRates::of(mechanism.as_ref(), &probe, self.probe.atp_mol_per_j),
         }
     }
 

@@ -55,6 +55,11 @@ pub fn bridges_per_xi_half_sarcomere(force_per_q1_n: f64, stiffness_n_m: f64, h_
     force_per_q1_n / (stiffness_n_m * h_m)
 }
 
+/// Moles of ATP whose free energy is one joule at e J per molecule, `1 / (e N_A)`, mol/J.
+pub fn atp_mol_per_j(atp_free_energy_j: f64) -> f64 {
+    1.0 / (atp_free_energy_j * AVOGADRO_PER_MOL)
+}
+
 /// Half-sarcomeres in series along the fibre, `N_hs = lopt / s_hs`.
 pub fn half_sarcomeres(l_opt_m: f64, s_hs_m: f64) -> f64 {
     l_opt_m / s_hs_m
@@ -74,6 +79,11 @@ pub struct BridgeEnergyScale {
     pub bridge_stiffness_n_m: f64,
     /// Share of the isometric turnover spent on calcium handling.
     pub activation_share: f64,
+    /// Moles of ATP per unit flux, `N_hs B / N_A`, mol (a tick's products instead of
+    /// divisions: [`BridgeEnergyScale::new`] derives it).
+    pub atp_mol_per_flux: f64,
+    /// [`atp_mol_per_j`] of e, mol/J.
+    pub atp_mol_per_j: f64,
 }
 
 impl BridgeEnergyScale {
@@ -83,18 +93,21 @@ impl BridgeEnergyScale {
         let eps = energy_ratio(scale.rates.f1, scale.rates.g1, e.hill_a_over_p0);
         let k = bridge_stiffness_n_m(e.atp_free_energy_j, eps, h);
         let b = bridges_per_xi_half_sarcomere(scale.force_per_q1, k, h);
+        let bridges_per_xi = half_sarcomeres(p.l_opt, p.crossbridge.s_hs) * b;
         Self {
             atp_free_energy_j: e.atp_free_energy_j,
-            bridges_per_xi: half_sarcomeres(p.l_opt, p.crossbridge.s_hs) * b,
+            bridges_per_xi,
             strain_j: 0.5 * scale.force_per_q1 * scale.l_h,
             bridge_stiffness_n_m: k,
             activation_share: e.activation_share,
+            atp_mol_per_flux: bridges_per_xi / AVOGADRO_PER_MOL,
+            atp_mol_per_j: atp_mol_per_j(e.atp_free_energy_j),
         }
     }
 
     /// ATP rate of a flux `d0` (1/s, moment units), mol/s.
     pub fn atp_rate_mol_s(&self, d0: f64) -> f64 {
-        self.bridges_per_xi * d0 / AVOGADRO_PER_MOL
+        self.atp_mol_per_flux * d0
     }
 
     /// Chemical power of a cycle flux `d0` (1/s, moment units): `e N_hs B d0`, W.

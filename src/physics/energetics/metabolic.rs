@@ -5,7 +5,7 @@
 
 use crate::physics::energetics::bridge_flux::EnergyFluxes;
 use crate::physics::energetics::bridge_power::{
-    activation_heat_w, bridge_powers, BridgeEnergyScale, AVOGADRO_PER_MOL,
+    activation_heat_w, bridge_powers, BridgeEnergyScale,
 };
 use crate::physics::energetics::phenomenological::PhenomenologicalModel;
 use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs, ProbeMuscle, ProbeRates};
@@ -18,6 +18,24 @@ pub struct BridgeEnergetics {
     pub scale: BridgeEnergyScale,
     /// The bridges' own isometric chemical power at full activation and optimal length, W.
     pub isometric_bridge_w: f64,
+    /// The activation heat at full activation, [`activation_heat_w`] at a = 1, W: it is
+    /// proportional to a.
+    pub full_activation_heat_w: f64,
+}
+
+impl BridgeEnergetics {
+    /// From the scale and the bridges' isometric chemical power at full activation (W).
+    pub fn new(scale: BridgeEnergyScale, isometric_bridge_w: f64) -> Self {
+        Self {
+            scale,
+            isometric_bridge_w,
+            full_activation_heat_w: activation_heat_w(
+                1.0,
+                scale.activation_share,
+                isometric_bridge_w,
+            ),
+        }
+    }
 }
 
 /// The mechanism's rates: where the free energy of the ATP goes, W (ATP in mol/s).
@@ -49,8 +67,7 @@ pub fn mechanism_rates(
     lengthening_velocity_m_s: f64,
 ) -> MechanismRates {
     let p = bridge_powers(&b.scale, fluxes, force_n, lengthening_velocity_m_s);
-    let act = activation_heat_w(activation, b.scale.activation_share, b.isometric_bridge_w);
-    let per_mol = b.scale.atp_free_energy_j * AVOGADRO_PER_MOL;
+    let act = activation * b.full_activation_heat_w;
     MechanismRates {
         total_w: p.chemical_w + act,
         activation_heat_w: act,
@@ -58,7 +75,7 @@ pub fn mechanism_rates(
         work_w: p.work_w,
         // Counted at detachment the chemical power is that at attachment less e N_hs B dQ0/dt.
         storage_w: p.stored_rate_w - (p.chemical_at_attachment_w - p.chemical_w),
-        atp_rate_mol_s: p.atp_rate_mol_s + act / per_mol,
+        atp_rate_mol_s: p.atp_rate_mol_s + act * b.scale.atp_mol_per_j,
     }
 }
 
@@ -69,8 +86,9 @@ pub struct MuscleProbe {
     pub model: PhenomenologicalModel,
     /// The muscle's constants (mass, Fmax, lopt, vmax, fibre types).
     pub muscle: ProbeMuscle,
-    /// Energy per ATP, J (for its ATP equivalent).
-    pub atp_free_energy_j: f64,
+    /// Moles of ATP per joule at the energy per ATP (for its ATP equivalent),
+    /// [`crate::physics::energetics::bridge_power::atp_mol_per_j`], mol/J.
+    pub atp_mol_per_j: f64,
 }
 
 impl MuscleProbe {
@@ -109,7 +127,8 @@ pub struct MetabolicRates {
 
 impl MetabolicRates {
     /// From the mechanism's rates (a model with bridges) and the phenomenological ones.
-    pub fn of(mechanism: Option<&MechanismRates>, probe: &ProbeRates, e_j: f64) -> Self {
+    /// `atp_mol_per_j` converts the phenomenological power to its ATP equivalent.
+    pub fn of(mechanism: Option<&MechanismRates>, probe: &ProbeRates, atp_mol_per_j: f64) -> Self {
         match mechanism {
             Some(m) => Self {
                 metabolic_w: m.total_w,
@@ -126,7 +145,7 @@ impl MetabolicRates {
                 shortening_heat_w: probe.shortening_w,
                 work_w: probe.work_w,
                 storage_w: 0.0,
-                atp_rate_mol_s: probe.total_w() / (e_j * AVOGADRO_PER_MOL),
+                atp_rate_mol_s: probe.total_w() * atp_mol_per_j,
                 phenomenological_w: probe.total_w(),
             },
         }

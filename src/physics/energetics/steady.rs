@@ -10,7 +10,7 @@ use crate::physics::contractile::hill::{force_velocity, hill_force};
 use crate::physics::contractile::huxley_exact;
 use crate::physics::energetics::bridge_flux::{gaussian_fluxes, EnergyFluxes};
 use crate::physics::energetics::bridge_power::{
-    activation_heat_w, bridge_powers, BridgeEnergyScale, AVOGADRO_PER_MOL,
+    activation_heat_w, atp_mol_per_j, bridge_powers, BridgeEnergyScale,
 };
 use crate::physics::energetics::huxley_steady::{steady_atp_flux, steady_energy_fluxes};
 use crate::physics::energetics::phenomenological::PhenomenologicalModel;
@@ -70,7 +70,7 @@ fn bridge_point(
     SteadyPoint {
         shortening_velocity_m_s: v_s,
         force_n,
-        atp_rate_mol_s: p.atp_rate_mol_s + act / (e.atp_free_energy_j * AVOGADRO_PER_MOL),
+        atp_rate_mol_s: p.atp_rate_mol_s + act * e.atp_mol_per_j,
         chemical_w: chemical,
         heat_w: p.heat_w() + act,
         work_w: p.work_w,
@@ -159,7 +159,7 @@ pub fn probe_point(
     SteadyPoint {
         shortening_velocity_m_s: v_s,
         force_n,
-        atp_rate_mol_s: r.total_w() / (atp_free_energy_j * AVOGADRO_PER_MOL),
+        atp_rate_mol_s: r.total_w() * atp_mol_per_j(atp_free_energy_j),
         chemical_w: r.total_w(),
         heat_w: r.heat_w(),
         work_w: r.work_w,

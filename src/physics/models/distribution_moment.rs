@@ -46,10 +46,7 @@ pub struct DistributionMoment {
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
     let scale = calibration::calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
     let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
-    let energetics = BridgeEnergetics {
-        scale: e,
-        isometric_bridge_w: dm_isometric_bridge_w(&scale, &e),
-    };
+    let energetics = BridgeEnergetics::new(e, dm_isometric_bridge_w(&scale, &e));
     Ok(Box::new(DistributionMoment {
         scale,
         energetics,

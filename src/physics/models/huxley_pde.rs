@@ -69,10 +69,7 @@ pub struct HuxleyPde {
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
     let scale = calibration::calibrate_exact(p);
     let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
-    let energetics = BridgeEnergetics {
-        scale: e,
-        isometric_bridge_w: exact_isometric_bridge_w(&scale, &e),
-    };
+    let energetics = BridgeEnergetics::new(e, exact_isometric_bridge_w(&scale, &e));
     Ok(Box::new(HuxleyPde {
         scale,
         energetics,
