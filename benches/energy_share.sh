@@ -2,9 +2,10 @@
 # The share of a steady tick (`benches/tick.rs`, tick_default_actuator) spent on the energetics,
 # per model, from a sampling profile rather than from two versions' times (which drift with the
 # load): `perf record` with DWARF call graphs while the benchmark runs, then the inclusive
-# share of the three places the energetics are computed in a tick (sim::part::Part::metabolic,
-# the fluxes and probe at the tick's end; sim::energy::MuscleEnergy::excitation_terms, the
-# probe's terms of a new command; MuscleEnergy::end_tick, the start powers and the integrals).
+# share of where the energetics are computed in a tick: sim::part::Part::compute_energy (in
+# each part where it is stepped: a new command's terms, MuscleEnergy::terms_of; the fluxes and
+# probe at the tick's end, Part::metabolic; the start powers) and MuscleEnergy::commit (the
+# integrals).
 #
 #   benches/energy_share.sh [SECONDS]      (default 4 s of profile per model; needs `perf`)
 set -euo pipefail
@@ -17,7 +18,7 @@ BIN="$(cd "$ROOT" && cargo bench --bench tick --no-run --message-format=json 2>/
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-8s %10s %16s %10s %8s\n' model metabolic excitation_terms end_tick total
+printf '%-8s %10s %10s %10s %10s %8s\n' model in_parts metabolic terms_of commit total
 for model in hill huxley; do
   perf record --quiet --call-graph dwarf,16384 -F 2000 -o "$TMP/$model.data" \
     "$BIN" --bench --noplot "tick_default_actuator/$model\$" --profile-time "$SECONDS_PER_MODEL" \
@@ -26,10 +27,11 @@ for model in hill huxley; do
   share() {
     grep -E "^ +[0-9.]+%" "$TMP/$model.txt" | grep -F "$1" | head -n 1 | awk '{print $1}' | tr -d % || true
   }
+  p="$(share 'sim::part::Part::compute_energy')"
   m="$(share 'sim::part::Part::metabolic')"
-  x="$(share 'MuscleEnergy::excitation_terms')"
-  e="$(share 'MuscleEnergy::end_tick')"
-  t="$(awk -v a="${m:-0}" -v b="${x:-0}" -v c="${e:-0}" 'BEGIN { printf "%.1f", a + b + c }')"
-  printf '%-8s %9s%% %15s%% %9s%% %7s%%\n' "$model" "${m:-0}" "${x:-0}" "${e:-0}" "$t"
+  x="$(share 'MuscleEnergy::terms_of')"
+  c="$(share 'MuscleEnergy::commit')"
+  t="$(awk -v a="${p:-0}" -v b="${c:-0}" 'BEGIN { printf "%.1f", a + b }')"
+  printf '%-8s %9s%% %9s%% %9s%% %9s%% %7s%%\n' "$model" "${p:-0}" "${m:-0}" "${x:-0}" "${c:-0}" "$t"
 done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -8,7 +8,9 @@
 //! were), the phenomenological models do (theirs are recomputed). What those compute from the
 //! excitation alone is computed once per command and kept with the energies.
 
-use crate::physics::energetics::metabolic::{MetabolicRates, MetabolicSample, MuscleProbe};
+use crate::physics::energetics::metabolic::{
+    EnergyPowers, MetabolicRates, MetabolicSample, MuscleProbe,
+};
 use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
 use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
@@ -36,30 +38,56 @@ impl MuscleEnergy {
         }
     }
 
-    /// The terms of the tick's `excitation`, computed anew only if it differs from the last
-    /// command's.
-    pub fn excitation_terms(&mut self, probe: &MuscleProbe, excitation: f64) -> &ExcitationTerms {
-        if excitation != self.terms.excitation {
-            self.terms = probe.excitation_terms(excitation);
+    /// The terms of `excitation`: the kept ones if it is the last command's.
+    fn terms_of(&self, probe: &MuscleProbe, excitation: f64) -> ExcitationTerms {
+        if excitation == self.terms.excitation {
+            self.terms
+        } else {
+            probe.excitation_terms(excitation)
         }
-        &self.terms
     }
 
-    /// At the end of a tick of `dt` seconds under the excitation of the last
-    /// [`MuscleEnergy::excitation_terms`], whose end state gives `end`: the powers at the
-    /// tick's start are the last sample's, the phenomenological model's evaluated again if the
-    /// excitation changed.
-    pub fn end_tick(&mut self, probe: &MuscleProbe, end: MetabolicSample, dt: f64) {
+    /// A tick under `excitation` whose end state gives `end_of(terms)` (the sample at the
+    /// tick's end, given the excitation's terms): the powers at the tick's start are the last
+    /// sample's, the phenomenological model's evaluated again if the excitation changed. Changes
+    /// nothing, so that the parts of a limb compute it wherever they are stepped;
+    /// [`MuscleEnergy::commit`] carries it on.
+    pub fn tick(
+        &self,
+        probe: &MuscleProbe,
+        excitation: f64,
+        end_of: impl FnOnce(&ExcitationTerms) -> MetabolicSample,
+    ) -> TickEnergy {
+        let terms = self.terms_of(probe, excitation);
+        let end = end_of(&terms);
         let start = if end.probe_inputs.excitation == self.sample.probe_inputs.excitation {
             self.sample.powers()
         } else {
-            self.sample.powers_with_excitation(probe, &self.terms)
+            self.sample.powers_with_excitation(probe, &terms)
         };
-        let r = &end.rates;
+        TickEnergy { terms, start, end }
+    }
+
+    /// Carries a tick of `dt` seconds on ([`MuscleEnergy::tick`]): its energies integrated, its
+    /// end sample and terms kept for the next.
+    pub fn commit(&mut self, tick: &TickEnergy, dt: f64) {
+        let (start, r) = (&tick.start, &tick.end.rates);
         self.metabolic_j += 0.5 * dt * (start.metabolic_w + r.metabolic_w);
         self.phenomenological_j += 0.5 * dt * (start.phenomenological_w + r.phenomenological_w);
-        self.sample = end;
+        self.terms = tick.terms;
+        self.sample = tick.end;
     }
+}
+
+/// One muscle's energetics over one tick, before [`MuscleEnergy::commit`] carries them on.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TickEnergy {
+    /// The terms of the tick's excitation.
+    pub terms: ExcitationTerms,
+    /// The two powers at the tick's start.
+    pub start: EnergyPowers,
+    /// The sample at the tick's end.
+    pub end: MetabolicSample,
 }
 
 /// The last tick's sample (whether its rates are the bridges', what the probe read, the

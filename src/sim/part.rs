@@ -11,6 +11,7 @@ use crate::physics::energetics::probe::ExcitationTerms;
 use crate::physics::muscle_model::SubstepMotion;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::stepping::Stepping;
+use crate::sim::energy::{MuscleEnergy, TickEnergy};
 use crate::sim::jacobian::{self, JacobianScratch, PlantSystem};
 use crate::state_bytes::{SavedState, StateReader, StateWriter};
 use std::cell::RefCell;
@@ -93,6 +94,8 @@ pub struct Part {
     /// The ESDIRK stepper: ARK3(2)4L\[2\]SA (third order) for adaptive sub-steps, TR-BDF2 (second
     /// order) for fixed ones.
     stepper: Esdirk<ArrowheadMatrix>,
+    /// Its muscles' energetics over the last tick, until the whole commits them.
+    energy: Vec<TickEnergy>,
 }
 
 impl Part {
@@ -132,6 +135,7 @@ impl Part {
             inputs: Inputs::zeros(m, plant.joint_count()),
             a0: vec![0.0; m],
             lm_before: vec![0.0; m],
+            energy: vec![TickEnergy::default(); m],
             plant,
             muscles,
             joints,
@@ -182,6 +186,22 @@ impl Part {
         let a = self.memo.borrow().a[k];
         let s = self.plant.muscle_state(&self.y, k);
         self.plant.mtus[k].metabolic(terms, a, s)
+    }
+
+    /// Its muscles' energetics over the tick just stepped ([`MuscleEnergy::tick`]), from what
+    /// the whole carries of them (`carried`, by global muscle index): computed where the part
+    /// was stepped, read by [`Part::tick_energy`].
+    pub fn compute_energy(&mut self, carried: &[MuscleEnergy]) {
+        for k in 0..self.muscles.len() {
+            let (probe, u) = (&self.plant.mtus[k].probe, self.inputs.excitation[k]);
+            let tick = carried[self.muscles[k]].tick(probe, u, |terms| self.metabolic(k, terms));
+            self.energy[k] = tick;
+        }
+    }
+
+    /// Its muscles' energetics over the last tick, in local order ([`Part::compute_energy`]).
+    pub fn tick_energy(&self) -> &[TickEnergy] {
+        &self.energy
     }
 
     /// Work counters of its stepper.

@@ -200,8 +200,9 @@ impl Simulation {
         self.pool.as_ref().map_or(1, |p| p.current_num_threads())
     }
 
-    /// Gathers and steps every part over dt: whether all succeeded, and how many were stepped
-    /// (on one thread the parts after a failed one are not).
+    /// Gathers and steps every part over dt, each stepped part computing its muscles'
+    /// energetics where it was stepped: whether all succeeded, and how many were stepped (on one
+    /// thread the parts after a failed one are not).
     fn step_parts(&mut self, dt: f64) -> (bool, usize) {
         let Self {
             parts,
@@ -210,11 +211,16 @@ impl Simulation {
             inputs,
             stepping,
             pool,
+            energy,
             ..
         } = self;
         let one = |p: &mut Part| {
             p.gather(y, activation, inputs);
-            p.step(dt, *stepping)
+            let ok = p.step(dt, *stepping);
+            if ok {
+                p.compute_energy(energy);
+            }
+            ok
         };
         match pool {
             Some(pool) if parts.len() > 1 => {
@@ -257,10 +263,8 @@ impl Simulation {
         }
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
-            for (k, &i) in p.muscles().iter().enumerate() {
-                let (e, probe) = (&mut self.energy[i], &self.plant.mtus[i].probe);
-                let end = p.metabolic(k, e.excitation_terms(probe, self.inputs.excitation[i]));
-                e.end_tick(probe, end, dt);
+            for (&i, tick) in p.muscles().iter().zip(p.tick_energy()) {
+                self.energy[i].commit(tick, dt);
             }
         }
         // A driven joint shared by several parts: each integrated θ' = ω0 with its own
@@ -274,31 +278,40 @@ impl Simulation {
 
     /// Muscle i's published state.
     pub fn muscle_snapshot(&self, i: usize) -> MuscleSnapshot {
-        let mut s = self
-            .plant
-            .outputs(&self.y, &self.activation, &self.inputs, i);
-        let e = &self.energy[i];
-        let r = &e.sample.rates;
-        s.metabolic_power = r.metabolic_w;
-        s.activation_heat_rate = r.activation_heat_w;
-        s.shortening_heat_rate = r.shortening_heat_w;
-        s.work_rate = r.work_w;
-        s.bridge_storage_rate = r.storage_w;
-        s.atp_rate = r.atp_rate_mol_s;
-        s.metabolic_energy = e.metabolic_j;
-        s.phenomenological_power = r.phenomenological_w;
-        s.phenomenological_energy = e.phenomenological_j;
-        s
+        published(
+            &self.plant,
+            &self.y,
+            &self.activation,
+            &self.inputs,
+            &self.energy[i],
+            i,
+        )
     }
 
-    /// Fills `out` with the published state (its vectors keep their storage).
+    /// Fills `out` with the published state (its vectors keep their storage); the muscles'
+    /// states on the simulation's threads, each computed by the same code wherever it runs.
     pub fn fill_snapshot(&self, out: &mut StateSnapshot) {
         let (m, n) = (self.plant.muscle_count(), self.plant.joint_count());
         out.muscles.resize(m, MuscleSnapshot::default());
         out.joints.resize(n, JointSnapshot::default());
         out.stiffness_matrix.resize(n * n, 0.0);
-        for i in 0..m {
-            out.muscles[i] = self.muscle_snapshot(i);
+        let Self {
+            plant,
+            y,
+            activation,
+            inputs,
+            energy,
+            pool,
+            ..
+        } = self;
+        let one = |(i, s): (usize, &mut MuscleSnapshot)| {
+            *s = published(plant, y, activation, inputs, &energy[i], i);
+        };
+        match pool {
+            Some(pool) if m > 1 => {
+                pool.install(|| out.muscles.par_iter_mut().enumerate().for_each(one))
+            }
+            _ => out.muscles.iter_mut().enumerate().for_each(one),
         }
         let muscles = &out.muscles;
         self.plant.stiffness_matrix(
@@ -371,4 +384,28 @@ impl SavedState for Simulation {
         }
         Ok(())
     }
+}
+
+/// Muscle i's published state: the plant's outputs at state `y` and activations `activation`
+/// under `inputs`, with its energetics `e`.
+fn published(
+    plant: &Plant,
+    y: &[f64],
+    activation: &[f64],
+    inputs: &Inputs,
+    e: &MuscleEnergy,
+    i: usize,
+) -> MuscleSnapshot {
+    let mut s = plant.outputs(y, activation, inputs, i);
+    let r = &e.sample.rates;
+    s.metabolic_power = r.metabolic_w;
+    s.activation_heat_rate = r.activation_heat_w;
+    s.shortening_heat_rate = r.shortening_heat_w;
+    s.work_rate = r.work_w;
+    s.bridge_storage_rate = r.storage_w;
+    s.atp_rate = r.atp_rate_mol_s;
+    s.metabolic_energy = e.metabolic_j;
+    s.phenomenological_power = r.phenomenological_w;
+    s.phenomenological_energy = e.phenomenological_j;
+    s
 }
