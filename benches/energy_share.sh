@@ -2,10 +2,9 @@
 # The share of a steady tick (`benches/tick.rs`, tick_default_actuator) spent on the energetics,
 # per model, from a sampling profile rather than from two versions' times (which drift with the
 # load): `perf record` with DWARF call graphs while the benchmark runs, then the inclusive
-# share of where the energetics are computed in a tick: sim::part::Part::compute_energy (in
-# each part where it is stepped: a new command's terms, MuscleEnergy::terms_of; the fluxes and
-# probe at the tick's end, Part::metabolic; the start powers) and MuscleEnergy::commit (the
-# integrals).
+# share of where the energetics are computed in a tick: sim::part::Part::energy_of (per muscle:
+# a new command's terms, MuscleEnergy::terms_of; the fluxes and probe at the tick's end,
+# Part::metabolic; the start powers) and MuscleEnergy::commit (the integrals).
 #
 #   benches/energy_share.sh [SECONDS]      (default 4 s of profile per model; needs `perf`)
 set -euo pipefail
@@ -18,7 +17,7 @@ BIN="$(cd "$ROOT" && cargo bench --bench tick --no-run --message-format=json 2>/
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-8s %10s %10s %10s %10s %8s\n' model in_parts metabolic terms_of commit total
+printf '%-8s %10s %10s %10s %10s %8s\n' model energy_of metabolic terms_of commit total
 for model in hill huxley; do
   perf record --quiet --call-graph dwarf,16384 -F 2000 -o "$TMP/$model.data" \
     "$BIN" --bench --noplot "tick_default_actuator/$model\$" --profile-time "$SECONDS_PER_MODEL" \
@@ -27,7 +26,7 @@ for model in hill huxley; do
   share() {
     grep -E "^ +[0-9.]+%" "$TMP/$model.txt" | grep -F "$1" | head -n 1 | awk '{print $1}' | tr -d % || true
   }
-  p="$(share 'sim::part::Part::compute_energy')"
+  p="$(share 'sim::part::Part::energy_of')"
   m="$(share 'sim::part::Part::metabolic')"
   x="$(share 'MuscleEnergy::terms_of')"
   c="$(share 'MuscleEnergy::commit')"

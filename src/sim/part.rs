@@ -188,14 +188,19 @@ impl Part {
         self.plant.mtus[k].metabolic(terms, a, s)
     }
 
-    /// Its muscles' energetics over the tick just stepped ([`MuscleEnergy::tick`]), from what
-    /// the whole carries of them (`carried`, by global muscle index): computed where the part
-    /// was stepped, read by [`Part::tick_energy`].
+    /// Local muscle k's energetics over the tick just stepped ([`MuscleEnergy::tick`]), from
+    /// what the whole carries of it.
+    pub fn energy_of(&self, k: usize, carried: &MuscleEnergy) -> TickEnergy {
+        let (probe, u) = (&self.plant.mtus[k].probe, self.inputs.excitation[k]);
+        carried.tick(probe, u, |terms| self.metabolic(k, terms))
+    }
+
+    /// Every muscle's [`Part::energy_of`], from what the whole carries of them (`carried`, by
+    /// global muscle index), kept for [`Part::tick_energy`]: for a part stepped on a thread of
+    /// its own, which computes them there.
     pub fn compute_energy(&mut self, carried: &[MuscleEnergy]) {
         for k in 0..self.muscles.len() {
-            let (probe, u) = (&self.plant.mtus[k].probe, self.inputs.excitation[k]);
-            let tick = carried[self.muscles[k]].tick(probe, u, |terms| self.metabolic(k, terms));
-            self.energy[k] = tick;
+            self.energy[k] = self.energy_of(k, &carried[self.muscles[k]]);
         }
     }
 

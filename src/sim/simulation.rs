@@ -200,9 +200,15 @@ impl Simulation {
         self.pool.as_ref().map_or(1, |p| p.current_num_threads())
     }
 
-    /// Gathers and steps every part over dt, each stepped part computing its muscles'
-    /// energetics where it was stepped: whether all succeeded, and how many were stepped (on one
-    /// thread the parts after a failed one are not).
+    /// Whether its parts are stepped on its threads (more than one thread and one part).
+    fn parts_on_threads(&self) -> bool {
+        self.pool.is_some() && self.parts.len() > 1
+    }
+
+    /// Gathers and steps every part over dt: whether all succeeded, and how many were stepped
+    /// (on one thread the parts after a failed one are not). On threads each part computes its
+    /// muscles' energetics where it was stepped ([`Part::compute_energy`]); on one thread
+    /// [`Simulation::step`] computes them as it commits them, by the same code.
     fn step_parts(&mut self, dt: f64) -> (bool, usize) {
         let Self {
             parts,
@@ -216,16 +222,22 @@ impl Simulation {
         } = self;
         let one = |p: &mut Part| {
             p.gather(y, activation, inputs);
-            let ok = p.step(dt, *stepping);
-            if ok {
-                p.compute_energy(energy);
-            }
-            ok
+            p.step(dt, *stepping)
         };
         match pool {
             Some(pool) if parts.len() > 1 => {
-                let ok =
-                    pool.install(|| parts.par_iter_mut().map(one).reduce(|| true, |a, b| a && b));
+                let ok = pool.install(|| {
+                    parts
+                        .par_iter_mut()
+                        .map(|p| {
+                            let ok = one(p);
+                            if ok {
+                                p.compute_energy(energy);
+                            }
+                            ok
+                        })
+                        .reduce(|| true, |a, b| a && b)
+                });
                 (ok, parts.len())
             }
             _ => {
@@ -261,10 +273,17 @@ impl Simulation {
                 reason,
             });
         }
+        let on_threads = self.parts_on_threads();
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
-            for (&i, tick) in p.muscles().iter().zip(p.tick_energy()) {
-                self.energy[i].commit(tick, dt);
+            for (k, &i) in p.muscles().iter().enumerate() {
+                let e = &mut self.energy[i];
+                if on_threads {
+                    e.commit(&p.tick_energy()[k], dt);
+                } else {
+                    let tick = p.energy_of(k, e);
+                    e.commit(&tick, dt);
+                }
             }
         }
         // A driven joint shared by several parts: each integrated θ' = ω0 with its own
@@ -304,14 +323,17 @@ impl Simulation {
             pool,
             ..
         } = self;
-        let one = |(i, s): (usize, &mut MuscleSnapshot)| {
-            *s = published(plant, y, activation, inputs, &energy[i], i);
-        };
         match pool {
-            Some(pool) if m > 1 => {
-                pool.install(|| out.muscles.par_iter_mut().enumerate().for_each(one))
+            Some(pool) if m > 1 => pool.install(|| {
+                out.muscles.par_iter_mut().enumerate().for_each(|(i, s)| {
+                    *s = published(plant, y, activation, inputs, &energy[i], i);
+                })
+            }),
+            _ => {
+                for i in 0..m {
+                    out.muscles[i] = published(plant, y, activation, inputs, &energy[i], i);
+                }
             }
-            _ => out.muscles.iter_mut().enumerate().for_each(one),
         }
         let muscles = &out.muscles;
         self.plant.stiffness_matrix(
@@ -388,6 +410,7 @@ impl SavedState for Simulation {
 
 /// Muscle i's published state: the plant's outputs at state `y` and activations `activation`
 /// under `inputs`, with its energetics `e`.
+#[inline]
 fn published(
     plant: &Plant,
     y: &[f64],
