@@ -7,6 +7,9 @@
 #                            OTHER_TARGET_DIR: where to build it
 #   executable_of KIND       the last executable of KIND (bench, example) in cargo's JSON
 #                            messages on stdin
+#   steady_ticks_pair        after other_checkout: examples/steady_ticks.rs (this checkout's,
+#                            copied into the other) built in both, as "$TMP/this" and
+#                            "$TMP/other_bin"
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
 # The other commit builds in a target dir of its own, kept between runs: cargo hashes a path
 # dependency (the vendored rustdds) by its place in the workspace, so the two checkouts' copies
@@ -25,4 +28,14 @@ other_checkout() {
 
 executable_of() {
   grep "\"kind\":\[\"$1\"\]" | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1
+}
+
+steady_ticks_pair() {
+  built() { # the example's executable, built in the checkout $1
+    (cd "$1" && cargo build --release --example steady_ticks --message-format=json 2>/dev/null) |
+      executable_of example
+  }
+  cp "$ROOT/examples/steady_ticks.rs" "$TMP/other/examples/"
+  cp "$(built "$ROOT")" "$TMP/this"
+  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other")" "$TMP/other_bin"
 }

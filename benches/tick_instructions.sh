@@ -12,14 +12,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 COMMIT="${1:?usage: benches/tick_instructions.sh COMMIT}"
 command -v valgrind >/dev/null || { echo "tick_instructions: needs valgrind" >&2; exit 1; }
 source "$ROOT/benches/other_commit.sh"
-built() { # the example's executable, built in the checkout $1
-  (cd "$1" && cargo build --release --example steady_ticks --message-format=json 2>/dev/null) |
-    executable_of example
-}
 other_checkout "$COMMIT"
-cp "$ROOT/examples/steady_ticks.rs" "$TMP/other/examples/"
-cp "$(built "$ROOT")" "$TMP/this"
-cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other")" "$TMP/other_bin"
+steady_ticks_pair
 
 count() { # instructions of `$1 MODEL TICKS`
   valgrind --tool=callgrind --callgrind-out-file=/dev/null "$1" "$2" "$3" 2>&1 >/dev/null |

@@ -16,14 +16,8 @@ COMMIT="${1:?usage: benches/tick_paired.sh COMMIT [ROUNDS] [TICKS]}"
 ROUNDS="${2:-21}"
 TICKS="${3:-200000}"
 source "$ROOT/benches/other_commit.sh"
-built() { # the example's executable, built in the checkout $1
-  (cd "$1" && cargo build --release --example steady_ticks --message-format=json 2>/dev/null) |
-    executable_of example
-}
 other_checkout "$COMMIT"
-cp "$ROOT/examples/steady_ticks.rs" "$TMP/other/examples/"
-cp "$(built "$ROOT")" "$TMP/this"
-cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other")" "$TMP/other_bin"
+steady_ticks_pair
 
 ns_of() { # wall time of `$1 MODEL TICKS`, ns
   local t0 t1
