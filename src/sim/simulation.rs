@@ -210,6 +210,7 @@ impl Simulation {
     /// muscles' energetics where it was stepped ([`Part::compute_energy`]); on one thread
     /// [`Simulation::step`] computes them as it commits them, by the same code.
     fn step_parts(&mut self, dt: f64) -> (bool, usize) {
+        let on_threads = self.parts_on_threads();
         let Self {
             parts,
             y,
@@ -225,7 +226,7 @@ impl Simulation {
             p.step(dt, *stepping)
         };
         match pool {
-            Some(pool) if parts.len() > 1 => {
+            Some(pool) if on_threads => {
                 let ok = pool.install(|| {
                     parts
                         .par_iter_mut()
