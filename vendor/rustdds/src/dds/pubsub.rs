@@ -521,15 +521,17 @@ impl InnerPublisher {
     // stop-and-wait -- every write must await the previous sample's ACK -- and
     // spuriously returns `WouldBlock` when an ACK is slower than
     // `max_blocking_time` (e.g. under the normal discovery race). Use the
-    // resource limit when set, otherwise the default.
+    // resource limit when set, otherwise the default. A KEEP_LAST writer has no
+    // window at all: it displaces its oldest sample instead of waiting.
     let window_limit = resource_max.unwrap_or(DEFAULT_WRITER_MAX_SAMPLES);
     // nonblocking-transmit: the unsent-backlog limit bounds how many admitted
     // samples may await transmission when the network socket is congested. We
     // reuse the same capacity as the reliable window.
     let backlog_limit = window_limit;
-    // KeepLast-style hard cap on retained samples for best-effort (non-blocking)
-    // writes, which are not throttled at admission, and for reliable writers
-    // before a reader matches. This is where the History depth applies.
+    // KeepLast-style hard cap on retained samples: for every KEEP_LAST writer,
+    // for best-effort (non-blocking) writes, which are not throttled at
+    // admission, and for reliable writers before a reader matches. This is where
+    // the History depth applies.
     let max_retain = match writer_qos.history() {
       Some(policy::History::KeepLast { depth }) => {
         let d = (depth as usize).max(1);
@@ -537,21 +539,23 @@ impl InnerPublisher {
       }
       _ => resource_max.unwrap_or(DEFAULT_WRITER_MAX_SAMPLES),
     };
-    // Default durability is VOLATILE (DDS v1.4 2.2.3). Only VOLATILE reliable
-    // writers may trim KeepLast before a reader matches; durable writers must
-    // retain samples for late joiners.
+    // Default durability is VOLATILE (DDS v1.4 2.2.3). A reliable writer that is
+    // not KEEP_LAST trims before a reader matches only when VOLATILE; a durable
+    // one must retain samples for late joiners.
     let volatile = matches!(
       writer_qos
         .durability()
         .unwrap_or(policy::Durability::Volatile),
       policy::Durability::Volatile
     );
+    let keep_last = matches!(writer_qos.history(), Some(policy::History::KeepLast { .. }));
     let send_buffer = WriterSendBuffer::new(
       guid,
       topic.name(),
       writer_qos.is_reliable(),
       guid.entity_id.entity_kind.is_built_in(),
       volatile,
+      keep_last,
       window_limit,
       backlog_limit,
       max_retain,

@@ -2874,6 +2874,7 @@ mod tests {
           true, // reliable
           writer_id.kind().is_built_in(),
           false,
+          matches!(writer_qos.history(), Some(History::KeepLast { .. })),
           DEFAULT_WRITER_MAX_SAMPLES,
           DEFAULT_WRITER_MAX_SAMPLES,
           DEFAULT_WRITER_MAX_SAMPLES,

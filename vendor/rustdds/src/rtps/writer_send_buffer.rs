@@ -89,6 +89,14 @@ struct Shared {
   // (TRANSIENT_LOCAL / TRANSIENT / PERSISTENT) the writer must retain samples for
   // late-joining readers, so pre-match trimming is disabled.
   volatile: bool,
+  // True for a KEEP_LAST History. Such a writer keeps the newest `max_retain`
+  // (= depth) samples whether or not its readers have acknowledged them, and a
+  // write never waits for acknowledgements or for the socket: the DDS History
+  // policy keeps "the most recent depth samples" on the publishing side (DDS
+  // v1.4 2.2.3.18), and Fast DDS's KEEP_LAST writers do the same. A reader that
+  // falls behind is told by HEARTBEAT (first available sequence number) and GAP
+  // that the displaced samples are gone, and receives the newest ones instead.
+  keep_last: bool,
   topic_name: String,
 }
 
@@ -114,6 +122,7 @@ impl WriterSendBuffer {
     reliable_writer: bool,
     is_builtin: bool,
     volatile: bool,
+    keep_last: bool,
     window_limit: usize,
     backlog_limit: usize,
     max_retain: usize,
@@ -137,6 +146,7 @@ impl WriterSendBuffer {
         reliable_writer,
         is_builtin,
         volatile,
+        keep_last,
         topic_name,
       }),
     }
@@ -159,6 +169,12 @@ impl WriterSendBuffer {
     if !may_block {
       // Best-effort write that must not block (DDS v1.4 2.2.2.4.2.11 default).
       // Never throttle admission.
+      return true;
+    }
+
+    if shared.reliable_writer && shared.keep_last {
+      // KEEP_LAST: the write displaces the oldest sample instead of waiting
+      // (`insert_locked`).
       return true;
     }
 
@@ -286,10 +302,13 @@ impl WriterSendBuffer {
     //    ms) heartbeat cadence -- collapsing reliable throughput. Trimming to
     //    KeepLast here keeps only the recent samples (correct for volatile
     //    durability); once a reliable reader matches, `reliable_readers_present`
-    //    flips true and we retain everything again for repair.
+    //    flips true and a writer that is not KEEP_LAST retains everything again
+    //    for repair;
+    //  - KEEP_LAST writers, always (see `Shared::keep_last`).
     // Built-in (discovery) writers are always exempt to never lose discovery data.
     let trim_keep_last = !shared.is_builtin
       && (!may_block
+        || shared.keep_last
         || (shared.reliable_writer && shared.volatile && !inner.reliable_readers_present));
     if trim_keep_last {
       while inner.changes.len() > inner.max_retain {
@@ -482,6 +501,7 @@ mod tests {
       /* reliable_writer */ true,
       /* is_builtin */ false,
       /* volatile */ true,
+      /* keep_last */ false,
       /* window_limit */ 1,
       /* backlog_limit */ 1000,
       /* max_retain */ 1,
@@ -508,6 +528,7 @@ mod tests {
       /* reliable_writer */ false,
       /* is_builtin */ false,
       /* volatile */ true,
+      /* keep_last */ false,
       /* window_limit */ 1000,
       /* backlog_limit */ 2,
       /* max_retain */ 1000,
@@ -536,6 +557,7 @@ mod tests {
       /* reliable_writer */ false,
       /* is_builtin */ false,
       /* volatile */ true,
+      /* keep_last */ false,
       /* window_limit */ 1000,
       /* backlog_limit */ 1,
       /* max_retain */ 1000,
@@ -556,6 +578,7 @@ mod tests {
       false,
       /* is_builtin */ true,
       /* volatile */ true,
+      /* keep_last */ false,
       1000,
       /* backlog_limit */ 1,
       /* max_retain */ 1000,
@@ -580,6 +603,7 @@ mod tests {
       /* reliable_writer */ false,
       /* is_builtin */ false,
       /* volatile */ true,
+      /* keep_last */ false,
       /* window_limit */ 1000,
       /* backlog_limit */ 1000,
       max_retain,
@@ -615,6 +639,7 @@ mod tests {
       /* reliable_writer */ true,
       /* is_builtin */ false,
       /* volatile */ false, // TRANSIENT_LOCAL etc: keep for late joiners
+      /* keep_last */ false,
       /* window_limit */ 1000,
       /* backlog_limit */ 1000,
       max_retain,
@@ -643,6 +668,7 @@ mod tests {
       /* reliable_writer */ true,
       /* is_builtin */ false,
       /* volatile */ true,
+      /* keep_last */ false,
       /* window_limit */ 1000,
       /* backlog_limit */ 1000,
       max_retain,
@@ -662,5 +688,75 @@ mod tests {
       assert!(admit_now(&buf, WriteOptions::default()));
     }
     assert_eq!(buf.retained_len(), max_retain + 10);
+  }
+  // A reliable KEEP_LAST writer whose reader acknowledges nothing (it fell
+  // behind) keeps admitting every write at once and keeps only the newest
+  // `depth` samples: the first available sequence number, which its HEARTBEATs
+  // announce, moves on with them. A KEEP_ALL writer with the same window waits.
+  #[test]
+  fn reliable_keep_last_writer_displaces_unacknowledged_samples() {
+    let depth = 10;
+    let make = |keep_last| {
+      WriterSendBuffer::new(
+        GUID::GUID_UNKNOWN,
+        "t".to_string(),
+        /* reliable_writer */ true,
+        /* is_builtin */ false,
+        /* volatile */ true,
+        keep_last,
+        /* window_limit */ 100,
+        /* backlog_limit */ 100,
+        /* max_retain */ depth,
+      )
+    };
+    let keep_last = make(true);
+    keep_last.set_acked_frontier(Some(SequenceNumber::new(1))); // matched, nothing acked
+    for _ in 0..1000 {
+      assert!(admit_now(&keep_last, WriteOptions::default()));
+      assert!(keep_last.retained_len() <= depth);
+    }
+    assert_eq!(
+      keep_last.last_change_sequence_number(),
+      SequenceNumber::new(1000)
+    );
+    assert_eq!(
+      keep_last.first_change_sequence_number(),
+      SequenceNumber::new(991)
+    );
+    assert!(keep_last.get_by_sn(SequenceNumber::new(990)).is_none());
+    assert!(keep_last.get_by_sn(SequenceNumber::new(991)).is_some());
+
+    let keep_all = make(false);
+    keep_all.set_acked_frontier(Some(SequenceNumber::new(1)));
+    let admitted = (0..1000)
+      .take_while(|_| admit_now(&keep_all, WriteOptions::default()))
+      .count();
+    assert_eq!(admitted, 100, "the window bounds a KEEP_ALL writer");
+    assert_eq!(
+      keep_all.first_change_sequence_number(),
+      SequenceNumber::new(1)
+    );
+  }
+
+  // Durability does not change KEEP_LAST: a transient-local writer keeps its
+  // newest `depth` samples for late joiners, not every unacknowledged one.
+  #[test]
+  fn durable_keep_last_writer_keeps_depth() {
+    let buf = WriterSendBuffer::new(
+      GUID::GUID_UNKNOWN,
+      "t".to_string(),
+      /* reliable_writer */ true,
+      /* is_builtin */ false,
+      /* volatile */ false,
+      /* keep_last */ true,
+      /* window_limit */ 1000,
+      /* backlog_limit */ 1000,
+      /* max_retain */ 3,
+    );
+    for _ in 0..10 {
+      assert!(admit_now(&buf, WriteOptions::default()));
+    }
+    assert_eq!(buf.retained_len(), 3);
+    assert_eq!(buf.first_change_sequence_number(), SequenceNumber::new(8));
   }
 }
