@@ -1,5 +1,6 @@
 # Sourced by the benchmarks that measure this checkout beside another commit in one run
-# (benches/tick_against.sh, benches/tick_instructions.sh). With ROOT set to this checkout:
+# (benches/tick_against.sh, benches/tick_instructions.sh, benches/tick_paired.sh,
+# benches/threads_paired.sh). With ROOT set to this checkout:
 #
 #   other_checkout COMMIT    TMP: a temporary directory, removed on exit; "$TMP/other": COMMIT
 #                            in a git worktree, with the patch OTHER_PATCH applied if set

@@ -136,9 +136,7 @@ impl Actuator {
     /// Advances one tick. On a failure it returns an error and leaves the state as it was; call
     /// `reset`.
     pub fn step(&mut self) -> Result<(), StepError> {
-        self.sim.step()?;
-        self.sim.fill_snapshot(&mut self.state);
-        Ok(())
+        self.sim.step_and_fill(&mut self.state)
     }
     /// Steps its independent parts on `threads` threads ([`Simulation::set_threads`]: the same
     /// results to the bit; 1, the default, steps them on the caller's thread).

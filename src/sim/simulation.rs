@@ -205,10 +205,17 @@ impl Simulation {
         self.pool.is_some() && self.parts.len() > 1
     }
 
+    /// Whether its muscles' published states are computed on its threads (more than one
+    /// thread and one muscle).
+    fn muscles_on_threads(&self) -> bool {
+        self.pool.is_some() && self.plant.muscle_count() > 1
+    }
+
     /// Gathers and steps every part over dt: whether all succeeded, and how many were stepped
-    /// (on one thread the parts after a failed one are not). On threads each part computes its
-    /// muscles' energetics where it was stepped ([`Part::compute_energy`]); on one thread
-    /// [`Simulation::step`] computes them as it commits them, by the same code.
+    /// (on one thread the parts after a failed one are not). On threads (called within the
+    /// pool) each part computes its muscles' energetics where it was stepped
+    /// ([`Part::compute_energy`]); on one thread [`Simulation::step`] computes them as it
+    /// commits them, by the same code.
     fn step_parts(&mut self, dt: f64) -> (bool, usize) {
         let on_threads = self.parts_on_threads();
         let Self {
@@ -217,7 +224,6 @@ impl Simulation {
             activation,
             inputs,
             stepping,
-            pool,
             energy,
             ..
         } = self;
@@ -225,38 +231,66 @@ impl Simulation {
             p.gather(y, activation, inputs);
             p.step(dt, *stepping)
         };
-        match pool {
-            Some(pool) if on_threads => {
-                let ok = pool.install(|| {
-                    parts
-                        .par_iter_mut()
-                        .map(|p| {
-                            let ok = one(p);
-                            if ok {
-                                p.compute_energy(energy);
-                            }
-                            ok
-                        })
-                        .reduce(|| true, |a, b| a && b)
-                });
-                (ok, parts.len())
-            }
-            _ => {
-                let mut stepped = 0;
-                for p in parts.iter_mut() {
-                    stepped += 1;
-                    if !one(p) {
-                        return (false, stepped);
+        if on_threads {
+            let ok = parts
+                .par_iter_mut()
+                .map(|p| {
+                    let ok = one(p);
+                    if ok {
+                        p.compute_energy(energy);
                     }
-                }
-                (true, stepped)
+                    ok
+                })
+                .reduce(|| true, |a, b| a && b);
+            return (ok, parts.len());
+        }
+        let mut stepped = 0;
+        for p in parts.iter_mut() {
+            stepped += 1;
+            if !one(p) {
+                return (false, stepped);
             }
+        }
+        (true, stepped)
+    }
+
+    /// Runs `work` within its pool when it has one (its parallel iterators then run on the
+    /// pool's threads, the caller's thread waiting once), else here.
+    fn in_pool<R: Send>(&mut self, work: impl FnOnce(&mut Self) -> R + Send) -> R {
+        match self.pool.clone() {
+            Some(pool) => pool.install(|| work(self)),
+            None => work(self),
         }
     }
 
     /// Advances one tick, each part with its own sub-steps. A failed or non-finite result
     /// restores the previous state (of every part) and is reported.
     pub fn step(&mut self) -> Result<(), StepError> {
+        if self.parts_on_threads() {
+            self.in_pool(Self::step_here)
+        } else {
+            self.step_here()
+        }
+    }
+
+    /// Advances one tick and fills `out` with the published state: [`Simulation::step`] then
+    /// [`Simulation::fill_snapshot`], with one hand-over to its threads for both. On a failure
+    /// `out` is left as it was.
+    pub fn step_and_fill(&mut self, out: &mut StateSnapshot) -> Result<(), StepError> {
+        let mut both = |s: &mut Self| {
+            s.step_here()?;
+            s.fill_here(out, None);
+            Ok(())
+        };
+        if self.parts_on_threads() || self.muscles_on_threads() {
+            self.in_pool(both)
+        } else {
+            both(self)
+        }
+    }
+
+    /// [`Simulation::step`], within the pool when on threads.
+    fn step_here(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
         let (ok, stepped) = self.step_parts(dt);
         let finite = ok && self.parts.iter().all(|p| p.is_finite());
@@ -311,6 +345,12 @@ impl Simulation {
     /// Fills `out` with the published state (its vectors keep their storage); the muscles'
     /// states on the simulation's threads, each computed by the same code wherever it runs.
     pub fn fill_snapshot(&self, out: &mut StateSnapshot) {
+        self.fill_here(out, self.pool.as_deref());
+    }
+
+    /// [`Simulation::fill_snapshot`]: with the muscles on its threads, they are handed to
+    /// `pool`, or computed here when this runs within the pool already (`pool` None).
+    fn fill_here(&self, out: &mut StateSnapshot, pool: Option<&rayon::ThreadPool>) {
         let (m, n) = (self.plant.muscle_count(), self.plant.joint_count());
         out.muscles.resize(m, MuscleSnapshot::default());
         out.joints.resize(n, JointSnapshot::default());
@@ -321,19 +361,22 @@ impl Simulation {
             activation,
             inputs,
             energy,
-            pool,
             ..
         } = self;
-        match pool {
-            Some(pool) if m > 1 => pool.install(|| {
-                out.muscles.par_iter_mut().enumerate().for_each(|(i, s)| {
+        if self.muscles_on_threads() {
+            let states = &mut out.muscles;
+            let mut all = || {
+                states.par_iter_mut().enumerate().for_each(|(i, s)| {
                     *s = published(plant, y, activation, inputs, &energy[i], i);
                 })
-            }),
-            _ => {
-                for i in 0..m {
-                    out.muscles[i] = published(plant, y, activation, inputs, &energy[i], i);
-                }
+            };
+            match pool {
+                Some(pool) => pool.install(all),
+                None => all(),
+            }
+        } else {
+            for i in 0..m {
+                out.muscles[i] = published(plant, y, activation, inputs, &energy[i], i);
             }
         }
         let muscles = &out.muscles;
