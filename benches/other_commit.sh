@@ -1,6 +1,6 @@
 # Sourced by the benchmarks that measure this checkout beside another commit in one run
 # (benches/tick_against.sh, benches/tick_instructions.sh, benches/tick_paired.sh,
-# benches/threads_paired.sh). With ROOT set to this checkout:
+# benches/threads_paired.sh, benches/pulse_paired.sh). With ROOT set to this checkout:
 #
 #   other_checkout COMMIT    TMP: a temporary directory, removed on exit; "$TMP/other": COMMIT
 #                            in a git worktree, with the patch OTHER_PATCH applied if set
@@ -8,9 +8,9 @@
 #                            OTHER_TARGET_DIR: where to build it
 #   executable_of KIND       the last executable of KIND (bench, example) in cargo's JSON
 #                            messages on stdin
-#   steady_ticks_pair        after other_checkout: examples/steady_ticks.rs (this checkout's,
-#                            copied into the other) built in both, as "$TMP/this" and
-#                            "$TMP/other_bin"
+#   example_pair NAME        after other_checkout: examples/NAME.rs (this checkout's, copied
+#                            into the other) built in both, as "$TMP/this" and "$TMP/other_bin"
+#   steady_ticks_pair        example_pair steady_ticks
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
 # The other commit builds in a target dir of its own, kept between runs: cargo hashes a path
 # dependency (the vendored rustdds) by its place in the workspace, so the two checkouts' copies
@@ -31,12 +31,16 @@ executable_of() {
   grep "\"kind\":\[\"$1\"\]" | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1
 }
 
-steady_ticks_pair() {
+example_pair() { # NAME: this checkout's examples/NAME.rs built here and in the other checkout
   built() { # the example's executable, built in the checkout $1
-    (cd "$1" && cargo build --release --example steady_ticks --message-format=json 2>/dev/null) |
+    (cd "$1" && cargo build --release --example "$2" --message-format=json 2>/dev/null) |
       executable_of example
   }
-  cp "$ROOT/examples/steady_ticks.rs" "$TMP/other/examples/"
-  cp "$(built "$ROOT")" "$TMP/this"
-  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other")" "$TMP/other_bin"
+  cp "$ROOT/examples/$1.rs" "$TMP/other/examples/"
+  cp "$(built "$ROOT" "$1")" "$TMP/this"
+  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1")" "$TMP/other_bin"
+}
+
+steady_ticks_pair() {
+  example_pair steady_ticks
 }

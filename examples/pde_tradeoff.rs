@@ -34,7 +34,7 @@ fn main() {
                 )
                 .unwrap();
             let per_tick = t.elapsed().as_secs_f64() * 1e6 / 3000.0;
-            let rec = &run.records[1900].muscles[0];
+            let rec = &run.record(1900).muscles[0];
             let exact = p.f_max * force_length(rec.fiber_length, p.l_opt, p.fl_width, p.fl_shape);
             // Steady shortening at vmax/2 on this grid (kinematic), against the oracle.
             let cal = calibrate_exact(&p);

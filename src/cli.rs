@@ -315,11 +315,11 @@ fn simulate(
     if let Some(path) = csv {
         crate::csv::write_csv_to(&run, path)?;
     }
-    let last = run.records.last().ok_or("the scenario produced no ticks")?;
+    let last = run.last().ok_or("the scenario produced no ticks")?;
     eprintln!(
         "{}: {} ticks of {} at {} Hz; final tendon force {:.3} N, fibre length {:.6} m",
         run.scenario,
-        run.records.len() - 1,
+        run.len() - 1,
         run.model,
         run.rate_hz,
         last.muscles[0].force,

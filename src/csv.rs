@@ -24,7 +24,7 @@ pub fn header(joint_names: &[String]) -> Vec<String> {
 pub fn write_csv(run: &Run, out: &mut impl Write) -> std::io::Result<()> {
     writeln!(out, "{}", header(&run.joint_names).join(","))?;
     let blank = ",".repeat(JointSnapshot::FIELDS.len());
-    for rec in &run.records {
+    for rec in run.records() {
         for (i, (m, name)) in rec.muscles.iter().zip(&run.muscle_names).enumerate() {
             write!(out, "{},{}", rec.time, name)?;
             for x in m.values() {

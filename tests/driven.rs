@@ -94,7 +94,7 @@ fn held_driven_joint_is_a_clamped_muscle() {
         let run = |s: &Scenario| s.run(&cfg, model, 1000.0, default_stepping(model)).unwrap();
         let (d, c) = (run(&driven), run(&clamped));
         let mut worst = 0.0f64;
-        for (rd, rc) in d.records.iter().zip(&c.records) {
+        for (rd, rc) in d.records().zip(c.records()) {
             let (md, mc) = (rd.muscles[0], rc.muscles[0]);
             worst = worst.max(rel(md.force, mc.force));
             worst = worst.max(rel(md.fiber_length, mc.fiber_length));
@@ -103,11 +103,7 @@ fn held_driven_joint_is_a_clamped_muscle() {
             // The net torque on the joint is the moment arm times the clamped tendon force.
             assert!(rel(rd.joints[0].torque, 0.03 * mc.force) <= 1e-12);
         }
-        let peak = c
-            .records
-            .iter()
-            .map(|r| r.muscles[0].force)
-            .fold(0.0, f64::max);
+        let peak = c.records().map(|r| r.muscles[0].force).fold(0.0, f64::max);
         println!(
             "{model}: driven vs clamped worst relative difference {worst:.2e} (peak {peak:.1} N)"
         );

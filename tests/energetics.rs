@@ -28,9 +28,9 @@ fn run(name: &str, cfg: &ActuatorConfig, model: ModelKind, rate_hz: f64) -> Run 
 
 /// The trapezoidal integral of `f` over muscle i's records, J for a power in W.
 fn integral(run: &Run, i: usize, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
-    run.records
-        .windows(2)
-        .map(|w| 0.5 * (w[1].time - w[0].time) * (f(&w[0].muscles[i]) + f(&w[1].muscles[i])))
+    run.records()
+        .zip(run.records().skip(1))
+        .map(|(a, b)| 0.5 * (b.time - a.time) * (f(&a.muscles[i]) + f(&b.muscles[i])))
         .sum()
 }
 
@@ -68,10 +68,7 @@ fn bridges_balance_chemical_energy_with_work_heat_and_strain() {
                 let chem_detach = integral(&r, i, |m| m.metabolic_power - m.activation_heat_rate);
                 let work = integral(&r, i, |m| m.work_rate);
                 let heat = integral(&r, i, |m| m.shortening_heat_rate);
-                let (first, last) = (
-                    &r.records[0].muscles[i],
-                    &r.records.last().unwrap().muscles[i],
-                );
+                let (first, last) = (&r.record(0).muscles[i], &r.last().unwrap().muscles[i]);
                 let strain = last.crossbridge_energy - first.crossbridge_energy;
                 let bound = per_q0 * (last.q0 - first.q0);
                 let chem_attach = chem_detach + bound;
@@ -106,8 +103,8 @@ fn parts_sum_to_totals_and_energies_integrate_powers() {
             model,
             1000.0,
         );
-        for rec in &r.records {
-            for m in &rec.muscles {
+        for rec in r.records() {
+            for m in rec.muscles {
                 let parts = m.activation_heat_rate
                     + m.shortening_heat_rate
                     + m.work_rate
@@ -128,7 +125,7 @@ fn parts_sum_to_totals_and_energies_integrate_powers() {
                 }
             }
         }
-        let last = &r.records.last().unwrap().muscles;
+        let last = &r.last().unwrap().muscles;
         for (i, end) in last.iter().enumerate() {
             let integral = integral(&r, i, |m| m.metabolic_power);
             if model != ModelKind::HILL {
@@ -235,8 +232,8 @@ fn energies_converge_with_the_tick() {
         let coarse = run("pulse", &cfg, model, 1000.0);
         let fine = run("pulse", &cfg, model, 8000.0);
         let (a, b) = (
-            &coarse.records.last().unwrap().muscles[0],
-            &fine.records.last().unwrap().muscles[0],
+            &coarse.last().unwrap().muscles[0],
+            &fine.last().unwrap().muscles[0],
         );
         for (what, x, y) in [
             ("metabolic", a.metabolic_energy, b.metabolic_energy),
@@ -263,7 +260,7 @@ fn isometric_cost_lies_between_the_phenomenological_models() {
     let at_plateau = |energy_model: EnergyModel, model: ModelKind| {
         let cfg = ActuatorConfig::default().with_energy_model(energy_model);
         let r = run("pulse", &cfg, model, 1000.0);
-        let m = &r.records[1900].muscles[0];
+        let m = &r.record(1900).muscles[0];
         (m.metabolic_power / mass, m.phenomenological_power / mass)
     };
     for model in [ModelKind::HUXLEY, ModelKind::HUXLEY_PDE] {
@@ -311,7 +308,7 @@ fn cocontraction(model: ModelKind, level: f64) -> (f64, f64, f64) {
             default_stepping(model),
         )
         .unwrap();
-    let last = r.records.last().unwrap();
+    let last = r.last().unwrap();
     let sum = |f: fn(&MuscleSnapshot) -> f64| last.muscles.iter().map(f).sum::<f64>();
     (
         last.joints[0].stiffness,

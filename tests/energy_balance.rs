@@ -29,9 +29,9 @@ fn force_driven_passive_muscle_balances_energy() {
                     default_stepping(model),
                 )
                 .unwrap();
-            let start = runner.record();
+            let start = runner.record().muscles[0];
             let (mut work, mut dissipated) = (0.0, 0.0);
-            let mut prev = start.muscles[0];
+            let mut prev = start;
             let ticks = (sc.duration * RATE) as usize;
             for k in 0..ticks {
                 let load = runner.inputs_at(k as f64 / RATE).tendon_force[0];
@@ -44,7 +44,7 @@ fn force_driven_passive_muscle_balances_energy() {
                 prev = now;
             }
             let kinetic = 0.5 * params.mass * prev.fiber_velocity.powi(2);
-            let strain = prev.fiber_energy - start.muscles[0].fiber_energy;
+            let strain = prev.fiber_energy - start.fiber_energy;
             let residual = work - (strain + kinetic + dissipated);
             let scale = work.abs() + strain.abs() + dissipated;
             println!("{name} {model}: work {work:.6e} J = strain {strain:.6e} + kinetic {kinetic:.3e} + dissipated {dissipated:.6e} (residual {residual:.2e})");

@@ -134,9 +134,9 @@ fn runs_are_bit_identical() {
         let b = sc
             .run(&cfg, model, 1000.0, default_stepping(model))
             .unwrap();
-        assert_eq!(a.records.len(), b.records.len());
-        for (ra, rb) in a.records.iter().zip(&b.records) {
-            for (ma, mb) in ra.muscles.iter().zip(&rb.muscles) {
+        assert_eq!(a.len(), b.len());
+        for (ra, rb) in a.records().zip(b.records()) {
+            for (ma, mb) in ra.muscles.iter().zip(rb.muscles) {
                 assert_eq!(
                     ma.force.to_bits(),
                     mb.force.to_bits(),
@@ -169,7 +169,7 @@ fn full_model_ticks_match_a_ten_times_finer_run() {
             .run(&cfg, ModelKind::HUXLEY_PDE, 1000.0, Stepping::Fixed(10 * n))
             .unwrap();
         let (mut df, mut dl) = (0.0f64, 0.0f64);
-        for (ra, rb) in a.records.iter().zip(&b.records) {
+        for (ra, rb) in a.records().zip(b.records()) {
             df = df.max((ra.muscles[0].force - rb.muscles[0].force).abs());
             dl = dl.max((ra.muscles[0].fiber_length - rb.muscles[0].fiber_length).abs());
         }

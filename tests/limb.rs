@@ -269,7 +269,7 @@ fn limb_runs_are_bit_identical() {
         let b = sc
             .run(&arm, model, 1000.0, default_stepping(model))
             .unwrap();
-        for (ra, rb) in a.records.iter().zip(&b.records) {
+        for (ra, rb) in a.records().zip(b.records()) {
             let bits = |r: &muscle_actuator::sim::scenario::Record| -> Vec<u64> {
                 r.muscles
                     .iter()
@@ -279,7 +279,7 @@ fn limb_runs_are_bit_identical() {
                     .map(f64::to_bits)
                     .collect()
             };
-            assert_eq!(bits(ra), bits(rb), "{model} t = {}", ra.time);
+            assert_eq!(bits(&ra), bits(&rb), "{model} t = {}", ra.time);
         }
     }
 }

@@ -1,18 +1,25 @@
 //! docs/model.md §10: no allocation per tick. A counting global allocator watches the ticks of
 //! actuators (every adaptive model, the elbow and the arm, steady and after excitation steps,
 //! with the published snapshot refreshed every tick; the arm with its shoulder driven, its motion
-//! set every tick) once they have run a while: not one allocation.
+//! set every tick) once they have run a while: not one allocation. And a scenario's run keeps
+//! its records without allocating per tick: a longer run of the same scenario allocates no
+//! more (its records reserved once).
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::sim::scenario::Scenario;
+use muscle_actuator::sim::simulation::default_stepping;
 use muscle_actuator::sim::Actuator;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Mutex;
 
 struct Counting;
 
 static COUNTING: AtomicBool = AtomicBool::new(false);
 static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+/// The counter is the process's: one test counts at a time.
+static SERIAL: Mutex<()> = Mutex::new(());
 
 // SAFETY: forwards every call to the system allocator unchanged; only counts.
 unsafe impl GlobalAlloc for Counting {
@@ -47,6 +54,7 @@ fn allocations(f: impl FnOnce()) -> u64 {
 
 #[test]
 fn ticks_do_not_allocate() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let mut driven_arm = ActuatorConfig::resolve("arm").unwrap();
     driven_arm.joints[0].driven = true;
     for cfg in [
@@ -84,6 +92,41 @@ fn ticks_do_not_allocate() {
                 count, 0,
                 "{} muscles, {model}: {count} allocations in 300 ticks",
                 n
+            );
+        }
+    }
+}
+
+#[test]
+fn scenario_runs_allocate_alike_at_any_length() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let arm = ActuatorConfig::resolve("arm").unwrap();
+    let elbow = ActuatorConfig::default();
+    let file = |name: &str| {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        Scenario::from_file(&root.join("scenarios").join(name)).unwrap()
+    };
+    let pulse = Scenario::built_in("pulse", &elbow.muscles[0].params).unwrap();
+    for (sc, cfg) in [(pulse, &elbow), (file("arm_cocontraction.toml"), &arm)] {
+        for model in [ModelKind::HILL, ModelKind::HUXLEY] {
+            let count = |duration: f64| {
+                let mut sc = sc.clone();
+                sc.duration = duration;
+                allocations(|| {
+                    let run = sc.run(cfg, model, 1000.0, default_stepping(model)).unwrap();
+                    assert_eq!(run.len(), (duration * 1000.0).round() as usize + 1);
+                })
+            };
+            // Both lengths take every transient of the scenario (the pulse ends at 2 s, the
+            // arm's last ramp at 0.8 s); the longer adds quiet ticks only.
+            let long = sc.duration;
+            let short = long - 0.15;
+            count(short);
+            let (a, b) = (count(short), count(long));
+            assert_eq!(
+                a, b,
+                "{} {model}: {a} allocations in {short} s, {b} in {long} s",
+                sc.name
             );
         }
     }

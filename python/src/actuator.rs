@@ -6,6 +6,7 @@ use crate::config::build;
 use crate::errors::{step_error, CHUNK_TICKS};
 use crate::inputs::{checked, float_array, per_name, Kind, Values};
 use crate::outputs::{self, Outputs};
+use muscle_actuator::sim::run::Record;
 use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use muscle_actuator::sim::Actuator;
 use numpy::{PyArray1, PyArrayMethods};
@@ -293,7 +294,13 @@ impl PyActuator {
         let mut bufs = outputs::buffers(&outputs, 1, m, j);
         let widths = outputs.widths(m, j);
         let mut slices: Vec<&mut [f64]> = bufs.iter_mut().map(|b| b.as_mut_slice()).collect();
-        outputs::write_tick(&outputs, &widths, a.state(), 0, &mut slices);
+        outputs::write_tick(
+            &outputs,
+            &widths,
+            &Record::of(0.0, a.state()),
+            0,
+            &mut slices,
+        );
         drop(slices);
         drop(a);
         outputs::into_dict(py, &outputs, bufs, &[], m, j)

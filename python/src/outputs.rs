@@ -2,7 +2,8 @@
 //! (`physics::observables`): a `MuscleState` field (`force`: one value per muscle), `joint.` and a
 //! joint field (`joint.position`: one per joint), or `stiffness_matrix` (joints × joints).
 
-use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
+use muscle_actuator::sim::run::Record;
+use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -95,7 +96,7 @@ impl Outputs {
 pub fn write_tick(
     outputs: &Outputs,
     widths: &[usize],
-    state: &StateSnapshot,
+    state: &Record<'_>,
     t: usize,
     bufs: &mut [&mut [f64]],
 ) {
@@ -117,7 +118,7 @@ pub fn write_tick(
     }
     for ((_, s), (buf, w)) in outputs.keys.iter().zip(bufs.iter_mut().zip(widths)) {
         if let Source::StiffnessMatrix = s {
-            buf[t * w..(t + 1) * w].copy_from_slice(&state.stiffness_matrix);
+            buf[t * w..(t + 1) * w].copy_from_slice(state.stiffness_matrix);
         }
     }
 }

@@ -7,7 +7,6 @@ use crate::config::{configured, parse_model, resolve_config};
 use crate::outputs::{self, Outputs};
 use muscle_actuator::files::check_not_an_input;
 use muscle_actuator::sim::scenario::Run;
-use muscle_actuator::sim::snapshot::StateSnapshot;
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -30,19 +29,15 @@ fn path_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Strin
 fn run_dict<'py>(py: Python<'py>, run: Run) -> PyResult<Bound<'py, PyDict>> {
     let outputs = Outputs::all();
     let (m, j) = (run.muscle_names.len(), run.joint_names.len());
-    let n = run.records.len();
+    let n = run.len();
     let widths = outputs.widths(m, j);
     let mut bufs = outputs::buffers(&outputs, n, m, j);
     let mut time = Vec::with_capacity(n);
     {
         let mut slices: Vec<&mut [f64]> = bufs.iter_mut().map(|b| b.as_mut_slice()).collect();
-        let mut state = StateSnapshot::default();
-        for (t, rec) in run.records.into_iter().enumerate() {
+        for (t, rec) in run.records().enumerate() {
             time.push(rec.time);
-            state.muscles = rec.muscles;
-            state.joints = rec.joints;
-            state.stiffness_matrix = rec.stiffness_matrix;
-            outputs::write_tick(&outputs, &widths, &state, t, &mut slices);
+            outputs::write_tick(&outputs, &widths, &rec, t, &mut slices);
         }
     }
     let d = PyDict::new(py);

@@ -2,6 +2,7 @@
 //! `Actuator.rollout` and each instance of a batched `rollout` run.
 
 use crate::outputs::{self, Outputs};
+use muscle_actuator::sim::run::Record;
 use muscle_actuator::sim::simulation::StepError;
 use muscle_actuator::sim::Actuator;
 
@@ -28,7 +29,13 @@ pub fn run_one(
             }
         }
         a.step()?;
-        outputs::write_tick(outputs, &widths, a.state(), t, &mut slices);
+        outputs::write_tick(
+            outputs,
+            &widths,
+            &Record::of(0.0, a.state()),
+            t,
+            &mut slices,
+        );
     }
     Ok(())
 }

@@ -60,7 +60,7 @@ pub fn cocontraction(
         inputs,
     };
     let r = sc.run(cfg, model, 1000.0, default_stepping(model))?;
-    let last = r.records.last().ok_or("no ticks")?;
+    let last = r.last().ok_or("no ticks")?;
     let sum = |f: fn(&MuscleSnapshot) -> f64| last.muscles.iter().map(f).sum::<f64>();
     Ok(CocontractionPoint {
         level,
@@ -117,7 +117,7 @@ pub(super) fn pulse_power_figure(
     let _ = writeln!(summary, "|---|---|---|---|");
     let rows = pulse.iter().map(|(m, r)| (m.name().to_string(), r));
     for (name, r) in rows.chain(std::iter::once(("hill + bhargava".to_string(), &bhargava))) {
-        let end = &r.records.last().ok_or("no ticks")?.muscles[0];
+        let end = &r.last().ok_or("no ticks")?.muscles[0];
         let _ = writeln!(
             summary,
             "| {name} | {:.1} | {:.2} | {:.2} |",

@@ -28,15 +28,14 @@ use std::path::Path;
 /// Time from `start` until the force first reaches `frac` of its value at `plateau_t`, s.
 fn rise_time(run: &Run, start: f64, plateau_t: f64, frac: f64) -> f64 {
     let target = frac * at(run, plateau_t, |m| m.ce_force);
-    run.records
-        .iter()
+    run.records()
         .find(|r| r.time >= start && r.muscles[0].ce_force >= target)
         .map_or(f64::NAN, |r| r.time - start)
 }
 
 fn rms_and_max(a: &Run, b: &Run, f: impl Fn(&MuscleSnapshot) -> f64) -> (f64, f64) {
     let (mut sq, mut max, mut n) = (0.0, 0.0f64, 0usize);
-    for (ra, rb) in a.records.iter().zip(&b.records) {
+    for (ra, rb) in a.records().zip(b.records()) {
         let d = f(&ra.muscles[0]) - f(&rb.muscles[0]);
         sq += d * d;
         max = max.max(d.abs());
@@ -48,8 +47,7 @@ fn rms_and_max(a: &Run, b: &Run, f: impl Fn(&MuscleSnapshot) -> f64) -> (f64, f6
 /// Swing (max - min) of a signal over [t0, t1].
 fn swing(run: &Run, t0: f64, t1: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
     let vals = run
-        .records
-        .iter()
+        .records()
         .filter(|r| r.time >= t0 && r.time <= t1)
         .map(|r| f(&r.muscles[0]));
     let (lo, hi) = vals.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));

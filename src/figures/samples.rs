@@ -15,14 +15,11 @@ pub fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, St
 
 /// The first muscle's signal `f` over the run, (time s, value).
 pub fn series(run: &Run, f: impl Fn(&MuscleSnapshot) -> f64) -> Vec<(f64, f64)> {
-    run.records
-        .iter()
-        .map(|r| (r.time, f(&r.muscles[0])))
-        .collect()
+    run.records().map(|r| (r.time, f(&r.muscles[0]))).collect()
 }
 
 /// Value of the first muscle's signal at time t (nearest tick).
 pub fn at(run: &Run, t: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
-    let i = ((t * run.rate_hz).round() as usize).min(run.records.len() - 1);
-    f(&run.records[i].muscles[0])
+    let i = ((t * run.rate_hz).round() as usize).min(run.len() - 1);
+    f(&run.record(i).muscles[0])
 }

@@ -8,7 +8,7 @@
 //! `publish_rate_hz`).
 
 use super::{load_run, LoadedRun};
-use crate::sim::scenario::{Record, Run};
+use crate::sim::scenario::Run;
 use std::path::Path;
 
 /// The run a recording holds: its states as records (time = tick / rate), with the muscles,
@@ -22,26 +22,25 @@ pub fn run_of(loaded: &LoadedRun) -> Result<Run, String> {
     let muscle_joints = (0..topology.muscles.len())
         .map(|i| topology.spans(i).iter().map(|s| s.joint).collect())
         .collect();
-    let records = loaded
-        .states
-        .iter()
-        .map(|s| Record {
-            // As `Simulation::time`, so that the numbers are simulate's to the bit.
-            time: s.tick as f64 / meta.rate_hz,
-            muscles: s.muscles.iter().map(|m| m.state).collect(),
-            joints: s.joints.clone(),
-            stiffness_matrix: s.stiffness_matrix.clone(),
-        })
-        .collect();
-    Ok(Run {
-        scenario: meta.source.clone(),
-        model: meta.model,
-        rate_hz: meta.rate_hz,
-        muscle_names: meta.muscles.clone(),
-        joint_names: meta.joints.clone(),
+    let mut run = Run::new(
+        meta.source.clone(),
+        meta.model,
+        meta.rate_hz,
+        meta.muscles.clone(),
+        meta.joints.clone(),
         muscle_joints,
-        records,
-    })
+        loaded.states.len(),
+    );
+    let mut muscles = Vec::with_capacity(meta.muscles.len());
+    for s in &loaded.states {
+        muscles.clear();
+        muscles.extend(s.muscles.iter().map(|m| m.state));
+        // As `Simulation::time`, so that the numbers are simulate's to the bit.
+        let time = s.tick as f64 / meta.rate_hz;
+        run.push_parts(time, &muscles, &s.joints, &s.stiffness_matrix)
+            .map_err(|e| format!("tick {}: {e}", s.tick))?;
+    }
+    Ok(run)
 }
 
 /// What an export wrote.
@@ -63,7 +62,7 @@ pub fn export_csv(input: &Path, csv: &Path) -> Result<ExportSummary, String> {
     let run = run_of(&loaded).map_err(|e| format!("{}: {e}", input.display()))?;
     crate::csv::write_csv_to(&run, csv)?;
     Ok(ExportSummary {
-        states: run.records.len(),
+        states: run.len(),
         muscles: run.muscle_names.len(),
     })
 }

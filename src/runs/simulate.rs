@@ -5,9 +5,8 @@ use super::metadata::{driven_motion, AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
 use crate::config::ActuatorConfig;
 use crate::physics::model::ModelKind;
-use crate::sim::scenario::{Record, Run, Scenario, SetupKind};
+use crate::sim::scenario::{Run, Scenario, SetupKind};
 use crate::sim::simulation::{default_stepping, Stepping};
-use crate::sim::snapshot::StateSnapshot;
 use crate::time::{now_ns, TimeBase};
 use std::path::Path;
 
@@ -73,32 +72,25 @@ pub fn simulate_to_mcap(
     };
     let mut w = RunWriter::start(out, &meta)?;
     let ticks = (sc.duration * rate_hz).round() as u64;
-    let mut records: Vec<Record> = Vec::with_capacity(ticks as usize + 1);
-    let state = |r: &Record| StateSnapshot {
-        muscles: r.muscles.clone(),
-        joints: r.joints.clone(),
-        stiffness_matrix: r.stiffness_matrix.clone(),
-    };
-    let r0 = runner.record();
-    w.state(0, &state(&r0))?;
-    records.push(r0);
+    let mut run = Run::new(
+        sc.name.clone(),
+        model,
+        rate_hz,
+        meta.muscles.clone(),
+        meta.joints.clone(),
+        runner.muscle_joints(),
+        ticks as usize + 1,
+    );
+    runner.keep_record(&mut run)?;
+    w.state(0, runner.snapshot())?;
     for k in 0..ticks {
         // The inputs `step` applies: the schedules at the tick's start.
         let inputs = runner.inputs_at(runner.simulation().time());
         w.inputs(k, &inputs)?;
         runner.step()?;
-        let r = runner.record();
-        w.state(k + 1, &state(&r))?;
-        records.push(r);
+        runner.keep_record(&mut run)?;
+        w.state(k + 1, runner.snapshot())?;
     }
     w.finish()?;
-    Ok(Run {
-        scenario: sc.name.clone(),
-        model,
-        rate_hz,
-        muscle_names: meta.muscles.clone(),
-        joint_names: meta.joints.clone(),
-        muscle_joints: runner.muscle_joints(),
-        records,
-    })
+    Ok(run)
 }

@@ -9,7 +9,7 @@
 //! - [`saved`]: an actuator's complete state as bytes and back (`Actuator::to_bytes`,
 //!   `Actuator::from_bytes`), for a copy that continues bit for bit;
 //! - [`scenario`]: the paper's experiments and scenario files; [`schedule`]: their input
-//!   schedules.
+//!   schedules; [`run`]: a run's records, tick after tick.
 //! - [`steady`]: isovelocity steady states at full activation and optimal length, with their
 //!   energetics (the `steady` command, the steady-state energetics figure).
 
@@ -17,6 +17,7 @@ pub mod actuator;
 pub mod energy;
 pub mod jacobian;
 pub mod part;
+pub mod run;
 pub mod saved;
 pub mod scenario;
 pub mod schedule;

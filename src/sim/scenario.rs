@@ -9,9 +9,11 @@ use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;
 use crate::sim::schedule::Schedule;
 use crate::sim::simulation::{Simulation, Stepping};
-use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
+use crate::sim::snapshot::StateSnapshot;
 use serde::Deserialize;
 use std::path::Path;
+
+pub use crate::sim::run::{Record, Run};
 
 /// The built-in scenarios' names.
 pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
@@ -92,50 +94,6 @@ pub struct Scenario {
 
 fn default_name() -> String {
     "scenario".into()
-}
-
-/// One recorded tick.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Record {
-    /// Time at the end of the tick, s (0 for the initial state).
-    pub time: f64,
-    /// The muscles' states.
-    pub muscles: Vec<MuscleSnapshot>,
-    /// The joints' states (none for a clamped or force-driven muscle).
-    pub joints: Vec<JointSnapshot>,
-    /// The joint stiffness matrix, row-major, N m/rad.
-    pub stiffness_matrix: Vec<f64>,
-}
-
-impl Record {
-    /// A record of `state` at `time`.
-    pub fn new(time: f64, state: StateSnapshot) -> Self {
-        Self {
-            time,
-            muscles: state.muscles,
-            joints: state.joints,
-            stiffness_matrix: state.stiffness_matrix,
-        }
-    }
-}
-
-/// The result of running a scenario.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Run {
-    /// Scenario name.
-    pub scenario: String,
-    /// Model used.
-    pub model: ModelKind,
-    /// Tick rate, Hz.
-    pub rate_hz: f64,
-    /// Muscle names.
-    pub muscle_names: Vec<String>,
-    /// Joint names.
-    pub joint_names: Vec<String>,
-    /// Per muscle, the indices of the joints it spans.
-    pub muscle_joints: Vec<Vec<usize>>,
-    /// Initial state, then one record per tick.
-    pub records: Vec<Record>,
 }
 
 impl Scenario {
@@ -278,22 +236,22 @@ impl Scenario {
         stepping: Stepping,
     ) -> Result<Run, String> {
         let mut runner = self.runner(config, model, rate_hz, stepping)?;
-        let ticks = (self.duration * rate_hz).round() as u64;
-        let mut records = Vec::with_capacity(ticks as usize + 1);
-        records.push(runner.record());
-        for _ in 0..ticks {
-            runner.step()?;
-            records.push(runner.record());
-        }
-        Ok(Run {
-            scenario: self.name.clone(),
+        let ticks = (self.duration * rate_hz).round() as usize;
+        let mut run = Run::new(
+            self.name.clone(),
             model,
             rate_hz,
-            muscle_names: runner.names.clone(),
-            joint_names: runner.joint_names.clone(),
-            muscle_joints: runner.muscle_joints(),
-            records,
-        })
+            runner.names.clone(),
+            runner.joint_names.clone(),
+            runner.muscle_joints(),
+            ticks + 1,
+        );
+        runner.keep_record(&mut run)?;
+        for _ in 0..ticks {
+            runner.step()?;
+            runner.keep_record(&mut run)?;
+        }
+        Ok(run)
     }
 
     /// A tick-by-tick runner of the scenario (for tests and benchmarks).
@@ -347,14 +305,13 @@ impl Scenario {
                 initial.joint_velocity[k] += input.schedule.slope(0.0);
             }
         }
-        let sim = Simulation::new(plant, rate_hz, stepping, initial.clone())?;
+        let sim = Simulation::new(plant, rate_hz, stepping, initial)?;
         let mut runner = ScenarioRunner {
             scenario: self.clone(),
             sim,
             names,
             joint_names,
             muscle_index,
-            inputs: initial,
             snapshot: StateSnapshot::default(),
         };
         runner.apply_inputs();
@@ -369,14 +326,7 @@ impl Scenario {
             return Ok(());
         }
         let ticks = (self.duration * rate_hz).round();
-        // One record: its struct, its muscle and joint snapshots and stiffness matrix, and
-        // about 16 bytes of allocator bookkeeping for each of its three vectors.
-        let record = (std::mem::size_of::<Record>()
-            + muscles * std::mem::size_of::<MuscleSnapshot>()
-            + joints * std::mem::size_of::<JointSnapshot>()
-            + 3 * 16) as f64
-            + (joints as f64).powi(2) * 8.0;
-        let bytes = (ticks + 1.0) * record;
+        let bytes = (ticks + 1.0) * Run::record_bytes(muscles, joints);
         if !bytes.is_finite() || bytes > MAX_RUN_BYTES {
             return Err(format!(
                 "a run of {} s at {rate_hz} Hz is {ticks} ticks, whose records ({muscles} \
@@ -464,7 +414,6 @@ pub struct ScenarioRunner {
     joint_names: Vec<String>,
     /// Per input: the muscle (excitation, tendon force) or joint (torque) it drives.
     muscle_index: Vec<usize>,
-    inputs: Inputs,
     snapshot: StateSnapshot,
 }
 
@@ -503,11 +452,13 @@ impl ScenarioRunner {
         inputs
     }
 
+    /// The schedules at the tick's start into the simulation's inputs, in place (taken out and
+    /// put back, so that nothing is allocated).
     fn apply_inputs(&mut self) {
-        let mut inputs = std::mem::take(&mut self.inputs);
-        self.fill_inputs(self.sim.time(), &mut inputs);
-        self.sim.inputs_mut().clone_from(&inputs);
-        self.inputs = inputs;
+        let t = self.sim.time();
+        let mut inputs = std::mem::take(self.sim.inputs_mut());
+        self.fill_inputs(t, &mut inputs);
+        *self.sim.inputs_mut() = inputs;
     }
 
     /// Advances one tick (inputs sampled at its start).
@@ -517,9 +468,21 @@ impl ScenarioRunner {
     }
 
     /// The current state as a record.
-    pub fn record(&mut self) -> Record {
+    pub fn record(&mut self) -> Record<'_> {
         self.sim.fill_snapshot(&mut self.snapshot);
-        Record::new(self.sim.time(), self.snapshot.clone())
+        Record::of(self.sim.time(), &self.snapshot)
+    }
+
+    /// The state the last [`ScenarioRunner::record`] or [`ScenarioRunner::keep_record`] filled.
+    pub fn snapshot(&self) -> &StateSnapshot {
+        &self.snapshot
+    }
+
+    /// Appends the current state's record to `run` (which has this runner's muscles and
+    /// joints).
+    pub fn keep_record(&mut self, run: &mut Run) -> Result<(), String> {
+        self.sim.fill_snapshot(&mut self.snapshot);
+        run.push(self.sim.time(), &self.snapshot)
     }
 
     /// The simulation.

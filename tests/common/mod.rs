@@ -47,7 +47,7 @@ pub fn worst_deviation_from_reference(
         };
         reference::integrate(&f, t0, t0 + 1.0 / rate_hz, &mut y, &scales, 1e-10).unwrap();
         runner.step().unwrap();
-        let rec: Record = runner.record();
+        let rec: Record<'_> = runner.record();
         for i in 0..n_mus {
             let f_ref = plant.tendon_force(&y[..dim], i, &inputs);
             let l_ref = y[plant.offset(i)];
