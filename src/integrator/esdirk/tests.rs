@@ -1,0 +1,128 @@
+//! The stepper's tests: order, stiff accuracy and step-size control on problems with known
+//! solutions.
+
+use super::*;
+use crate::integrator::dense::DenseMatrix;
+
+/// Prothero–Robinson: y' = λ (y - cos t) - sin t, exact solution y = cos t for any λ.
+struct ProtheroRobinson(f64);
+impl OdeSystem for ProtheroRobinson {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        dy[0] = self.0 * (y[0] - t.cos()) - t.sin();
+    }
+    fn scales(&self, out: &mut [f64]) {
+        out[0] = 1.0;
+    }
+}
+
+/// Stiffly accurate: no order reduction on the stiff problem.
+#[test]
+fn stiff_problem_is_solved_at_the_smooth_solution_accuracy() {
+    for lambda in [-1.0, -1e3, -1e6] {
+        let sys = ProtheroRobinson(lambda);
+        let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::ark324());
+        let mut y = [1.0];
+        let h = 1e-2;
+        for k in 0..100 {
+            st.step(&sys, k as f64 * h, h, &mut y).unwrap();
+        }
+        let err = (y[0] - 1f64.cos()).abs();
+        assert!(err < 1e-5, "λ = {lambda}: error {err}");
+    }
+}
+
+#[test]
+fn adaptive_advance_meets_its_tolerance_and_adapts() {
+    let mut steps_before = 0;
+    for tol in [1e-4, 1e-6, 1e-8] {
+        let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::ark324());
+        let mut y = [1.0];
+        let mut h = 0.0;
+        let mut steps = 0;
+        for k in 0..10 {
+            steps += st
+                .advance(
+                    &Decay(-5.0),
+                    k as f64 * 0.1,
+                    (k + 1) as f64 * 0.1,
+                    &mut y,
+                    &mut h,
+                    tol,
+                    10_000,
+                )
+                .unwrap();
+        }
+        let err = (y[0] - (-5.0f64).exp()).abs();
+        assert!(
+            err < 50.0 * tol,
+            "tol {tol}: error {err} after {steps} steps"
+        );
+        assert!(steps > steps_before, "tighter tolerances need more steps");
+        steps_before = steps;
+    }
+}
+
+struct Decay(f64);
+impl OdeSystem for Decay {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
+        dy[0] = self.0 * y[0];
+    }
+    fn scales(&self, out: &mut [f64]) {
+        out[0] = 1.0;
+    }
+}
+
+/// The order `tableau` shows on y' = -2y over [0, 1] from n to 2n fixed steps.
+fn observed_order(tableau: fn() -> Tableau, n: usize) -> f64 {
+    let err = |n: usize| {
+        let mut st = Esdirk::new(1, DenseMatrix::new(1), tableau());
+        let mut y = [1.0];
+        let h = 1.0 / n as f64;
+        for k in 0..n {
+            st.step(&Decay(-2.0), k as f64 * h, h, &mut y).unwrap();
+        }
+        (y[0] - (-2.0f64).exp()).abs()
+    };
+    (err(n) / err(2 * n)).log2()
+}
+
+/// One step of length 1 on y' = -1e9 y from 1: what an L-stable method leaves of it.
+fn stiff_decay(tableau: fn() -> Tableau) -> f64 {
+    let mut st = Esdirk::new(1, DenseMatrix::new(1), tableau());
+    let mut y = [1.0];
+    st.step(&Decay(-1e9), 0.0, 1.0, &mut y).unwrap();
+    y[0]
+}
+
+#[test]
+fn converges_at_third_order_and_damps_stiff_modes() {
+    let order = observed_order(Tableau::ark324, 20);
+    assert!((2.7..3.4).contains(&order), "observed order {order}");
+    let r = stiff_decay(Tableau::ark324);
+    assert!(r.abs() < 1e-6, "R(-1e9) = {r}");
+}
+
+#[test]
+fn esdirk436_converges_at_fourth_order_and_damps_stiff_modes() {
+    let order = observed_order(Tableau::esdirk436, 10);
+    assert!((3.7..4.4).contains(&order), "observed order {order}");
+    let r = stiff_decay(Tableau::esdirk436);
+    assert!(r.abs() < 1e-6, "R(-1e9) = {r}");
+    for lambda in [-1.0, -1e3, -1e6] {
+        let sys = ProtheroRobinson(lambda);
+        let mut st = Esdirk::new(1, DenseMatrix::new(1), Tableau::esdirk436());
+        let mut y = [1.0];
+        let h = 1e-2;
+        for k in 0..100 {
+            st.step(&sys, k as f64 * h, h, &mut y).unwrap();
+        }
+        let err = (y[0] - 1f64.cos()).abs();
+        assert!(err < 1e-7, "λ = {lambda}: error {err}");
+    }
+}
