@@ -5,11 +5,11 @@
 //! stepping alone, and the runner's set-up (`MODEL-setup …`, per tick of the run: the plant
 //! built, its checks, the DM calibration). The first round's names end in `-first`: a process's
 //! first run also pays for its first touch of the heap and the code (a `simulate` command is
-//! one such run; a Python session or a sweep runs many). Run beside OpenSim's muscles by `benches/opensim_pulse.sh`, beside another
-//! commit by `benches/pulse_paired.sh` (so it reads nothing of a run but its length).
+//! one such run; a Python session or a sweep runs many). Run beside OpenSim's muscles by
+//! `benches/opensim_pulse.sh`, beside another commit by `benches/pulse_paired.sh` (so it reads
+//! nothing of a run's records: the force comes from the runner, whose API both commits share).
 //!
 //!   cargo run --release --example pulse_time -- [ROUNDS]     (default 5, the first included)
-
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
 use muscle_actuator::physics::params::MuscleParams;

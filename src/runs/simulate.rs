@@ -72,15 +72,7 @@ pub fn simulate_to_mcap(
     };
     let mut w = RunWriter::start(out, &meta)?;
     let ticks = (sc.duration * rate_hz).round() as u64;
-    let mut run = Run::new(
-        sc.name.clone(),
-        model,
-        rate_hz,
-        meta.muscles.clone(),
-        meta.joints.clone(),
-        runner.muscle_joints(),
-        ticks as usize + 1,
-    );
+    let mut run = runner.empty_run(ticks as usize + 1);
     runner.keep_record(&mut run)?;
     w.state(0, runner.snapshot())?;
     for k in 0..ticks {

@@ -237,15 +237,7 @@ impl Scenario {
     ) -> Result<Run, String> {
         let mut runner = self.runner(config, model, rate_hz, stepping)?;
         let ticks = (self.duration * rate_hz).round() as usize;
-        let mut run = Run::new(
-            self.name.clone(),
-            model,
-            rate_hz,
-            runner.names.clone(),
-            runner.joint_names.clone(),
-            runner.muscle_joints(),
-            ticks + 1,
-        );
+        let mut run = runner.empty_run(ticks + 1);
         runner.keep_record(&mut run)?;
         for _ in 0..ticks {
             runner.step()?;
@@ -476,6 +468,20 @@ impl ScenarioRunner {
     /// The state the last [`ScenarioRunner::record`] or [`ScenarioRunner::keep_record`] filled.
     pub fn snapshot(&self) -> &StateSnapshot {
         &self.snapshot
+    }
+
+    /// A run of this runner's scenario, model, rate, muscles and joints without records, with
+    /// room for `capacity`.
+    pub fn empty_run(&self, capacity: usize) -> Run {
+        Run::new(
+            self.scenario.name.clone(),
+            self.sim.plant().model,
+            self.sim.rate_hz(),
+            self.names.clone(),
+            self.joint_names.clone(),
+            self.muscle_joints(),
+            capacity,
+        )
     }
 
     /// Appends the current state's record to `run` (which has this runner's muscles and
