@@ -60,6 +60,34 @@ fn first_error_factor(last: f64) -> f64 {
     last.max(ETA_MIN).powf(0.8)
 }
 
+/// Whether `first_error_factor(last) * norm < tol`, where bounds decide it without the power:
+/// for `l = max(last, ETA_MIN)`, `l^0.8` lies in `[l, 1]` when `l <= 1` and in `(1, l)` above
+/// (a correctly rounded power keeps these bounds, and rounding keeps their products in order).
+/// None where only the power decides.
+fn raised_bounds(last: f64, norm: f64, tol: f64) -> Option<bool> {
+    let l = last.max(ETA_MIN);
+    let (low, high) = if l <= 1.0 { (l, 1.0) } else { (1.0, l) };
+    if low * norm >= tol {
+        Some(false)
+    } else if high * norm < tol {
+        Some(true)
+    } else {
+        None
+    }
+}
+
+/// The step-size factor from a scaled error estimate of order k: `0.9 err^(-1/k)` within
+/// [0.2, 2]. An estimate at most `0.9 × 0.45^k` gives 2 without the root, as the root would
+/// (`0.9 (0.9 × 0.45^k)^(-1/k) = 2 × 0.9^(-1/k)`, above 2 by far more than rounding): the
+/// steady ticks' case, whose estimates are far below the tolerance.
+fn step_factor(err: f64, k: u32) -> f64 {
+    if err <= 0.9 * 0.45f64.powi(k as i32) {
+        2.0
+    } else {
+        (0.9 * inverse_root(err, k)).clamp(0.2, 2.0)
+    }
+}
+
 /// `x^(-1/k)`, the step-size factor's root of the error estimate: `cbrt` for k = 3, two square
 /// roots for k = 4, cheaper than `powf`.
 fn inverse_root(x: f64, k: u32) -> f64 {
@@ -188,6 +216,10 @@ impl<M> Esdirk<M> {
         let wk = &mut self.work;
         let mut prev_norm = f64::INFINITY;
         let mut slow = false;
+        // The first iteration's factor, `first_error_factor(eta)`, is computed only where
+        // its bounds do not decide the stopping test (`raised_bounds`); until it is, `eta`
+        // holds the factor it is computed from.
+        let mut raise_pending = false;
         for iter in 0..NEWTON_MAX_ITER {
             sys.rhs(t, &wk.z, &mut wk.fz);
             self.stats.rhs_evals += 1;
@@ -202,15 +234,27 @@ impl<M> Esdirk<M> {
                 norm = norm.max(wk.delta[i].abs() * wk.inv_scale[i]);
             }
             if !norm.is_finite() {
+                if raise_pending {
+                    self.eta = first_error_factor(self.eta);
+                }
                 return None;
             }
             if iter > 0 {
                 let rate = norm / prev_norm;
                 if rate > 1.0 {
+                    if raise_pending {
+                        self.eta = first_error_factor(self.eta);
+                    }
                     return None;
                 }
+                raise_pending = false;
                 slow |= rate > SLOW_CONTRACTION;
                 self.eta = error_factor(rate);
+            } else if raised_bounds(self.eta, norm, self.newton_tol) == Some(false) {
+                // Not converged whatever the factor: the next iteration replaces it.
+                raise_pending = true;
+                prev_norm = norm;
+                continue;
             } else {
                 self.eta = first_error_factor(self.eta);
             }
@@ -467,11 +511,7 @@ impl<M> Esdirk<M> {
                 continue;
             }
             let err = self.scaled_error();
-            let factor = if err > 0.0 {
-                (0.9 * inverse_root(err, order + 1)).clamp(0.2, 2.0)
-            } else {
-                2.0
-            };
+            let factor = step_factor(err, order + 1);
             if err <= 1.0 || step <= h_min * (1.0 + 1e-9) {
                 let clipped = step < *h;
                 y.copy_from_slice(&self.work.end_y);

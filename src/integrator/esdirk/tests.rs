@@ -124,3 +124,53 @@ fn esdirk436_converges_at_fourth_order_and_damps_stiff_modes() {
         assert!(err < 1e-7, "λ = {lambda}: error {err}");
     }
 }
+
+/// Values spread over many decades, with the edges of the bounds (1, ETA_MIN) among them.
+fn spread() -> Vec<f64> {
+    let mut v: Vec<f64> = (-400..=100).map(|k| 10f64.powf(k as f64 / 20.0)).collect();
+    v.extend([
+        0.0,
+        ETA_MIN,
+        1.0,
+        1.0 - 1e-16,
+        1.0 + 1e-15,
+        0.9 * 0.45f64.powi(3),
+        f64::INFINITY,
+    ]);
+    v
+}
+
+#[test]
+fn the_bounds_decide_as_the_power_does() {
+    let mut decided = 0;
+    for &last in &spread() {
+        for &norm in &spread() {
+            let tol = 1.5e-6;
+            let by_power = first_error_factor(last) * norm < tol;
+            if let Some(d) = raised_bounds(last, norm, tol) {
+                assert_eq!(d, by_power, "last {last:e}, norm {norm:e}");
+                decided += 1;
+            }
+        }
+    }
+    // Most pairs are decided by the bounds: the test covers them.
+    assert!(decided > 150_000, "{decided}");
+}
+
+#[test]
+fn the_step_factor_is_the_roots_to_the_bit() {
+    for k in 2..=5 {
+        for &err in &spread() {
+            let by_root = if err > 0.0 {
+                (0.9 * inverse_root(err, k)).clamp(0.2, 2.0)
+            } else {
+                2.0
+            };
+            assert_eq!(
+                step_factor(err, k).to_bits(),
+                by_root.to_bits(),
+                "k {k}, err {err:e}"
+            );
+        }
+    }
+}
