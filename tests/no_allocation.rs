@@ -3,7 +3,8 @@
 //! with the published snapshot refreshed every tick; the arm with its shoulder driven, its motion
 //! set every tick) once they have run a while: not one allocation. And a scenario's run keeps
 //! its records without allocating per tick: a longer run of the same scenario allocates no
-//! more (its records reserved once).
+//! more (its records reserved once); so does a rollout (the Python package's loop,
+//! `sim::rollout`) into buffers sized before it.
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::model::ModelKind;
@@ -127,6 +128,65 @@ fn scenario_runs_allocate_alike_at_any_length() {
                 a, b,
                 "{} {model}: {a} allocations in {short} s, {b} in {long} s",
                 sc.name
+            );
+        }
+    }
+}
+
+#[test]
+fn rollouts_allocate_alike_at_any_length() {
+    use muscle_actuator::sim::rollout::{rollout, Outputs};
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    for cfg in [
+        ActuatorConfig::default(),
+        ActuatorConfig::resolve("arm").unwrap(),
+    ] {
+        for model in [ModelKind::HILL, ModelKind::HUXLEY] {
+            let mut warm = Actuator::new(&cfg, model, 1000.0).unwrap();
+            let (m, j) = (warm.muscle_names().len(), warm.joint_names().len());
+            for i in 0..m {
+                warm.set_excitation(i, 0.3);
+            }
+            for _ in 0..300 {
+                warm.step().unwrap();
+            }
+            let outputs = Outputs::all();
+            let count = |ticks: usize| {
+                // Excitation steps every 100 ticks (transients), a torque ramp.
+                let u: Vec<f64> = (0..ticks * m)
+                    .map(|k| {
+                        if (k / m / 100 + k % m) % 2 == 0 {
+                            1.0
+                        } else {
+                            0.1
+                        }
+                    })
+                    .collect();
+                let tau: Vec<f64> = (0..ticks * j).map(|k| (k / j) as f64 * 0.01).collect();
+                let mut bufs: Vec<Vec<f64>> = outputs
+                    .widths(m, j)
+                    .iter()
+                    .map(|w| vec![f64::NAN; ticks * w])
+                    .collect();
+                let mut a = warm.clone();
+                let n = allocations(|| {
+                    rollout(&mut a, &outputs, &u, Some(&tau), ticks, &mut bufs).unwrap();
+                });
+                assert!(
+                    bufs.iter().flatten().all(|v| v.is_finite()),
+                    "every tick written"
+                );
+                n
+            };
+            let (short, long) = (count(300), count(600));
+            // The call's own lists (output widths, buffer slices); none per tick.
+            assert_eq!(
+                short, long,
+                "{m} muscles, {model}: {short} allocations in 300 ticks, {long} in 600"
+            );
+            assert!(
+                short <= 2,
+                "{m} muscles, {model}: {short} allocations a call"
             );
         }
     }

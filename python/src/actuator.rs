@@ -5,7 +5,8 @@
 use crate::config::build;
 use crate::errors::{step_error, CHUNK_TICKS};
 use crate::inputs::{checked, float_array, per_name, Kind, Values};
-use crate::outputs::{self, Outputs};
+use crate::outputs;
+use muscle_actuator::sim::rollout::rollout;
 use muscle_actuator::sim::run::Record;
 use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use muscle_actuator::sim::Actuator;
@@ -247,7 +248,7 @@ impl PyActuator {
         external_torque: Option<&Bound<'py, PyAny>>,
         outputs: Option<Vec<String>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let outputs = Outputs::named(outputs)?;
+        let outputs = outputs::named(outputs)?;
         let (m, j) = {
             let a = self.get_mut();
             (a.muscle_names().len(), a.joint_names().len())
@@ -270,7 +271,7 @@ impl PyActuator {
         };
         let mut bufs = outputs::buffers(&outputs, ticks, m, j);
         let a = self.get_mut();
-        let r = py.detach(|| crate::trajectory::run_one(a, &outputs, u, tau, ticks, &mut bufs));
+        let r = py.detach(|| rollout(a, &outputs, u, tau, ticks, &mut bufs));
         r.map_err(|e| step_error(py, e.tick, e.reason, None))?;
         outputs::into_dict(py, &outputs, bufs, &[ticks], m, j)
     }
@@ -288,7 +289,7 @@ impl PyActuator {
         py: Python<'py>,
         outputs: Option<Vec<String>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let outputs = Outputs::named(outputs)?;
+        let outputs = outputs::named(outputs)?;
         let a = self.a();
         let (m, j) = (a.muscle_names().len(), a.joint_names().len());
         let mut bufs = outputs::buffers(&outputs, 1, m, j);

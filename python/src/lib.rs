@@ -6,8 +6,8 @@
 //! - [`config`]: configurations, overrides, models, rates and steppings from Python values;
 //! - [`inputs`]: arrays and dicts of inputs, checked;
 //! - [`errors`]: the exception of a failed tick;
-//! - [`outputs`]: the outputs a trajectory records, by field name; [`trajectory`]: an actuator
-//!   stepped over per-tick inputs, recording them;
+//! - [`outputs`]: the outputs a trajectory records, by field name, as numpy arrays (the stepping
+//!   over per-tick inputs is the crate's `sim::rollout`);
 //! - [`actuator`]: `Actuator` and its saved states;
 //! - [`rollout`]: batched stepping on a thread pool;
 //! - [`runs`]: `simulate`, `read_recording`, `compare`.
@@ -19,7 +19,6 @@ mod inputs;
 mod outputs;
 mod rollout;
 mod runs;
-mod trajectory;
 
 use pyo3::prelude::*;
 

@@ -6,8 +6,8 @@ use crate::actuator::PyActuator;
 use crate::config::build;
 use crate::errors::step_error;
 use crate::inputs::{checked, float_array};
-use crate::outputs::{self, Outputs};
-use crate::trajectory::run_one;
+use crate::outputs;
+use muscle_actuator::sim::rollout::rollout as run_one;
 use muscle_actuator::sim::simulation::StepError;
 use muscle_actuator::sim::Actuator;
 use numpy::PyUntypedArrayMethods;
@@ -59,7 +59,7 @@ fn run_batch<'py>(
     outputs: Option<Vec<String>>,
     threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let outputs = Outputs::named(outputs)?;
+    let outputs = outputs::named(outputs)?;
     let b = actuators.len();
     let (m, j) = (
         actuators[0].muscle_names().len(),

@@ -10,6 +10,8 @@
 //!   `Actuator::from_bytes`), for a copy that continues bit for bit;
 //! - [`scenario`]: the paper's experiments and scenario files; [`schedule`]: their input
 //!   schedules; [`run`]: a run's records, tick after tick.
+//! - [`rollout`]: an actuator stepped over per-tick inputs, chosen outputs into flat buffers
+//!   (the Python package's rollouts).
 //! - [`steady`]: isovelocity steady states at full activation and optimal length, with their
 //!   energetics (the `steady` command, the steady-state energetics figure).
 
@@ -17,6 +19,7 @@ pub mod actuator;
 pub mod energy;
 pub mod jacobian;
 pub mod part;
+pub mod rollout;
 pub mod run;
 pub mod saved;
 pub mod scenario;
