@@ -12,10 +12,7 @@ COMMIT="${1:?usage: benches/limb_against.sh COMMIT [RUNS]}"
 RUNS="${2:-3}"
 source "$ROOT/benches/other_commit.sh"
 other_checkout "$COMMIT"
-THIS_BIN="$(cd "$ROOT" && cargo bench --bench limb --no-run --message-format=json 2>/dev/null | executable_of bench)"
-cp "$THIS_BIN" "$TMP/this"
-OTHER_BIN="$(cd "$TMP/other" && CARGO_TARGET_DIR="$OTHER_TARGET_DIR" cargo bench --bench limb --no-run --message-format=json 2>/dev/null | executable_of bench)"
-cp "$OTHER_BIN" "$TMP/other_bin"
+bench_pair limb
 
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 for r in $(seq "$RUNS"); do

@@ -1,6 +1,7 @@
 # Sourced by the benchmarks that measure this checkout beside another commit in one run
 # (benches/tick_against.sh, benches/tick_instructions.sh, benches/tick_paired.sh,
-# benches/threads_paired.sh, benches/pulse_paired.sh). With ROOT set to this checkout:
+# benches/threads_paired.sh, benches/pulse_paired.sh, benches/limb_against.sh). With ROOT set
+# to this checkout:
 #
 #   other_checkout COMMIT    TMP: a temporary directory, removed on exit; "$TMP/other": COMMIT
 #                            in a git worktree, with the patch OTHER_PATCH applied if set
@@ -11,6 +12,8 @@
 #   example_pair NAME        after other_checkout: examples/NAME.rs (this checkout's, copied
 #                            into the other) built in both, as "$TMP/this" and "$TMP/other_bin"
 #   steady_ticks_pair        example_pair steady_ticks
+#   bench_pair NAME          after other_checkout: each checkout's own benches/NAME.rs built in
+#                            it, as "$TMP/this" and "$TMP/other_bin"
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
 # The other commit builds in a target dir of its own, kept between runs: cargo hashes a path
 # dependency (the vendored rustdds) by its place in the workspace, so the two checkouts' copies
@@ -37,6 +40,15 @@ example_pair() { # NAME: this checkout's examples/NAME.rs built here and in the 
       executable_of example
   }
   cp "$ROOT/examples/$1.rs" "$TMP/other/examples/"
+  cp "$(built "$ROOT" "$1")" "$TMP/this"
+  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1")" "$TMP/other_bin"
+}
+
+bench_pair() { # NAME: each checkout's own benches/NAME.rs, built in it
+  built() { # the benchmark's executable, built in the checkout $1
+    (cd "$1" && cargo bench --bench "$2" --no-run --message-format=json 2>/dev/null) |
+      executable_of bench
+  }
   cp "$(built "$ROOT" "$1")" "$TMP/this"
   cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1")" "$TMP/other_bin"
 }

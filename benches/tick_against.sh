@@ -12,10 +12,7 @@ ROUNDS="${2:-3}"
 FILTER="${3:-tick_default_actuator|twenty_ticks_after_excitation_step}"
 source "$ROOT/benches/other_commit.sh"
 other_checkout "$COMMIT"
-THIS_BIN="$(cd "$ROOT" && cargo bench --bench tick --no-run --message-format=json 2>/dev/null | executable_of bench)"
-cp "$THIS_BIN" "$TMP/this"
-OTHER_BIN="$(cd "$TMP/other" && CARGO_TARGET_DIR="$OTHER_TARGET_DIR" cargo bench --bench tick --no-run --message-format=json 2>/dev/null | executable_of bench)"
-cp "$OTHER_BIN" "$TMP/other_bin"
+bench_pair tick
 
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 for r in $(seq "$ROUNDS"); do

@@ -140,12 +140,24 @@ fn spread() -> Vec<f64> {
     v
 }
 
+/// `x` and its neighbouring doubles, two either side.
+fn around(x: f64) -> [f64; 5] {
+    let (d1, u1) = (x.next_down(), x.next_up());
+    [d1.next_down(), d1, x, u1, u1.next_up()]
+}
+
 #[test]
 fn the_bounds_decide_as_the_power_does() {
+    let tol = 1.5e-6;
     let mut decided = 0;
     for &last in &spread() {
-        for &norm in &spread() {
-            let tol = 1.5e-6;
+        // The grid's norms, and those at each bound's edge, where rounding decides.
+        let l = last.max(ETA_MIN);
+        let mut norms = spread();
+        for edge in [tol / l, tol, tol / first_error_factor(last)] {
+            norms.extend(around(edge));
+        }
+        for &norm in &norms {
             let by_power = first_error_factor(last) * norm < tol;
             if let Some(d) = raised_bounds(last, norm, tol) {
                 assert_eq!(d, by_power, "last {last:e}, norm {norm:e}");
@@ -160,7 +172,13 @@ fn the_bounds_decide_as_the_power_does() {
 #[test]
 fn the_step_factor_is_the_roots_to_the_bit() {
     for k in 2..=5 {
-        for &err in &spread() {
+        // The grid, and a fine one either side of the threshold and of 0.45^k (factor 2).
+        let mut errs = spread();
+        for x in [0.9 * 0.45f64.powi(k as i32), 0.45f64.powi(k as i32)] {
+            errs.extend(around(x));
+            errs.extend((-40..=40).map(|i| x * (1.0 + 0.002 * i as f64)));
+        }
+        for &err in &errs {
             let by_root = if err > 0.0 {
                 (0.9 * inverse_root(err, k)).clamp(0.2, 2.0)
             } else {
