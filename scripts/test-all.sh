@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Every test of the project, on a fresh machine or an old one (idempotent, reuses what is built):
-#   1. the Rust tests: unit, integration (physics against closed forms, the adaptive reference
+#   1. the Rust tests of every crate of the workspace (crates/core, crates/recording, the node's
+#      and the CLI's): unit, integration (physics against closed forms, the adaptive reference
 #      solver, conservation laws; the CLI), and the benchmarks compiled and run once in test mode;
+#      then the fourth model's tests (the `test-model` feature);
 #   2. the structure checks of src/ (scripts/check-structure.py: file sizes, function lengths,
 #      import cycles);
 #   3. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
@@ -14,9 +16,13 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 echo "== Rust tests" >&2
-cargo test --all-targets
+cargo test --workspace --exclude muscle_actuator_python --all-targets
+echo "== The fourth model (a model only the tests know, reached by name everywhere)" >&2
+cargo test --features test-model --lib -q fourth
 echo "== Structure checks (scripts/check-structure.py)" >&2
 python3 scripts/check-structure.py
+python3 scripts/check-structure.py --src crates/core/src --crate-name muscle_actuator_core
+python3 scripts/check-structure.py --src crates/recording/src --crate-name muscle_actuator_recording
 python3 scripts/check-structure.py --src python/src --crate-name _core
 echo "== ROS 2 tests (rclpy peer)" >&2
 MUSCLE_ACTUATOR_BUILT=1 bash scripts/test-ros.sh -q

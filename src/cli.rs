@@ -361,7 +361,13 @@ fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<(), Stri
 
 /// `compare`: two recordings as a table or JSON, with an optional overlay plot.
 fn compare(a: &Path, b: &Path, plot: Option<&Path>, json: bool) -> Result<(), String> {
-    let c = crate::runs::compare::compare_files(a, b, plot)?;
+    let plot_to = plot.map(|p| {
+        (
+            p,
+            crate::figures::compare_plot::plot as crate::runs::compare::PlotFn,
+        )
+    });
+    let c = crate::runs::compare::compare_files(a, b, plot_to)?;
     for w in &c.warnings {
         eprintln!("warning: {w}");
     }

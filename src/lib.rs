@@ -1,36 +1,25 @@
 //! muscle_actuator: muscle actuators (Hill and Huxley models) driving any limb, for ROS 2.
 //!
-//! - [`physics`]: the mathematics of docs/model.md, no I/O.
-//! - [`integrator`]: the fixed-tick implicit stepper, its tableaux and iteration matrices.
-//! - [`sim`]: the actuator stepped tick by tick (the facade the node and the CLI use).
-//! - [`config`]: the configuration file: schema, the antagonistic-pair form, parsing, validation.
-//! - [`msgs`]: the ROS 2 message types and a tick's state as messages (no DDS).
-//! - [`recording`]: rosbag2-compatible MCAP recordings (no physics).
-//! - [`runs`]: runs as recordings: metadata, `simulate --out`, loading, replay, compare, export.
-//! - [`csv`]: a run as CSV (`simulate --csv`, `export`).
-//! - [`figures`]: the paper's figures reproduced (`figures`).
+//! The layers are crates: [`muscle_actuator_core`] (the engine: physics, stepper, simulation,
+//! configuration; no ROS), [`muscle_actuator_recording`] (MCAP recordings and runs; no DDS) and
+//! this one, the node, the command line and the figures. Their modules are re-exported here, so
+//! `muscle_actuator::physics` is `muscle_actuator_core::physics`.
+//!
+//! - [`physics`], [`integrator`], [`sim`], [`config`], [`csv`], [`time`], [`text`], [`files`],
+//!   [`state_bytes`]: from [`muscle_actuator_core`].
+//! - [`msgs`], [`recording`], [`runs`]: from [`muscle_actuator_recording`].
+//! - [`figures`]: the paper's figures reproduced (`figures`), and `compare --plot`.
 //! - [`ros`]: the ROS 2 node (`node`).
 //! - [`cli`]: the command line (`src/main.rs` calls [`cli::main`]).
-//! - [`time`]: the time base of a run (ticks ↔ stamps), now, ISO 8601 dates (neutral).
-//! - [`text`]: user text as messages quote it: excerpts, one-line messages (neutral).
-//! - [`files`]: bounded reading of the files a user names (neutral).
-//! - [`state_bytes`]: the values of a saved state as bytes, every read checked (neutral).
+
+pub use muscle_actuator_core::{
+    config, csv, files, integrator, physics, sim, state_bytes, text, time,
+};
+pub use muscle_actuator_recording::{msgs, recording, runs};
 
 pub mod cli;
-pub mod config;
-pub mod csv;
 pub mod figures;
-pub mod files;
-pub mod integrator;
-pub mod msgs;
-pub mod physics;
-pub mod recording;
 pub mod ros;
-pub mod runs;
-pub mod sim;
-pub mod state_bytes;
-pub mod text;
-pub mod time;
 
-#[cfg(test)]
+#[cfg(all(test, feature = "test-model"))]
 mod tests_fourth_model;

@@ -472,7 +472,7 @@ fn hostile_ticks_and_values(c: &mut Corpus, r: &Rebuild) {
     let b = r.with(|_, msgs| {
         map_states(msgs, |_, s| {
             s.tick += SHIFT;
-            s.header.stamp = ros2_client::builtin_interfaces::Time::from_nanos(
+            s.header.stamp = muscle_actuator::msgs::Time::from_nanos(
                 s.header.stamp.to_nanos() + 1_000_000_000_000_000_000,
             );
         });
@@ -507,7 +507,7 @@ fn hostile_ticks_and_values(c: &mut Corpus, r: &Rebuild) {
     let b = r.with(|_, msgs| {
         for m in msgs.iter_mut().filter(|m| m.schema_name == ACTIVATION_TYPE) {
             let mut a: ActivationCommand = decode_cdr(&m.data).unwrap();
-            a.header.stamp = ros2_client::builtin_interfaces::Time::from_nanos(-5_000_000_000);
+            a.header.stamp = muscle_actuator::msgs::Time::from_nanos(-5_000_000_000);
             m.data = encode_cdr(&a).unwrap();
         }
     });

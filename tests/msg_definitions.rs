@@ -6,12 +6,12 @@
 use muscle_actuator::msgs::muscle_actuator_msgs::{
     ActivationCommand, ActuatorState, ExternalLoad, MuscleState,
 };
+use muscle_actuator::msgs::Time;
 use muscle_actuator::msgs::{
     DiagnosticArray, DiagnosticStatus, Header, JointState, KeyValue, TriggerRequest,
     TriggerResponse,
 };
 use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot, MUSCLE_FIELD_COUNT};
-use ros2_client::builtin_interfaces::Time;
 use serde::ser::{self, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;

@@ -1,4 +1,4 @@
-//! Saved states (src/sim/saved.rs): an actuator rebuilt from `to_bytes` continues bit for bit as
+//! Saved states (crates/core/src/sim/saved.rs): an actuator rebuilt from `to_bytes` continues bit for bit as
 //! the original does, for every model, the built-in limbs, driven joints, a stepper caught in a
 //! transient and a reset; a clone does too; damaged or foreign bytes are refused with a message
 //! that names what is wrong, and never panic.

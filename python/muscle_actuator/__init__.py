@@ -127,8 +127,14 @@ def compare(
 ) -> dict[str, Any]:
     """``muscle_actuator compare A B --json`` as a dict: the compared span, per-signal RMS and
     largest differences, peaks and rise times, and each muscle's energies. ``plot`` writes the
-    overlay plot (PNG and SVG) as ``--plot`` does."""
+    overlay of the muscles' forces (PNG and SVG, drawn with matplotlib) as ``--plot`` does."""
     text, notes = _core._compare(a, b, plot)
     for w in notes:
         warnings.warn(w, TruncatedRecordingWarning, stacklevel=2)
+    if plot is not None:
+        from ._compare_plot import overlay
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TruncatedRecordingWarning)
+            overlay(read_recording(a), read_recording(b), plot)
     return json.loads(text)

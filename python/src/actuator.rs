@@ -6,10 +6,10 @@ use crate::config::build;
 use crate::errors::{step_error, CHUNK_TICKS};
 use crate::inputs::{checked, float_array, per_name, Kind, Values};
 use crate::outputs;
-use muscle_actuator::sim::rollout::rollout;
-use muscle_actuator::sim::run::Record;
-use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot};
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::sim::rollout::rollout;
+use muscle_actuator_core::sim::run::Record;
+use muscle_actuator_core::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use muscle_actuator_core::sim::Actuator;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -120,7 +120,7 @@ impl PyActuator {
         }
         Err(PyValueError::new_err(format!(
             "unknown joint {}: expected one of {}",
-            muscle_actuator::text::excerpt(&joint.to_string()),
+            muscle_actuator_core::text::excerpt(&joint.to_string()),
             names.join(", ")
         )))
     }

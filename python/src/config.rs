@@ -2,15 +2,15 @@
 //! overrides, a model, an energy model and a stepping, resolved by the crate's own functions so
 //! that every refusal carries the command line's message.
 
-use muscle_actuator::config::overrides::with_overrides;
-use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::{ModelKind, UnknownModel};
-use muscle_actuator::physics::params::energetics::UnknownEnergyModel;
-use muscle_actuator::physics::params::EnergyModel;
-use muscle_actuator::physics::stepping::Stepping;
-use muscle_actuator::runs::limits;
-use muscle_actuator::sim::simulation::default_stepping;
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::config::overrides::with_overrides;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::model::{ModelKind, UnknownModel};
+use muscle_actuator_core::physics::params::energetics::UnknownEnergyModel;
+use muscle_actuator_core::physics::params::EnergyModel;
+use muscle_actuator_core::physics::stepping::Stepping;
+use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_recording::runs::limits;
 use pyo3::exceptions::{PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
@@ -84,7 +84,7 @@ pub fn overrides_of(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, tom
             .map_err(|_| PyValueError::new_err("an override's key must be a string"))?;
         let value = toml_value(
             &v,
-            &format!("override {:?}", muscle_actuator::text::excerpt(&key)),
+            &format!("override {:?}", muscle_actuator_core::text::excerpt(&key)),
         )?;
         out.push((key, value));
     }

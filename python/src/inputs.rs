@@ -1,9 +1,9 @@
 //! Inputs from Python, checked before anything is stepped: arrays of any numeric dtype or
 //! nested sequences (as float64, C order), of the shape the call names, every value finite;
-//! or a dict by name, checked by the node's own rules (`ros::input`: unknown, repeated and
+//! or a dict by name, checked by the node's own rules (`sim::input`: unknown, repeated and
 //! non-finite names are refused whole; excitations outside [0, 1] are clamped).
 
-use muscle_actuator::ros::input::{validate_activation, validate_load};
+use muscle_actuator_core::sim::input::{validate_activation, validate_load};
 use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -28,7 +28,7 @@ pub fn float_array<'py>(
         .map_err(|e| {
             PyValueError::new_err(format!(
                 "{what} must be an array of numbers ({})",
-                muscle_actuator::text::excerpt(&e.to_string())
+                muscle_actuator_core::text::excerpt(&e.to_string())
             ))
         })?;
     let a = converted
@@ -108,7 +108,7 @@ pub fn per_name(obj: &Bound<'_, PyAny>, names: &[String], kind: Kind) -> PyResul
                 PyValueError::new_err(format!(
                     "{}: the value for {} must be a number",
                     kind.what(),
-                    muscle_actuator::ros::input::quote(keys.last().map_or("", |s| s))
+                    muscle_actuator_core::sim::input::quote(keys.last().map_or("", |s| s))
                 ))
             })?);
         }

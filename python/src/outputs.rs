@@ -1,4 +1,4 @@
-//! The outputs a trajectory carries (`muscle_actuator::sim::rollout::Outputs`: by the names of
+//! The outputs a trajectory carries (`muscle_actuator_core::sim::rollout::Outputs`: by the names of
 //! the one field list) as numpy arrays.
 
 use numpy::{PyArray1, PyArrayMethods};
@@ -6,7 +6,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-pub use muscle_actuator::sim::rollout::{write_tick, Outputs};
+pub use muscle_actuator_core::sim::rollout::{write_tick, Outputs};
 
 /// The outputs named (None: all), an unknown or repeated name refused as a ValueError.
 pub fn named(names: Option<Vec<String>>) -> PyResult<Outputs> {

@@ -5,8 +5,8 @@
 
 use crate::config::{configured, parse_model, resolve_config};
 use crate::outputs::{self, Outputs};
-use muscle_actuator::files::check_not_an_input;
-use muscle_actuator::sim::scenario::Run;
+use muscle_actuator_core::files::check_not_an_input;
+use muscle_actuator_core::sim::scenario::Run;
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -95,7 +95,7 @@ pub fn _simulate<'py>(
     }
     let run = py
         .detach(|| {
-            muscle_actuator::runs::run_scenario(
+            muscle_actuator_recording::runs::run_scenario(
                 &scenario,
                 &cfg,
                 model,
@@ -118,8 +118,8 @@ pub fn _read_recording<'py>(
     let path = PathBuf::from(path_of(py, path, "path")?);
     let (run, warning) = py
         .detach(|| {
-            let loaded = muscle_actuator::runs::load_run(&path)?;
-            let run = muscle_actuator::runs::export::run_of(&loaded)
+            let loaded = muscle_actuator_recording::runs::load_run(&path)?;
+            let run = muscle_actuator_recording::runs::export::run_of(&loaded)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Ok::<_, String>((run, loaded.warning))
         })
@@ -129,7 +129,9 @@ pub fn _read_recording<'py>(
     Ok(d)
 }
 
-/// `muscle_actuator compare A B --json`: the JSON text and the warnings on the files read.
+/// `muscle_actuator compare A B --json`: the JSON text and the warnings on the files read. With
+/// `plot`, first checks that neither of its files (`.png`, `.svg`) is an input; the package
+/// draws it (`muscle_actuator/_compare_plot.py`).
 #[pyfunction]
 #[pyo3(signature = (a, b, plot=None))]
 pub fn _compare<'py>(
@@ -145,7 +147,12 @@ pub fn _compare<'py>(
         .transpose()?
         .map(PathBuf::from);
     py.detach(|| {
-        let c = muscle_actuator::runs::compare::compare_files(&a, &b, plot.as_deref())?;
+        if let Some(p) = &plot {
+            for written in [p.with_extension("png"), p.with_extension("svg")] {
+                check_not_an_input(&written, &[a.as_path(), b.as_path()])?;
+            }
+        }
+        let c = muscle_actuator_recording::runs::compare::compare_files(&a, &b, None)?;
         let json = serde_json::to_string_pretty(&c).map_err(|e| e.to_string())?;
         Ok::<_, String>((json, c.warnings))
     })

@@ -181,8 +181,6 @@ fn write_csv_to(rows: &[SteadyRow], path: &Path) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::{run, Cli};
-    use clap::Parser;
 
     /// Large grids show the velocities nearest to [`SHOWN_FRACTIONS`]; small ones all.
     #[test]
@@ -215,8 +213,11 @@ mod tests {
     }
 
     /// The tests' fourth model is reached by name and taken as Hill's.
+    #[cfg(feature = "test-model")]
     #[test]
     fn the_fourth_model_runs() {
+        use crate::cli::{run, Cli};
+        use clap::Parser;
         let dir = std::env::temp_dir().join(format!("steady_fourth_{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let csv = dir.join("copy.csv");

@@ -2,8 +2,9 @@
 //! steady force–velocity curves of the three models, their steady-state energetics
 //! ([`energetics`], §11) and what the muscles cost in runs ([`cost`]), as PNG and SVG, and a
 //! summary of the numbers they show (`summary.md`). The colours are [`palette`]'s, the drawing
-//! [`plot`]'s, the runs and samples [`samples`]'.
+//! [`plot`]'s, the runs and samples [`samples`]'; [`compare_plot`] draws `compare --plot`.
 
+pub mod compare_plot;
 pub mod cost;
 pub mod energetics;
 pub mod palette;

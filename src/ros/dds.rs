@@ -5,7 +5,6 @@
 use super::args;
 use super::args::DEFAULT_NODE_NAME;
 use super::clock::ClockMode;
-use super::input;
 use super::logging::Logger;
 use super::setup::Setup;
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
@@ -13,6 +12,7 @@ use crate::msgs::{
     Clock, DiagnosticArray, Float64, Float64MultiArray, Int64, JointState, StepRequest,
     StepResponse, TriggerRequest, TriggerResponse,
 };
+use crate::sim::input;
 use ros2_client::qos::{Durability, History, Reliability, WhenFull};
 use ros2_client::service::Server;
 use ros2_client::{

@@ -3,17 +3,17 @@
 
 use super::args::Severity;
 use super::clock::{ClockMode, NodeClock};
-use super::input::Rejection;
 use super::live::{LiveStatus, LiveTap, Outlet};
 use super::logging::Reporter;
 use super::param_callbacks::Shared;
 use super::params::NodeParams;
 use super::record::{self, RecordTx};
 use super::tick::TickStats;
+use crate::msgs::Time;
 use crate::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
 use crate::recording::{Recorder, RecorderState};
 use crate::runs::Channel;
-use ros2_client::builtin_interfaces::Time;
+use crate::sim::input::Rejection;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
@@ -151,7 +151,7 @@ fn diagnostics(
     };
     DiagnosticArray {
         header: Header {
-            stamp: Time::now(),
+            stamp: Time::from_nanos(crate::time::now_ns()),
             frame_id: String::new(),
         },
         status: vec![

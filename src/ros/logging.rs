@@ -7,8 +7,8 @@ use super::clock::NodeClock;
 use super::live::{LiveTap, Outlet};
 use super::record::RecordTx;
 use crate::msgs::Log;
+use crate::msgs::Time;
 use crate::runs::Channel;
-use ros2_client::builtin_interfaces::Time;
 use ros2_client::log::LogLevel;
 use ros2_client::{NodeLoggingHandle, RosoutRaw};
 use std::collections::HashMap;
@@ -63,7 +63,7 @@ impl Logger {
                 Severity::Fatal => LogLevel::Fatal,
             };
             let stamp = Time::from_nanos(self.clock.now_ns());
-            h.rosout_raw(stamp, level, &self.name, msg, file!(), "", line!());
+            h.rosout_raw(stamp.into(), level, &self.name, msg, file!(), "", line!());
             let (rec, live) = (self.recording.get(), self.live.get());
             if rec.is_some() || live.is_some() {
                 let line = Log {

@@ -12,7 +12,8 @@
 //! - `threads`: the tick loop, the publisher and the applied-inputs recorder, started and stopped
 //!   together;
 //! - `tasks`: the executor's tasks: the input topics, the services, the loop's events;
-//! - [`input`]: validation of incoming commands;
+//! - incoming commands are validated by [`crate::sim::input`] (the core crate's rules, shared
+//!   with the Python package);
 //! - [`diagnostics`]: `/diagnostics`, once a second;
 //! - [`logging`]: stderr, `/rosout` and the recording's log;
 //! - [`record`]: the node's MCAP recording (off the tick thread);
@@ -25,7 +26,6 @@ pub mod args;
 pub mod clock;
 pub mod dds;
 pub mod diagnostics;
-pub mod input;
 pub(crate) mod live;
 mod live_requests;
 pub mod logging;

@@ -9,6 +9,7 @@ use super::clock::NodeClock;
 use super::params::NodeParams;
 use super::tick::{Applied, AppliedInput};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use crate::msgs::Time;
 use crate::msgs::{DiagnosticStatus, Header, KeyValue};
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
 use crate::runs::{
@@ -19,7 +20,6 @@ use crate::runs::{
 };
 use crate::sim::Actuator;
 use crate::time::{self, TimeBase};
-use ros2_client::builtin_interfaces::Time;
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::Receiver;

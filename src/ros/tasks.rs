@@ -7,7 +7,6 @@
 use super::args::Severity;
 use super::clock::ClockMode;
 use super::diagnostics::InputStats;
-use super::input::{self, Rejection};
 use super::logging::{LateTicks, Reporter, LATE_WARN_PERIODS};
 use super::param_callbacks::Shared;
 use super::record::RecordTx;
@@ -19,6 +18,7 @@ use crate::msgs::{
     TriggerRequest, TriggerResponse,
 };
 use crate::runs::Channel;
+use crate::sim::input::{self, Rejection};
 use crate::time;
 use futures::{FutureExt, StreamExt};
 use ros2_client::{RmwRequestId, Server, Subscription};

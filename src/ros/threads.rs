@@ -10,10 +10,10 @@ use super::tick::{
     self, Applied, CommandReceiver, Event, LoopIo, Output, Pacing, RunSummary, Sample, TickStats,
 };
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
+use crate::msgs::Time;
 use crate::msgs::{state_messages, Clock, Float64MultiArray, JointState, MultiArrayLayout};
 use crate::runs::Channel;
 use crate::sim::Actuator;
-use ros2_client::builtin_interfaces::Time;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver};

@@ -53,7 +53,7 @@ def decode_rosbags(path):
             for ch in make_reader(f).get_summary().channels.values():
                 schema = next(c for c in reader.connections if c.topic == ch.topic).msgtype
                 assert ch.metadata["topic_type_hash"] == reader.typestore.hash_rihs01(schema), (
-                    f"src/msgs/type_hash.rs computes another hash: {schema} is "
+                    f"crates/recording/src/msgs/type_hash.rs computes another hash: {schema} is "
                     f"{reader.typestore.hash_rihs01(schema)}"
                 )
         for conn, t, raw in reader.messages():

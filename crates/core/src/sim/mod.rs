@@ -1,0 +1,36 @@
+//! The simulation: a plant stepped tick by tick with inputs held over each tick, the actuator
+//! facade the node uses, and the offline scenarios. It knows nothing of ROS, files or threads.
+//!
+//! - [`simulation`]: a plant stepped at a fixed tick, inputs held over each tick;
+//! - [`part`]: one independent part of a limb with its own stepper; [`jacobian`]: the plant's
+//!   Jacobian by blocks for the block-arrowhead iteration matrix (docs/model.md §8b);
+//! - [`actuator`]: [`Actuator`], the facade the node and the CLI step;
+//! - [`snapshot`]: what is observable after a tick; [`energy`]: the energy spent since start;
+//! - [`saved`]: an actuator's complete state as bytes and back (`Actuator::to_bytes`,
+//!   `Actuator::from_bytes`), for a copy that continues bit for bit;
+//! - [`scenario`]: the paper's experiments and scenario files; [`schedule`]: their input
+//!   schedules; [`run`]: a run's records, tick after tick.
+//! - [`rollout`]: an actuator stepped over per-tick inputs, chosen outputs into flat buffers
+//!   (the Python package's rollouts).
+//! - [`input`]: commands by name checked against the actuator's names (unknown names,
+//!   mismatched lengths, NaN rejected whole; excitations clamped to [0, 1]).
+//! - [`steady`]: isovelocity steady states at full activation and optimal length, with their
+//!   energetics (the `steady` command, the steady-state energetics figure).
+
+pub mod actuator;
+pub mod energy;
+pub mod input;
+pub mod jacobian;
+pub mod part;
+pub mod rollout;
+pub mod run;
+pub mod saved;
+pub mod scenario;
+pub mod schedule;
+pub mod simulation;
+pub mod snapshot;
+pub mod steady;
+
+pub use actuator::Actuator;
+pub use simulation::{Simulation, StepError};
+pub use snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};

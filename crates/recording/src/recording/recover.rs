@@ -1,0 +1,138 @@
+//! `recover IN OUT`: rewrites a recording cut by a crash (no summary, no index) as a complete,
+//! indexed MCAP file: the same header (profile and library), the schemas and channels (with
+//! their metadata), the metadata records written, and every readable message, each with its
+//! sequence number, times and bytes unchanged, in file order.
+//!
+//! The input is read as `replay` and `compare` read it ([`read_run_file`]), under every check of
+//! the reader; a file with no readable message is refused. The output is written beside `OUT`
+//! under a temporary name and renamed into place once complete ([`muscle_actuator_core::files::AtomicFile`]),
+//! so a failure leaves no partial file; `OUT` may not be `IN`.
+
+use super::reader::{read_run_file, Recording};
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::Path;
+
+/// What `recover` wrote.
+#[derive(Debug, Clone)]
+pub struct Recovered {
+    pub messages: usize,
+    pub channels: usize,
+    pub metadata_records: usize,
+    /// First and last log times of the messages, s.
+    pub range_s: (f64, f64),
+    /// Why reading stopped early (`None`: the input was complete).
+    pub stopped_early: Option<String>,
+}
+
+impl Recovered {
+    /// One line for the command line.
+    pub fn line(&self, input: &Path, out: &Path) -> String {
+        let (t0, t1) = self.range_s;
+        let how = match &self.stopped_early {
+            Some(_) => "truncated",
+            None => "complete",
+        };
+        format!(
+            "recovered {} messages on {} channels from {t0:.3} to {t1:.3} s and {} metadata \
+             records of {} ({how}) into {}",
+            self.messages,
+            self.channels,
+            self.metadata_records,
+            input.display(),
+            out.display()
+        )
+    }
+}
+
+/// Reads `input` (complete, or cut by a crash) and writes everything readable to `out` as a
+/// complete MCAP file.
+pub fn recover(input: &Path, out: &Path) -> Result<Recovered, String> {
+    if muscle_actuator_core::files::same_file(input, out) {
+        return Err(format!(
+            "{}: the output would overwrite the input; give another path",
+            out.display()
+        ));
+    }
+    let rec = read_run_file(input)?;
+    if rec.messages.is_empty() {
+        return Err(format!(
+            "{}: no message in it is readable; nothing to recover",
+            input.display()
+        ));
+    }
+    let into = |e: &dyn std::fmt::Display| format!("recovering into {}: {e}", out.display());
+    let mut file = muscle_actuator_core::files::AtomicFile::create(out).map_err(|e| into(&e))?;
+    write(&rec, file.file()).map_err(|e| into(&e))?;
+    file.commit()
+        .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    Ok(Recovered {
+        messages: rec.messages.len(),
+        channels: rec.channels.len(),
+        metadata_records: rec.metadata_records.len(),
+        range_s: rec.log_time_range_s().unwrap_or_default(),
+        stopped_early: rec.stopped_early,
+    })
+}
+
+/// Writes `rec` into `file` as the recorder does (zstd chunks, indexed summary).
+fn write(rec: &Recording, file: &mut File) -> Result<(), String> {
+    let options = super::writer::RecorderOptions::default();
+    let mut w = mcap::WriteOptions::new()
+        .profile(rec.profile.clone())
+        .library(rec.library.clone())
+        .compression(Some(mcap::Compression::Zstd))
+        .compression_level(options.compression_level)
+        .chunk_size(Some(options.chunk_size))
+        .create(BufWriter::with_capacity(1 << 16, file))
+        .map_err(|e| e.to_string())?;
+    let err = |e: mcap::McapError| e.to_string();
+    // Schemas and channels keep their ids (the message records are then the same).
+    let mut ids: BTreeMap<u16, u16> = BTreeMap::new();
+    for (&old, ch) in &rec.channels {
+        let schema_id = match &ch.schema {
+            Some(s) => w
+                .add_schema_with_id(s.id, &s.name, &s.encoding, &s.data)
+                .map_err(err)?,
+            None => 0,
+        };
+        let id = w
+            .add_channel_with_id(
+                old,
+                schema_id,
+                &ch.topic,
+                &ch.message_encoding,
+                &ch.metadata,
+            )
+            .map_err(err)?;
+        ids.insert(old, id);
+    }
+    let mut metadata = rec.metadata_records.iter().peekable();
+    for (i, m) in rec.messages.iter().enumerate() {
+        while let Some((_, md)) = metadata.next_if(|(before, _)| *before <= i) {
+            w.write_metadata(md).map_err(err)?;
+        }
+        let channel_id = *ids
+            .get(&m.channel_id)
+            .ok_or_else(|| format!("message on unknown channel {}", m.channel_id))?;
+        w.write_to_known_channel(
+            &mcap::records::MessageHeader {
+                channel_id,
+                sequence: m.sequence,
+                log_time: m.log_time,
+                publish_time: m.publish_time,
+            },
+            &m.data,
+        )
+        .map_err(err)?;
+    }
+    for (_, md) in metadata {
+        w.write_metadata(md).map_err(err)?;
+    }
+    w.finish().map_err(err)?;
+    w.into_inner()
+        .into_inner()
+        .map_err(|e| e.error().to_string())?;
+    Ok(())
+}

@@ -1,0 +1,34 @@
+//! Runs as recordings: the channels of a run file ([`channels`]), its `muscle_actuator` metadata
+//! record ([`metadata`]), `simulate --out` ([`simulate`], written by [`writer`]), reading a run
+//! back ([`load`], checked by [`checks`] within [`limits`]), [`replay`](mod@replay), [`compare`] and
+//! [`export`].
+//!
+//! One time base per recording, named in the metadata ([`muscle_actuator_core::time`]). Offline runs carry
+//! their inputs on the input topics themselves, stamped with the tick at which they take effect;
+//! the node records inputs as received on the input topics and, as applied by the tick loop, on
+//! `<node>/applied/activation` and `<node>/applied/external_load`.
+
+pub mod channels;
+pub mod checks;
+pub mod compare;
+pub mod export;
+pub mod limits;
+pub mod load;
+pub mod metadata;
+pub mod replay;
+pub mod simulate;
+pub mod writer;
+
+/// The channels of a run, for the node ([`crate::ros`]) and the tests, which name them from here;
+/// the time base is [`muscle_actuator_core::time`]'s.
+pub use channels::{
+    channel, Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
+    APPLIED_JOINT_MOTION_SUFFIX, APPLIED_JOINT_MOTION_TOPIC, APPLIED_LOAD_SUFFIX,
+    DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATES_TOPIC,
+    JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC, STATE_TOPIC, STATE_TYPE,
+};
+pub use load::{load_run, InputsAt, JointMotionAt, LoadedRun};
+pub use metadata::{driven_motion, AttachmentMeta, RunMeta, METADATA_NAME};
+pub use replay::{replay, ReplaySummary};
+pub use simulate::{run_scenario, simulate_to_mcap};
+pub use writer::joint_motion_msg;
