@@ -6,7 +6,8 @@ any limb, the engine of the ``muscle_actuator`` ROS 2 node, bit for bit (docs/py
 - :func:`rollout`: many actuators (each with its own parameters) over many ticks, on every core.
 - :func:`simulate`, :func:`read_recording`, :func:`compare`: offline runs and recordings as
   arrays (:class:`Run`), and the ``compare`` command's figures.
-- :mod:`muscle_actuator.gym`: Gymnasium environments (``muscle_actuator/ArmReach-v0``).
+- :mod:`muscle_actuator.gym`: Gymnasium environments (``muscle_actuator/ArmReach-v0``),
+  registered with Gymnasium on import of this package when Gymnasium is installed.
 - :class:`Error` (a ``ValueError``) and its kinds: :class:`ConfigError`, :class:`InputError`,
   :class:`StepError`, :class:`RecordingError`, :class:`UnknownNameError` (also a ``KeyError``),
   :class:`FileNotFound` (also a ``FileNotFoundError``).
@@ -33,6 +34,7 @@ from ._core import (
     StepError,
     UnknownNameError,
 )
+from ._registration import register_envs
 from .run import Run
 
 __all__ = [
@@ -152,3 +154,5 @@ def compare(
         warnings.warn(w, TruncatedRecordingWarning, stacklevel=2)
     return json.loads(text)
 
+
+register_envs()
