@@ -31,6 +31,7 @@ PACKAGES=(
   maturin
   mcap
   mcap-ros2-support
+  mypy  # stubtest: python/muscle_actuator/_core.pyi against the built extension
   pandas
   pymcap-cli  # GPL: a test tool only (`doctor`), never a dependency of the product
   pytest

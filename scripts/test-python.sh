@@ -3,11 +3,12 @@
 #
 #   scripts/test-python.sh [pytest args...]     e.g. scripts/test-python.sh -k rollout -x
 #
-# Creates/updates .venv (scripts/py-env.sh: maturin, numpy, gymnasium, matplotlib, pandas, ray),
-# builds the wheel from python/ (maturin, release, abi3 for CPython >= 3.11) into
-# target/wheels, installs it into .venv, builds the command-line binary (debug) the parity tests
-# compare against, and runs pytest on python/tests in a loopback-only network namespace when the
-# machine allows it (Ray's local cluster and the node started by a test stay on 127.0.0.1).
+# Creates/updates .venv (scripts/py-env.sh: maturin, numpy, gymnasium, matplotlib, pandas, ray,
+# mypy), builds the wheel from python/ (maturin, release, abi3 for CPython >= 3.11) into
+# target/wheels, installs it into .venv, checks the stubs _core.pyi against it (mypy.stubtest),
+# builds the command-line binary (debug) the parity tests compare against, and runs pytest on
+# python/tests in a loopback-only network namespace when the machine allows it (Ray's local
+# cluster and the node started by a test stay on 127.0.0.1).
 set -euo pipefail
 
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -29,6 +30,12 @@ rm -f "$TARGET"/wheels/muscle_actuator-*.whl
   -i "$VENV/bin/python" >&2
 "$VENV/bin/python" -m pip install --disable-pip-version-check -q --force-reinstall --no-deps \
   "$TARGET"/wheels/muscle_actuator-*.whl >&2
+
+# The stubs against the built extension: every name, signature and class of _core.pyi as the
+# module has it (mypy's stubtest; run outside the source tree so that the installed package is
+# the one checked).
+echo "[test-python] checking python/muscle_actuator/_core.pyi (mypy.stubtest)" >&2
+(cd "$TARGET" && "$VENV/bin/python" -m mypy.stubtest --mypy-config-file /dev/null muscle_actuator._core) >&2
 
 export MUSCLE_ACTUATOR_BIN="$BIN"
 loopback_env

@@ -6,7 +6,11 @@ any limb, the engine of the ``muscle_actuator`` ROS 2 node, bit for bit (docs/py
 - :func:`rollout`: many actuators (each with its own parameters) over many ticks, on every core.
 - :func:`simulate`, :func:`read_recording`, :func:`compare`: offline runs and recordings as
   arrays (:class:`Run`), and the ``compare`` command's figures.
-- :mod:`muscle_actuator.gym`: Gymnasium environments (``muscle_actuator/ArmReach-v0``).
+- :mod:`muscle_actuator.gym`: Gymnasium environments (``muscle_actuator/ArmReach-v0``),
+  registered with Gymnasium on import of this package when Gymnasium is installed.
+- :class:`Error` (a ``ValueError``) and its kinds: :class:`ConfigError`, :class:`InputError`,
+  :class:`StepError`, :class:`RecordingError`, :class:`UnknownNameError` (also a ``KeyError``),
+  :class:`FileNotFound` (also a ``FileNotFoundError``).
 """
 
 from __future__ import annotations
@@ -19,14 +23,31 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from . import _core
-from ._core import Actuator, ActuatorState, StepError
+from ._core import (
+    Actuator,
+    ActuatorState,
+    ConfigError,
+    Error,
+    FileNotFound,
+    InputError,
+    RecordingError,
+    StepError,
+    UnknownNameError,
+)
+from ._registration import register_envs
 from .run import Run
 
 __all__ = [
     "Actuator",
     "ActuatorState",
+    "ConfigError",
+    "Error",
+    "FileNotFound",
+    "InputError",
+    "RecordingError",
     "Run",
     "StepError",
+    "UnknownNameError",
     "TruncatedRecordingWarning",
     "compare",
     "read_recording",
@@ -73,10 +94,10 @@ def rollout(
     bit, in any thread count.
     """
     if excitation is None:
-        raise ValueError("excitation is required: an array (instances, ticks, muscles)")
+        raise InputError("excitation is required: an array (instances, ticks, muscles)")
     if isinstance(config, (list, tuple)) and all(isinstance(a, Actuator) for a in config) and config:
         if overrides is not None or energy_model is not None or substeps is not None:
-            raise ValueError("overrides, energy_model and substeps apply to new actuators only")
+            raise ConfigError("overrides, energy_model and substeps apply to new actuators only")
         return _core._rollout_actuators(
             list(config), excitation, external_torque, outputs=outputs, threads=threads
         )
@@ -138,3 +159,6 @@ def compare(
             warnings.simplefilter("ignore", TruncatedRecordingWarning)
             overlay(read_recording(a), read_recording(b), plot)
     return json.loads(text)
+
+
+register_envs()

@@ -1,7 +1,7 @@
 """Type stubs of the extension module (python/src/*.rs)."""
 
 import os
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping, Sequence, final
 
 import numpy as np
 import numpy.typing as npt
@@ -9,30 +9,68 @@ import numpy.typing as npt
 _Config = str | os.PathLike[str] | Mapping[str, Any] | None
 _Inputs = npt.ArrayLike | Mapping[str, float] | None
 
+__all__ = [
+    "Actuator",
+    "ActuatorState",
+    "ConfigError",
+    "Error",
+    "FileNotFound",
+    "InputError",
+    "RecordingError",
+    "StepError",
+    "UnknownNameError",
+    "__version__",
+    "_compare",
+    "_read_recording",
+    "_rollout_actuators",
+    "_rollout_new",
+    "_simulate",
+]
+
 __version__: str
 
-class StepError(RuntimeError):
+class Error(ValueError):
+    """Every error of muscle_actuator (a ValueError)."""
+
+class ConfigError(Error):
+    """A bad configuration, override, stepping, rate or thread count; a bad scenario file."""
+
+class InputError(Error):
+    """Bad inputs (shape, type or value); nothing was changed."""
+
+class StepError(Error, RuntimeError):
     """A tick failed; ``tick``, ``reason`` and, in a batch, ``instance`` say which and why."""
 
     tick: int
     reason: str
     instance: int | None
 
+class RecordingError(Error):
+    """A recording that cannot be read (damaged, or not of this program)."""
+
+class UnknownNameError(Error, KeyError):
+    """An unknown model, energy model, muscle, joint, output or scenario name."""
+
+class FileNotFound(Error, FileNotFoundError):
+    """A configuration, scenario or recording file that does not exist."""
+
+@final
 class ActuatorState:
     """A saved state (``Actuator.get_state``); pickles."""
 
     @property
     def tick(self) -> int: ...
     @staticmethod
-    def _from_bytes(data: bytes) -> ActuatorState: ...
+    def _from_bytes(bytes: bytes) -> ActuatorState: ...
 
+@final
 class Actuator:
     """A limb of joints and muscles stepped at a fixed tick (docs/python.md)."""
 
     muscle_fields: list[str]
     joint_fields: list[str]
-    def __init__(
-        self,
+    def __new__(
+        cls,
         config: _Config = None,
         model: str = "huxley",
         rate_hz: float = 1000.0,
@@ -40,7 +78,7 @@ class Actuator:
         energy_model: str | None = None,
         substeps: int | None = None,
         overrides: Mapping[str, Any] | None = None,
-    ) -> None: ...
+    ) -> Actuator: ...
     @property
     def muscles(self) -> list[str]: ...
     @property
@@ -79,9 +117,9 @@ class Actuator:
     def set_state(self, state: ActuatorState) -> None: ...
     def copy(self) -> Actuator: ...
     def __copy__(self) -> Actuator: ...
-    def __deepcopy__(self, memo: Any) -> Actuator: ...
+    def __deepcopy__(self, _memo: Any) -> Actuator: ...
     @staticmethod
-    def _from_bytes(data: bytes) -> Actuator: ...
+    def _from_bytes(bytes: bytes) -> Actuator: ...
 
 def _rollout_new(
     config: _Config,

@@ -17,6 +17,11 @@ together by :func:`muscle_actuator.rollout` on every core, and instance ``i`` re
 ``s + i`` steps exactly as a single environment reset with seed ``s + i``. It resets finished
 instances at their next step (Gymnasium's next-step autoreset). :func:`make_env` is a plain
 creator for frameworks whose workers do not see Gymnasium's registry (RLlib).
+
+An action of another shape, of a type that is not real numbers, or with a NaN or an infinity is
+refused with :class:`muscle_actuator.InputError` naming what was expected; excitations outside
+[0, 1] are clipped, as the node clamps them. ``render_mode="rgb_array"`` needs matplotlib (in
+the ``gym`` extra).
 """
 
 from __future__ import annotations
@@ -33,7 +38,8 @@ try:
 except ImportError as e:  # pragma: no cover - depends on the environment
     raise ImportError("muscle_actuator.gym needs gymnasium: pip install 'gymnasium>=1.0'") from e
 
-from . import Actuator, StepError, rollout
+from . import Actuator, ConfigError, InputError, StepError, rollout
+from ._registration import ENVS, register_envs
 
 ENV_ID = "muscle_actuator/ArmReach-v0"
 #: Target angles are drawn uniformly from these ranges, rad (inside the joints' ranges).
@@ -56,7 +62,7 @@ class _Task:
         config: Any,
     ) -> None:
         if frame_skip < 1 or max_episode_steps < 1:
-            raise ValueError("frame_skip and max_episode_steps must be >= 1")
+            raise ConfigError("frame_skip and max_episode_steps must be >= 1")
         self.model, self.config = model, config
         self.frame_skip, self.max_episode_steps = int(frame_skip), int(max_episode_steps)
         self.effort_weight, self.failure_penalty = float(effort_weight), float(failure_penalty)
@@ -97,10 +103,24 @@ class _Task:
         error = float(np.linalg.norm(out["joint.position"] - target))
         return -error - self.effort_weight * float(np.mean(u * u))
 
-    def action(self, action: Any) -> np.ndarray:
-        u = np.asarray(action, dtype=np.float64).reshape(self.m)
-        if not np.all(np.isfinite(u)):
-            raise ValueError("action holds a non-finite excitation")
+    def action(self, action: Any, shape: tuple[int, ...] | None = None) -> np.ndarray:
+        """The action as excitations of ``shape`` (default: one per muscle), clipped to [0, 1];
+        refused with :class:`InputError` if of another shape, not real numbers, or not finite."""
+        shape = (self.m,) if shape is None else shape
+        want = f"{list(shape)} (" + ("environments, " if len(shape) == 2 else "") + "muscles)"
+        try:
+            a = np.asarray(action)
+        except (ValueError, TypeError) as e:  # ragged nested sequences
+            raise InputError(f"action must be an array of numbers of shape {want}: {e}") from None
+        if a.dtype.kind not in "biuf":
+            raise InputError(f"action has dtype {a.dtype}: expected real numbers of shape {want}")
+        if a.shape != shape:
+            raise InputError(f"action has shape {list(a.shape)}: expected {want}")
+        u = a.astype(np.float64)
+        bad = np.argwhere(~np.isfinite(u))
+        if len(bad):
+            k = tuple(int(i) for i in bad[0])
+            raise InputError(f"action{list(k)} = {u[k]} is not finite")
         return np.clip(u, 0.0, 1.0)
 
 
@@ -120,7 +140,7 @@ class ArmReachEnv(gym.Env):
         config: Any = "arm",
     ) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode {render_mode!r}: expected one of {self.metadata['render_modes']}")
+            raise ConfigError(f"render_mode {render_mode!r}: expected one of {self.metadata['render_modes']}")
         self._task = _Task(model, frame_skip, max_episode_steps, effort_weight, failure_penalty, config)
         self.observation_space = self._task.observation_space
         self.action_space = self._task.action_space
@@ -185,7 +205,7 @@ class ArmReachVectorEnv(VectorEnv):
         threads: int | None = None,
     ) -> None:
         if num_envs < 1:
-            raise ValueError("num_envs must be >= 1")
+            raise ConfigError("num_envs must be >= 1")
         self._task = _Task(model, frame_skip, max_episode_steps, effort_weight, failure_penalty, config)
         self.num_envs = int(num_envs)
         self.render_mode = render_mode
@@ -216,7 +236,7 @@ class ArmReachVectorEnv(VectorEnv):
         else:
             seeds = list(seed)
             if len(seeds) != self.num_envs:
-                raise ValueError(f"{len(seeds)} seeds for {self.num_envs} environments")
+                raise InputError(f"{len(seeds)} seeds for {self.num_envs} environments")
         for i, s in enumerate(seeds):
             if s is not None or seed is None:
                 self._rngs[i] = seeding.np_random(s)[0]
@@ -225,10 +245,7 @@ class ArmReachVectorEnv(VectorEnv):
         return obs, {"target": self._targets.copy()}
 
     def step(self, actions: Any):
-        u = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, self._task.m)
-        if not np.all(np.isfinite(u)):
-            raise ValueError("actions hold a non-finite excitation")
-        u = np.clip(u, 0.0, 1.0)
+        u = self._task.action(actions, (self.num_envs, self._task.m))
         obs = np.zeros((self.num_envs,) + self.single_observation_space.shape)
         rewards = np.zeros(self.num_envs)
         terminated = np.zeros(self.num_envs, dtype=bool)
@@ -295,15 +312,11 @@ def make_env(env_config: dict[str, Any] | None = None) -> ArmReachEnv:
     return ArmReachEnv(**(env_config or {}))
 
 
-def register_envs() -> None:
-    """Registers ``muscle_actuator/ArmReach-v0`` (done on import of this module; also the
-    ``gymnasium.envs`` entry point of the package)."""
-    if ENV_ID not in gym.registry:
-        gym.register(
-            id=ENV_ID,
-            entry_point="muscle_actuator.gym:ArmReachEnv",
-            vector_entry_point="muscle_actuator.gym:ArmReachVectorEnv",
-        )
-
-
-register_envs()
+__all__ = [
+    "ENVS",
+    "ENV_ID",
+    "ArmReachEnv",
+    "ArmReachVectorEnv",
+    "make_env",
+    "register_envs",
+]

@@ -7,6 +7,8 @@ from typing import Any
 
 import numpy as np
 
+from ._core import UnknownNameError
+
 
 @dataclass(frozen=True)
 class Run:
@@ -46,14 +48,14 @@ class Run:
         try:
             return self.arrays[output]
         except KeyError:
-            raise KeyError(
+            raise UnknownNameError(
                 f"unknown output {output[:64]!r}: expected one of {', '.join(self.arrays)}"
             ) from None
 
     def muscle(self, name: str) -> dict[str, np.ndarray]:
         """Every per-muscle output of muscle ``name``, one value per tick."""
         if name not in self.muscles:
-            raise ValueError(f"unknown muscle {name[:64]!r}: expected one of {', '.join(self.muscles)}")
+            raise UnknownNameError(f"unknown muscle {name[:64]!r}: expected one of {', '.join(self.muscles)}")
         i = self.muscles.index(name)
         return {k: v[:, i] for k, v in self.arrays.items() if not k.startswith("joint.") and v.ndim == 2}
 

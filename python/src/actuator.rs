@@ -3,7 +3,7 @@
 //! released, and record a trajectory of any outputs.
 
 use crate::config::build;
-use crate::errors::{step_error, CHUNK_TICKS};
+use crate::errors::{config_error, input_error, step_error, unknown_name, ErrorKind, CHUNK_TICKS};
 use crate::inputs::{checked, float_array, per_name, Kind, Values};
 use crate::outputs;
 use muscle_actuator_core::sim::rollout::rollout;
@@ -11,7 +11,6 @@ use muscle_actuator_core::sim::run::Record;
 use muscle_actuator_core::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use muscle_actuator_core::sim::Actuator;
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use std::sync::{Mutex, MutexGuard};
@@ -118,7 +117,7 @@ impl PyActuator {
                 return Ok(k);
             }
         }
-        Err(PyValueError::new_err(format!(
+        Err(unknown_name(format!(
             "unknown joint {}: expected one of {}",
             muscle_actuator_core::text::excerpt(&joint.to_string()),
             names.join(", ")
@@ -134,7 +133,7 @@ fn apply(values: Values, mut set: impl FnMut(usize, f64)) {
 }
 
 fn ticks_of(ticks: i64) -> PyResult<u64> {
-    u64::try_from(ticks).map_err(|_| PyValueError::new_err(format!("ticks = {ticks} must be >= 0")))
+    u64::try_from(ticks).map_err(|_| input_error(format!("ticks = {ticks} must be >= 0")))
 }
 
 #[pymethods]
@@ -205,7 +204,7 @@ impl PyActuator {
     #[getter]
     fn config<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let text = toml::to_string(self.a().config())
-            .map_err(|e| PyValueError::new_err(format!("configuration as TOML: {e}")))?;
+            .map_err(|e| ErrorKind::Error.err(format!("configuration as TOML: {e}")))?;
         py.import("tomllib")?.getattr("loads")?.call1((text,))
     }
     /// The `MuscleState` field names (the per-muscle outputs), in message order.
@@ -347,13 +346,13 @@ impl PyActuator {
         let k = self.joint_index(joint)?;
         let a = self.get_mut();
         if !a.driven_joints().contains(&k) {
-            return Err(PyValueError::new_err(format!(
+            return Err(input_error(format!(
                 "joint {:?} is not driven (driven = true in the configuration)",
                 a.joint_names()[k]
             )));
         }
         if !(angle.is_finite() && velocity.is_finite()) {
-            return Err(PyValueError::new_err(format!(
+            return Err(input_error(format!(
                 "joint motion ({angle}, {velocity}) must be finite"
             )));
         }
@@ -383,7 +382,7 @@ impl PyActuator {
             || a.rate_hz() != b.rate_hz()
             || a.simulation().stepping() != b.simulation().stepping()
         {
-            return Err(PyValueError::new_err(
+            return Err(config_error(
                 "the state is of an actuator with another configuration, model, rate or stepping",
             ));
         }
@@ -414,7 +413,7 @@ impl PyActuator {
     #[staticmethod]
     fn _from_bytes(bytes: &[u8]) -> PyResult<Self> {
         Ok(Self::wrap(
-            Actuator::from_bytes(bytes).map_err(PyValueError::new_err)?,
+            Actuator::from_bytes(bytes).map_err(input_error)?,
         ))
     }
     fn __repr__(&self) -> String {
@@ -448,7 +447,7 @@ impl PyActuatorState {
     #[staticmethod]
     fn _from_bytes(bytes: &[u8]) -> PyResult<Self> {
         Ok(Self {
-            inner: Mutex::new(Actuator::from_bytes(bytes).map_err(PyValueError::new_err)?),
+            inner: Mutex::new(Actuator::from_bytes(bytes).map_err(input_error)?),
         })
     }
     fn __repr__(&self) -> String {

@@ -2,6 +2,7 @@
 //! overrides, a model, an energy model and a stepping, resolved by the crate's own functions so
 //! that every refusal carries the command line's message.
 
+use crate::errors::{config_error, file_error, unknown_name};
 use muscle_actuator_core::config::overrides::with_overrides;
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::model::{ModelKind, UnknownModel};
@@ -11,19 +12,20 @@ use muscle_actuator_core::physics::stepping::Stepping;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::sim::Actuator;
 use muscle_actuator_recording::runs::limits;
-use pyo3::exceptions::{PyUserWarning, PyValueError};
+use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
 /// A Python value as a TOML value (numbers, strings, booleans, lists, dicts).
 fn toml_value(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<toml::Value> {
     pythonize::depythonize::<toml::Value>(obj)
-        .map_err(|e| PyValueError::new_err(format!("{what}: not a TOML value: {e}")))
+        .map_err(|e| config_error(format!("{what}: not a TOML value: {e}")))
 }
 
 /// The configuration `config` names: a built-in name or a file path (str or os.PathLike), a
 /// dict in the configuration file's form, or None (the default elbow). Warnings go to Python's
-/// `warnings`.
+/// `warnings`. A file that does not exist raises `FileNotFound`, one that does not open
+/// `OSError`, and a bad configuration `ConfigError`.
 pub fn resolve_config(
     py: Python<'_>,
     config: Option<&Bound<'_, PyAny>>,
@@ -33,9 +35,9 @@ pub fn resolve_config(
         Some(c) if c.is_instance_of::<PyDict>() => {
             let value = toml_value(c, "configuration dict")?;
             let text = toml::to_string(&value)
-                .map_err(|e| PyValueError::new_err(format!("configuration dict: {e}")))?;
+                .map_err(|e| config_error(format!("configuration dict: {e}")))?;
             ActuatorConfig::from_toml_str(&text).map_err(|e| {
-                PyValueError::new_err(
+                config_error(
                     e.to_string()
                         .replace("configuration file <text>", "configuration dict"),
                 )
@@ -50,12 +52,19 @@ pub fn resolve_config(
                     .call1((c,))
                     .and_then(|p| p.extract())
                     .map_err(|_| {
-                        PyValueError::new_err(
+                        config_error(
                             "config must be a built-in name, a path or a dict in the configuration file's form",
                         )
                     })?
             };
-            ActuatorConfig::resolve(&name).map_err(|e| PyValueError::new_err(e.to_string()))?
+            ActuatorConfig::resolve(&name).map_err(|e| {
+                // A built-in name fails only by its content; any other name is a file.
+                if is_built_in(&name) {
+                    config_error(e.to_string())
+                } else {
+                    file_error(std::path::Path::new(&name), e.to_string(), config_error)
+                }
+            })?
         }
     };
     for w in cfg.warnings() {
@@ -69,6 +78,13 @@ pub fn resolve_config(
     Ok(cfg)
 }
 
+/// Whether `name` is a built-in configuration's (`elbow`, `arm`).
+fn is_built_in(name: &str) -> bool {
+    ActuatorConfig::built_in_names()
+        .split(", ")
+        .any(|n| n == name)
+}
+
 /// Overrides as (dotted key, value): a dict `{"muscle.flexor.k_t": 2e5, ...}` or None.
 pub fn overrides_of(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, toml::Value)>> {
     let Some(obj) = obj.filter(|o| !o.is_none()) else {
@@ -76,12 +92,12 @@ pub fn overrides_of(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, tom
     };
     let dict = obj
         .cast::<PyDict>()
-        .map_err(|_| PyValueError::new_err("overrides must be a dict of dotted keys to values"))?;
+        .map_err(|_| config_error("overrides must be a dict of dotted keys to values"))?;
     let mut out = Vec::with_capacity(dict.len());
     for (k, v) in dict.iter() {
         let key: String = k
             .extract()
-            .map_err(|_| PyValueError::new_err("an override's key must be a string"))?;
+            .map_err(|_| config_error("an override's key must be a string"))?;
         let value = toml_value(
             &v,
             &format!("override {:?}", muscle_actuator_core::text::excerpt(&key)),
@@ -97,7 +113,7 @@ pub fn configured(
     overrides: &[(String, toml::Value)],
     energy_model: Option<&str>,
 ) -> PyResult<ActuatorConfig> {
-    let cfg = with_overrides(cfg, overrides).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let cfg = with_overrides(cfg, overrides).map_err(|e| config_error(e.to_string()))?;
     Ok(match energy_model {
         Some(name) => cfg.with_energy_model(parse_energy_model(name)?),
         None => cfg,
@@ -106,29 +122,29 @@ pub fn configured(
 
 pub fn parse_model(name: &str) -> PyResult<ModelKind> {
     name.parse()
-        .map_err(|e: UnknownModel| PyValueError::new_err(e.to_string()))
+        .map_err(|e: UnknownModel| unknown_name(e.to_string()))
 }
 
 pub fn parse_energy_model(name: &str) -> PyResult<EnergyModel> {
     name.parse()
-        .map_err(|e: UnknownEnergyModel| PyValueError::new_err(e.to_string()))
+        .map_err(|e: UnknownEnergyModel| unknown_name(e.to_string()))
 }
 
 /// The rate, checked as `--rate-hz` is.
 pub fn check_rate(rate_hz: f64) -> PyResult<()> {
-    limits::check_rate_hz("rate_hz", rate_hz).map_err(PyValueError::new_err)
+    limits::check_rate_hz("rate_hz", rate_hz).map_err(config_error)
 }
 
 /// Fixed sub-steps per tick, or the model's default stepping.
 /// A count from Python (an int may be negative), refused below 0 with its name.
 pub fn count(name: &str, v: i64) -> PyResult<usize> {
-    usize::try_from(v).map_err(|_| PyValueError::new_err(format!("{name} = {v} must be >= 1")))
+    usize::try_from(v).map_err(|_| config_error(format!("{name} = {v} must be >= 1")))
 }
 
 pub fn stepping(model: ModelKind, substeps: Option<i64>) -> PyResult<Stepping> {
     match substeps.map(|n| count("substeps", n)).transpose()? {
         Some(n) => {
-            limits::check_substeps("substeps", n).map_err(PyValueError::new_err)?;
+            limits::check_substeps("substeps", n).map_err(config_error)?;
             Ok(Stepping::Fixed(n))
         }
         None => Ok(default_stepping(model)),
@@ -153,5 +169,5 @@ pub fn build(
         &overrides_of(overrides)?,
         energy_model,
     )?;
-    Actuator::with_stepping(&cfg, model, rate_hz, stepping).map_err(PyValueError::new_err)
+    Actuator::with_stepping(&cfg, model, rate_hz, stepping).map_err(config_error)
 }

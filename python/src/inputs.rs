@@ -1,11 +1,12 @@
 //! Inputs from Python, checked before anything is stepped: arrays of any numeric dtype or
 //! nested sequences (as float64, C order), of the shape the call names, every value finite;
 //! or a dict by name, checked by the node's own rules (`sim::input`: unknown, repeated and
-//! non-finite names are refused whole; excitations outside [0, 1] are clamped).
+//! non-finite names are refused whole; excitations outside [0, 1] are clamped). A refusal is an
+//! `InputError`, or an `UnknownNameError` for a name the limb does not have.
 
+use crate::errors::{input_error, unknown_name};
 use muscle_actuator_core::sim::input::{validate_activation, validate_load};
 use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -26,14 +27,14 @@ pub fn float_array<'py>(
         .getattr("ascontiguousarray")?
         .call((obj,), Some(&kwargs))
         .map_err(|e| {
-            PyValueError::new_err(format!(
+            input_error(format!(
                 "{what} must be an array of numbers ({})",
                 muscle_actuator_core::text::excerpt(&e.to_string())
             ))
         })?;
     let a = converted
         .cast_into::<PyArrayDyn<f64>>()
-        .map_err(|_| PyValueError::new_err(format!("{what} must be an array of numbers")))?;
+        .map_err(|_| input_error(format!("{what} must be an array of numbers")))?;
     Ok(a.readonly())
 }
 
@@ -55,16 +56,16 @@ pub fn checked<'a>(
             .iter()
             .map(|s| s.map_or("any".to_string(), |n| n.to_string()))
             .collect();
-        return Err(PyValueError::new_err(format!(
+        return Err(input_error(format!(
             "{what} has shape {got:?}: expected [{}] ({axes})",
             want.join(", ")
         )));
     }
     let values = a
         .as_slice()
-        .map_err(|_| PyValueError::new_err(format!("{what} is not contiguous")))?;
+        .map_err(|_| input_error(format!("{what} is not contiguous")))?;
     if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-        return Err(PyValueError::new_err(format!(
+        return Err(input_error(format!(
             "{what}[{}] = {} is not finite",
             index_of(k, got).join(", "),
             values[k]
@@ -98,14 +99,14 @@ pub fn per_name(obj: &Bound<'_, PyAny>, names: &[String], kind: Kind) -> PyResul
         let mut values = Vec::with_capacity(d.len());
         for (k, v) in d.iter() {
             keys.push(k.extract::<String>().map_err(|_| {
-                PyValueError::new_err(format!(
+                input_error(format!(
                     "{}: a {} name must be a string",
                     kind.what(),
                     kind.noun()
                 ))
             })?);
             values.push(v.extract::<f64>().map_err(|_| {
-                PyValueError::new_err(format!(
+                input_error(format!(
                     "{}: the value for {} must be a number",
                     kind.what(),
                     muscle_actuator_core::sim::input::quote(keys.last().map_or("", |s| s))
@@ -116,7 +117,15 @@ pub fn per_name(obj: &Bound<'_, PyAny>, names: &[String], kind: Kind) -> PyResul
             Kind::Excitation => validate_activation(&keys, &values, names),
             Kind::Torque => validate_load(&keys, &values, names),
         }
-        .map_err(|r| PyValueError::new_err(format!("{}: {r}", kind.what())))?;
+        .map_err(|r| {
+            let msg = format!("{}: {r}", kind.what());
+            // A name not of this limb is an unknown name; a repeated or non-finite one, bad input.
+            if keys.iter().any(|k| !names.contains(k)) {
+                unknown_name(msg)
+            } else {
+                input_error(msg)
+            }
+        })?;
         return Ok(Values::Named(accepted.values));
     }
     let a = float_array(obj, kind.what())?;

@@ -5,7 +5,7 @@
 //!
 //! - [`config`]: configurations, overrides, models, rates and steppings from Python values;
 //! - [`inputs`]: arrays and dicts of inputs, checked;
-//! - [`errors`]: the exception of a failed tick;
+//! - [`errors`]: the package's exceptions (`Error` and its kinds), and which a failure raises;
 //! - [`outputs`]: the outputs a trajectory records, by field name, as numpy arrays (the stepping
 //!   over per-tick inputs is the crate's `sim::rollout`);
 //! - [`actuator`]: `Actuator` and its saved states;
@@ -26,7 +26,9 @@ use pyo3::prelude::*;
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<actuator::PyActuator>()?;
     m.add_class::<actuator::PyActuatorState>()?;
-    m.add("StepError", m.py().get_type::<errors::StepError>())?;
+    for kind in errors::ErrorKind::ALL {
+        m.add(kind.name(), kind.class(m.py())?)?;
+    }
     m.add_function(wrap_pyfunction!(rollout::_rollout_new, m)?)?;
     m.add_function(wrap_pyfunction!(rollout::_rollout_actuators, m)?)?;
     m.add_function(wrap_pyfunction!(runs::_simulate, m)?)?;

@@ -4,14 +4,14 @@
 
 use crate::actuator::PyActuator;
 use crate::config::build;
-use crate::errors::step_error;
+use crate::errors::{config_error, input_error, step_error, ErrorKind};
 use crate::inputs::{checked, float_array};
 use crate::outputs;
 use muscle_actuator_core::sim::rollout::rollout as run_one;
 use muscle_actuator_core::sim::simulation::StepError;
 use muscle_actuator_core::sim::Actuator;
 use numpy::PyUntypedArrayMethods;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
@@ -26,7 +26,7 @@ fn pool(threads: Option<i64>) -> PyResult<Arc<rayon::ThreadPool>> {
         .map(|t| crate::config::count("threads", t))
         .transpose()?
     {
-        Some(0) => return Err(PyValueError::new_err("threads = 0 must be >= 1")),
+        Some(0) => return Err(config_error("threads = 0 must be >= 1")),
         Some(n) => n.min(1024),
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
@@ -40,7 +40,7 @@ fn pool(threads: Option<i64>) -> PyResult<Arc<rayon::ThreadPool>> {
     let p = rayon::ThreadPoolBuilder::new()
         .num_threads(n)
         .build()
-        .map_err(|e| PyValueError::new_err(format!("cannot start {n} threads: {e}")))?;
+        .map_err(|e| PyOSError::new_err(format!("cannot start {n} threads: {e}")))?;
     let p = Arc::new(p);
     if pools.len() >= 4 {
         pools.remove(0);
@@ -126,6 +126,17 @@ fn run_batch<'py>(
     outputs::into_dict(py, &outputs, bufs, &[b, ticks], m, j)
 }
 
+/// `err` (of building instance `k`) with "instance k: " before its message, of the same class.
+fn with_instance(py: Python<'_>, err: PyErr, k: usize) -> PyErr {
+    let msg = format!("instance {k}: {}", err.value(py));
+    match pyo3::types::PyTuple::new(py, [msg.as_str()])
+        .and_then(|args| err.value(py).setattr("args", args))
+    {
+        Ok(()) => err,
+        Err(_) => ErrorKind::Error.err(msg),
+    }
+}
+
 /// `rollout` of new actuators: B built from one configuration, each with its own overrides.
 #[pyfunction]
 #[pyo3(signature = (config, model, excitation, external_torque=None, *, rate_hz=1000.0, energy_model=None, substeps=None, overrides=None, outputs=None, threads=None))]
@@ -147,11 +158,11 @@ pub fn _rollout_new<'py>(
     let per_instance: Vec<Option<Bound<'py, PyAny>>> = match overrides.filter(|o| !o.is_none()) {
         None => vec![None; b],
         Some(o) => {
-            let list = o.cast::<PyList>().map_err(|_| {
-                PyValueError::new_err("overrides must be a list of dicts, one per instance")
-            })?;
+            let list = o
+                .cast::<PyList>()
+                .map_err(|_| config_error("overrides must be a list of dicts, one per instance"))?;
             if list.len() != b {
-                return Err(PyValueError::new_err(format!(
+                return Err(config_error(format!(
                     "overrides has {} entries: expected one per instance ({b})",
                     list.len()
                 )));
@@ -170,14 +181,14 @@ pub fn _rollout_new<'py>(
             substeps,
             o.as_ref(),
         )
-        .map_err(|e| PyValueError::new_err(format!("instance {k}: {}", e.value(py))))?;
+        .map_err(|e| with_instance(py, e, k))?;
         built.push(a);
     }
     if built
         .iter()
         .any(|a| a.muscle_names() != built[0].muscle_names())
     {
-        return Err(PyValueError::new_err(
+        return Err(config_error(
             "every instance must have the same muscles and joints",
         ));
     }
@@ -197,13 +208,14 @@ pub fn _rollout_actuators<'py>(
     threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if actuators.is_empty() {
-        return Err(PyValueError::new_err("no actuators given"));
+        return Err(input_error("no actuators given"));
     }
     let mut guards = Vec::with_capacity(actuators.len());
     for (k, a) in actuators.iter().enumerate() {
-        guards.push(a.try_borrow_mut().map_err(|_| {
-            PyValueError::new_err(format!("actuator {k} is given twice (or is in use)"))
-        })?);
+        guards.push(
+            a.try_borrow_mut()
+                .map_err(|_| input_error(format!("actuator {k} is given twice (or is in use)")))?,
+        );
     }
     let names = |g: &mut PyRefMut<'_, PyActuator>| {
         let a = g.get_mut();
@@ -211,7 +223,7 @@ pub fn _rollout_actuators<'py>(
     };
     let first = names(&mut guards[0]);
     if guards.iter_mut().any(|g| names(g) != first) {
-        return Err(PyValueError::new_err(
+        return Err(config_error(
             "every actuator must have the same muscles and joints",
         ));
     }
@@ -225,7 +237,7 @@ fn batch_size(excitation: &Bound<'_, PyAny>) -> PyResult<usize> {
     let shape = a.shape().to_vec();
     match shape.as_slice() {
         [b, _, _] if *b > 0 => Ok(*b),
-        _ => Err(PyValueError::new_err(format!(
+        _ => Err(input_error(format!(
             "excitation has shape {shape:?}: expected [instances, ticks, muscles] with instances >= 1"
         ))),
     }

@@ -4,11 +4,15 @@
 //! command's figures as its `--json` prints them. `muscle_actuator/run.py` wraps the dicts.
 
 use crate::config::{configured, parse_model, resolve_config};
+use crate::errors::{
+    config_error, file_error, file_not_found, input_error, recording_error, step_error_of_message,
+    unknown_name,
+};
 use crate::outputs::{self, Outputs};
 use muscle_actuator_core::files::check_not_an_input;
 use muscle_actuator_core::sim::scenario::Run;
 use numpy::PyArray1;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use std::path::PathBuf;
@@ -22,7 +26,7 @@ fn path_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Strin
         .getattr("fspath")?
         .call1((obj,))
         .and_then(|p| p.extract())
-        .map_err(|_| PyValueError::new_err(format!("{what} must be a str or a path")))
+        .map_err(|_| input_error(format!("{what} must be a str or a path")))
 }
 
 /// A run as a dict: its names, rate, time (ticks + 1,) and every output (ticks + 1, …).
@@ -79,6 +83,7 @@ pub fn _simulate<'py>(
         _ => None,
     };
     let cfg = configured(&resolve_config(py, config)?, &[], energy_model)?;
+    check_scenario(&scenario, &cfg)?;
     let out = out
         .map(|o| path_of(py, o, "out"))
         .transpose()?
@@ -91,7 +96,7 @@ pub fn _simulate<'py>(
             .filter(|p| p.is_file())
             .collect();
         let refs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
-        check_not_an_input(o, &refs).map_err(PyValueError::new_err)?;
+        check_not_an_input(o, &refs).map_err(input_error)?;
     }
     let run = py
         .detach(|| {
@@ -104,8 +109,49 @@ pub fn _simulate<'py>(
                 out.as_deref(),
             )
         })
-        .map_err(PyValueError::new_err)?;
+        .map_err(|e| {
+            // The scenario resolved: a failed tick, a recording that could not be written, or a
+            // set-up the scenario's run refuses.
+            step_error_of_message(py, &e).unwrap_or_else(|| match &out {
+                Some(o) if e.contains(&o.display().to_string()) => PyOSError::new_err(e),
+                _ => config_error(e),
+            })
+        })?;
     run_dict(py, run)
+}
+
+/// The scenario `simulate` names, resolved as `run_scenario` resolves it: a name that is neither
+/// built in nor a file raises `UnknownNameError` (`FileNotFound` if it ends in `.toml`, as the
+/// crate's message says), an unreadable file `OSError`, a bad one `ConfigError`.
+fn check_scenario(
+    scenario: &str,
+    cfg: &muscle_actuator_core::config::ActuatorConfig,
+) -> PyResult<()> {
+    let Some(first) = cfg.muscles.first() else {
+        return Ok(());
+    };
+    match muscle_actuator_core::sim::scenario::Scenario::resolve(scenario, &first.params) {
+        Ok(_) => Ok(()),
+        Err(e) => {
+            let path = std::path::Path::new(scenario);
+            Err(if path.exists() {
+                file_error(path, e, config_error)
+            } else if scenario.ends_with(".toml") {
+                file_not_found(e)
+            } else {
+                unknown_name(e)
+            })
+        }
+    }
+}
+
+/// A failure to read recordings `paths`, reported as `msg` by the crate: `FileNotFound` or
+/// `OSError` for the first that does not exist or open, else `RecordingError`.
+fn recording_failure(paths: &[&std::path::Path], msg: String) -> PyErr {
+    match paths.iter().find(|p| std::fs::File::open(p).is_err()) {
+        Some(p) => file_error(p, msg, recording_error),
+        None => recording_error(msg),
+    }
 }
 
 /// A recording (node or `simulate --out`) as `export` reads it; the warning of a file cut by a
@@ -123,7 +169,7 @@ pub fn _read_recording<'py>(
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Ok::<_, String>((run, loaded.warning))
         })
-        .map_err(PyValueError::new_err)?;
+        .map_err(|e| recording_failure(&[&path], e))?;
     let d = run_dict(py, run)?;
     d.set_item("warning", warning)?;
     Ok(d)
@@ -146,15 +192,15 @@ pub fn _compare<'py>(
         .map(|p| path_of(py, p, "plot"))
         .transpose()?
         .map(PathBuf::from);
-    py.detach(|| {
-        if let Some(p) = &plot {
-            for written in [p.with_extension("png"), p.with_extension("svg")] {
-                check_not_an_input(&written, &[a.as_path(), b.as_path()])?;
-            }
+    if let Some(p) = &plot {
+        for written in [p.with_extension("png"), p.with_extension("svg")] {
+            check_not_an_input(&written, &[a.as_path(), b.as_path()]).map_err(input_error)?;
         }
+    }
+    py.detach(|| {
         let c = muscle_actuator_recording::runs::compare::compare_files(&a, &b, None)?;
         let json = serde_json::to_string_pretty(&c).map_err(|e| e.to_string())?;
         Ok::<_, String>((json, c.warnings))
     })
-    .map_err(PyValueError::new_err)
+    .map_err(|e| recording_failure(&[&a, &b], e))
 }

@@ -30,6 +30,6 @@ def test_a_plot_over_an_input_is_refused_and_the_input_kept(tmp_path):
     ma.simulate("pulse", model="hill", out=a)
     b_bytes = a.read_bytes()
     b.write_bytes(b_bytes)
-    with pytest.raises(ValueError, match="input"):
+    with pytest.raises(ma.InputError, match="would overwrite"):
         ma.compare(a, b, plot=tmp_path / "b.svg")
     assert b.read_bytes() == b_bytes

@@ -1,5 +1,6 @@
-"""Bad input from Python is a ValueError with the command line's message, and changes nothing; a
-failed tick is a StepError naming the tick; no shape, dtype or value crashes the interpreter."""
+"""Bad input from Python is a ValueError (a `ma.Error`, test_exceptions.py says of which kind) with
+the command line's message, and changes nothing; a failed tick is a StepError naming the tick; no
+shape, dtype or value crashes the interpreter."""
 
 from __future__ import annotations
 

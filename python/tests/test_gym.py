@@ -1,10 +1,16 @@
-"""The Gymnasium environment: Gymnasium's own checker passes, seeds matter and repeat, the native
-vector environment's instances step exactly as single environments, and autoreset follows
-Gymnasium's next-step rule."""
+"""The Gymnasium environments: registered on `import muscle_actuator` (and by Gymnasium's
+`module:id` form), Gymnasium's own checker passes with rendering, wrong actions are refused with
+the expected shape, seeds matter and repeat, the native vector environment's instances step
+exactly as single environments, and autoreset follows Gymnasium's next-step rule."""
 
 from __future__ import annotations
 
 import pickle
+import re
+import subprocess
+import sys
+import textwrap
+import warnings
 
 import numpy as np
 import pytest
@@ -12,14 +18,137 @@ import pytest
 gym = pytest.importorskip("gymnasium")
 from gymnasium.utils.env_checker import check_env  # noqa: E402
 
+import muscle_actuator as ma  # noqa: E402
 import muscle_actuator.gym as mgym  # noqa: E402
+from muscle_actuator._registration import ENVS  # noqa: E402
 from conftest import assert_bits_equal  # noqa: E402
 
 
-def test_gymnasiums_checker_passes():
-    env = gym.make(mgym.ENV_ID, model="hill")
-    check_env(env.unwrapped)
-    env.close()
+def registered() -> list[str]:
+    return sorted(k for k in gym.registry if k.startswith("muscle_actuator/"))
+
+
+def test_every_environment_of_the_package_is_registered():
+    assert registered() == sorted(ENVS) == [mgym.ENV_ID]
+
+
+@pytest.mark.parametrize("env_id", sorted(ENVS))
+def test_gymnasiums_checker_passes_with_rendering(env_id):
+    # Gymnasium's own checker, its warnings as errors; it also makes the environment anew in
+    # every declared render mode (rgb_array) and checks the frames.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        env = gym.make(env_id, render_mode="rgb_array")
+        check_env(env.unwrapped)
+        env.reset(seed=0)
+        frame = env.render()
+        env.close()
+    assert frame.dtype == np.uint8 and frame.ndim == 3 and frame.shape[2] == 3
+
+
+def test_the_gym_extra_brings_what_the_environments_need():
+    # rgb_array frames are drawn with matplotlib: `pip install muscle_actuator[gym]` brings it.
+    import importlib.metadata
+
+    reqs = importlib.metadata.requires("muscle_actuator") or []
+    gym_extra = {re.split(r"[<>=;\s\[]", r, maxsplit=1)[0] for r in reqs if re.search(r"extra == .gym.", r)}
+    assert {"gymnasium", "matplotlib"} <= gym_extra, reqs
+
+
+def run_python(code: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True, text=True, timeout=300)
+
+
+def test_import_muscle_actuator_registers_the_environments():
+    p = run_python(
+        """
+        import muscle_actuator, sys
+        import gymnasium as gym
+        assert "muscle_actuator.gym" not in sys.modules  # registered by name, imported on make
+        env = gym.make("muscle_actuator/ArmReach-v0", model="hill")
+        print(type(env.unwrapped).__name__, env.reset(seed=0)[0].shape)
+        """
+    )
+    assert p.returncode == 0 and p.stdout.split() == ["ArmReachEnv", "(24,)"], p.stderr[-2000:]
+
+
+def test_gymnasiums_module_form_needs_no_import_first():
+    p = run_python(
+        """
+        import sys
+        import gymnasium as gym
+        assert "muscle_actuator" not in sys.modules
+        env = gym.make("muscle_actuator:muscle_actuator/ArmReach-v0", model="hill")
+        venv = gym.make_vec("muscle_actuator:muscle_actuator/ArmReach-v0", num_envs=2,
+                            vectorization_mode="vector_entry_point", model="hill")
+        print(type(env.unwrapped).__name__, type(venv.unwrapped).__name__)
+        """
+    )
+    assert p.returncode == 0 and p.stdout.split() == ["ArmReachEnv", "ArmReachVectorEnv"], p.stderr[-2000:]
+
+
+def test_the_package_imports_without_gymnasium():
+    # sys.modules["gymnasium"] = None makes it unimportable, as if it were not installed.
+    p = run_python(
+        """
+        import sys
+        sys.modules["gymnasium"] = None
+        import muscle_actuator as ma
+        a = ma.Actuator("elbow", "hill")
+        a.step(excitation=[0.5, 0.5], ticks=3)
+        try:
+            import muscle_actuator.gym
+        except ImportError as e:
+            print("gym:", e)
+        """
+    )
+    assert p.returncode == 0, p.stderr[-2000:]
+    assert "muscle_actuator.gym needs gymnasium" in p.stdout
+
+
+def test_wrong_actions_are_refused_with_the_expected_shape():
+    env = mgym.ArmReachEnv(model="hill")
+    env.reset(seed=0)
+    cases = [
+        (np.zeros(5), r"^action has shape \[5\]: expected \[6\] \(muscles\)$"),
+        (np.zeros((1, 6)), r"^action has shape \[1, 6\]: expected \[6\] \(muscles\)$"),
+        (0.5, r"^action has shape \[\]: expected \[6\] \(muscles\)$"),
+        (np.array([0.1, 0.2, np.nan, 0, 0, 0]), r"^action\[2\] = nan is not finite$"),
+        (np.array([0, 0, 0, 0, 0, -np.inf]), r"^action\[5\] = -inf is not finite$"),
+        (np.full(6, 0.5 + 1j), r"^action has dtype complex128: expected real numbers of shape \[6\]"),
+        (["a"] * 6, r"^action has dtype <U1: expected real numbers of shape \[6\]"),
+        ([[0.1], [0.1, 0.2]], r"^action must be an array of numbers of shape \[6\]"),
+    ]
+    for action, msg in cases:
+        with pytest.raises(ma.InputError, match=msg):
+            env.step(action)
+    assert env._steps == 0  # nothing was stepped
+    # every refusal is also a ValueError, as Gymnasium users catch
+    with pytest.raises(ValueError):
+        env.step(np.zeros(5))
+
+
+def test_accepted_actions_are_clipped_and_of_any_real_dtype():
+    def first_step(action) -> np.ndarray:
+        env = mgym.ArmReachEnv(model="hill")
+        env.reset(seed=0)
+        return env.step(action)[0]
+
+    ones = first_step(np.ones(6))
+    assert_bits_equal(first_step(np.full(6, 3.0)), ones, "above 1 clipped")
+    assert_bits_equal(first_step(np.ones(6, dtype=np.int8)), ones, "int8")
+    assert_bits_equal(first_step(np.ones(6, dtype=np.float32)), ones, "float32")
+    assert_bits_equal(first_step([True] * 6), ones, "bool list")
+    assert_bits_equal(first_step(np.full(6, -2.0)), first_step(np.zeros(6)), "below 0 clipped")
+
+
+def test_the_vector_environment_refuses_wrong_actions():
+    venv = mgym.ArmReachVectorEnv(num_envs=2, model="hill")
+    venv.reset(seed=0)
+    with pytest.raises(ma.InputError, match=r"^action has shape \[6\]: expected \[2, 6\] \(environments, muscles\)$"):
+        venv.step(np.zeros(6))
+    with pytest.raises(ma.InputError, match=r"^action\[1, 0\] = nan is not finite$"):
+        venv.step(np.array([[0.0] * 6, [np.nan] + [0.0] * 5]))
 
 
 def test_seeds_matter_and_repeat():
