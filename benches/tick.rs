@@ -3,7 +3,7 @@
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::params::MuscleParams;
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::default_stepping;

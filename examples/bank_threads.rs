@@ -12,7 +12,7 @@
 mod bank;
 
 use bank::{bank, Lcg};
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;

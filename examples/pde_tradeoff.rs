@@ -10,7 +10,7 @@ use muscle_actuator::physics::contractile::calibration::calibrate_exact;
 use muscle_actuator::physics::contractile::force_length::force_length;
 use muscle_actuator::physics::contractile::huxley_exact;
 use muscle_actuator::physics::contractile::huxley_grid::CrossBridgeGrid;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::Stepping;
 use std::time::Instant;

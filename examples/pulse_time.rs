@@ -11,7 +11,7 @@
 //!
 //!   cargo run --release --example pulse_time -- [ROUNDS]     (default 5, the first included)
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::params::MuscleParams;
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::default_stepping;

@@ -5,7 +5,7 @@
 //!
 //!   cargo run --release --example steady_ticks -- MODEL TICKS     (MODEL: hill, huxley)
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 

@@ -1,12 +1,12 @@
 //! The `muscle_actuator` command line: the offline commands (simulate, replay, compare, recover,
 //! export, figures, models, [`steady`](mod@steady)) and the node. Model names, the default model
-//! and the default sub-stepping in its help come from [`MODELS`](crate::physics::model::MODELS).
+//! and the default sub-stepping in its help come from [`MODELS`](crate::physics::models::MODELS).
 
 pub mod steady;
 
 use crate::config::ActuatorConfig;
 use crate::physics::energetics::params::UnknownEnergyModel;
-use crate::physics::model::{join, ModelKind, UnknownModel};
+use crate::physics::models::{join, ModelKind, UnknownModel};
 use crate::physics::params::EnergyModel;
 use crate::physics::stepping::Stepping;
 use crate::sim::steady::{DEFAULT_POINTS, MAX_POINTS, MIN_POINTS};

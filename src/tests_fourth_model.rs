@@ -1,11 +1,11 @@
-//! A model is one file plus its line in [`MODELS`](crate::physics::model::MODELS): the fourth
+//! A model is one file plus its line in [`MODELS`](crate::physics::models::MODELS): the fourth
 //! model the tests register there ([`test_model`], the Hill element under the name `hill-copy`
 //! with a stepping of its own) is reached by name from the command line (parser, help, listing),
 //! the node's parameters (start-up arguments, validation, usage), CSV output, recordings
 //! (written, read back, replayed) and the figures, with no other edit.
 
 use crate::cli::{self, Cli};
-use crate::physics::model::{test_model, ModelKind};
+use crate::physics::models::{test_model, ModelKind};
 use crate::physics::stepping::Stepping;
 use crate::ros::params::{NodeParams, MODEL};
 use clap::{CommandFactory, Parser};

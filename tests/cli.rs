@@ -2,7 +2,7 @@
 //! panic (exit code 101). And the CSV it writes: header and rows as documented, the columns
 //! those of the message definitions (`msg/msg/*.msg`).
 
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use std::path::PathBuf;
 use std::process::Output;
 

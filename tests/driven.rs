@@ -4,7 +4,7 @@
 //! motion puts in, a limb without the driven joint.
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
 use muscle_actuator::sim::schedule::Schedule;
 use muscle_actuator::sim::simulation::default_stepping;

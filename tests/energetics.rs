@@ -6,7 +6,7 @@
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::contractile::calibration;
 use muscle_actuator::physics::energetics::bridge_power::BridgeEnergyScale;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::params::{EnergyModel, MuscleParams};
 use muscle_actuator::sim::scenario::{Run, Scenario};
 use muscle_actuator::sim::simulation::default_stepping;

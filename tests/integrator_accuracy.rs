@@ -5,7 +5,7 @@
 mod common;
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::params::MuscleParams;
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::{default_stepping, Stepping};

@@ -2,7 +2,7 @@
 //! composition.
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::stiffness::series_stiffness;
 use muscle_actuator::sim::Actuator;
 

@@ -6,7 +6,7 @@
 mod common;
 
 use muscle_actuator::config::{ActuatorConfig, ConfigError};
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, Signal};
 use muscle_actuator::sim::schedule::Schedule;
 use muscle_actuator::sim::simulation::default_stepping;

@@ -633,7 +633,7 @@ fn messages_document_units_and_model_names() {
         })
         .collect();
     // One constant per entry of MODELS, in its order, named after the model.
-    let models: Vec<(String, String)> = muscle_actuator::physics::model::ModelKind::all()
+    let models: Vec<(String, String)> = muscle_actuator::physics::models::ModelKind::all()
         .map(|m| {
             let name = m.name().to_ascii_uppercase().replace('-', "_");
             (name, m.name().to_string())

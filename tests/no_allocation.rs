@@ -7,7 +7,7 @@
 //! `sim::rollout`) into buffers sized before it.
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::default_stepping;
 use muscle_actuator::sim::Actuator;

@@ -391,7 +391,7 @@ fn limb_runs_record_replay_and_compare() {
     let as_dm = dir().join("arm_as_huxley.mcap");
     runs::replay(
         &arm,
-        Some(muscle_actuator::physics::model::ModelKind::HUXLEY),
+        Some(muscle_actuator::physics::models::ModelKind::HUXLEY),
         &as_dm,
     )
     .unwrap();

@@ -3,7 +3,7 @@
 //! error, for every model.
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::Actuator;
 
 /// A small deterministic generator (SplitMix64), so failures reproduce.

@@ -8,7 +8,7 @@
 //! integrator's work counters, the tick and the time.
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use muscle_actuator::sim::Actuator;
 use sha2::{Digest, Sha256};

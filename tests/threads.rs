@@ -3,7 +3,7 @@
 //! commands that differ per joint; and the thread count validated.
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::Actuator;
 
 /// Every published value and the state vector after each tick, as bits.

@@ -10,7 +10,7 @@
 //! no linear solves or sub-steps: those columns print as NaN.
 
 use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;

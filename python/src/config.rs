@@ -5,7 +5,7 @@
 use crate::errors::{config_error, file_error, unknown_name};
 use muscle_actuator_core::config::overrides::with_overrides;
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::model::{ModelKind, UnknownModel};
+use muscle_actuator_core::physics::models::{ModelKind, UnknownModel};
 use muscle_actuator_core::physics::params::energetics::UnknownEnergyModel;
 use muscle_actuator_core::physics::params::EnergyModel;
 use muscle_actuator_core::physics::stepping::Stepping;

@@ -4,7 +4,7 @@
 //! names).
 
 use crate::config::{ActuatorConfig, MuscleConfig};
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::sim::steady::{steady_table, SteadyRow};
 use crate::text::{excerpt, one_line};
 use std::io::Write;

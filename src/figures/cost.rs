@@ -6,7 +6,7 @@ use super::palette::color;
 use super::plot::{write_chart, Chart, Series};
 use super::samples::{at, run, series};
 use crate::config::ActuatorConfig;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::params::EnergyModel;
 use crate::sim::scenario::{Run, Scenario, ScheduledInput, SetupKind, Signal};
 use crate::sim::schedule::Schedule;

@@ -12,7 +12,7 @@ use crate::physics::contractile::calibration::calibrate_exact;
 use crate::physics::energetics::bridge_power::{activation_heat_w, BridgeEnergyScale};
 use crate::physics::energetics::huxley_steady::energy_rate_ratio;
 use crate::physics::energetics::steady::{exact_isometric_bridge_w, exact_point};
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::params::{EnergyModel, MuscleParams};
 use crate::sim::steady::{steady_table, EnergySource, SteadyRow};
 use plotters::prelude::SeriesLabelPosition;

@@ -2,7 +2,7 @@
 //! muscle's signal as a time series or at one time.
 
 use crate::config::ActuatorConfig;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::sim::scenario::{Run, Scenario};
 use crate::sim::simulation::default_stepping;
 use crate::sim::MuscleSnapshot;

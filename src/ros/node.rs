@@ -15,7 +15,7 @@ use super::signals::StopSignals;
 use super::tasks::{self, InputContext};
 use super::threads::{self, ThreadInputs, Threads};
 use super::tick::{self, Event, Pacing};
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::recording::RecorderState;
 use futures::FutureExt;
 use ros2_client::{NodeName, NodeOptions, ParameterValue, Spinner};

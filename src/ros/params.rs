@@ -1,7 +1,7 @@
 //! The node's parameters (docs/ros-interface.md): their defaults, types and validation.
 
 use super::clock::ClockMode;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::params::EnergyModel;
 use crate::sim::Actuator;
 use crate::{config::ActuatorConfig, text::excerpt};

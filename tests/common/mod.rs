@@ -5,7 +5,7 @@ mod reference;
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::activation::activation_rate;
-use muscle_actuator::physics::model::ModelKind;
+use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::scenario::{Record, Scenario};
 use muscle_actuator::sim::simulation::Stepping;
 

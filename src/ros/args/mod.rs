@@ -16,7 +16,7 @@ pub use params_file::{
 };
 
 use super::params::NodeParams;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::text::excerpt;
 use ros2_client::ParameterValue;
 use std::path::Path;
@@ -85,7 +85,7 @@ pub struct RosArgs {
     pub help: bool,
 }
 
-/// Usage text of `muscle_actuator node`: the models from [`MODELS`](crate::physics::model::MODELS),
+/// Usage text of `muscle_actuator node`: the models from [`MODELS`](crate::physics::models::MODELS),
 /// the defaults from [`NodeParams::default`].
 pub fn usage() -> String {
     let defaults = NodeParams::default();

@@ -3,7 +3,7 @@
 //! file and which of them apply to a node, and the bounds checked before any YAML is parsed.
 
 use super::ParamAssignment;
-use crate::physics::model::MODELS;
+use crate::physics::models::MODELS;
 use crate::{files::read_regular_file, text::excerpt};
 use ros2_client::ParameterValue;
 use std::path::Path;

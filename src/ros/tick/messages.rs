@@ -2,7 +2,7 @@
 //! the next tick boundary), [`Output`]s and [`Event`]s out (states and times to publish, lines
 //! to log), and the [`Applied`] inputs for the recording (docs/ros-interface.md).
 
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::sim::{Actuator, StateSnapshot};
 use std::sync::Arc;
 

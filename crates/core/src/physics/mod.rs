@@ -2,9 +2,9 @@
 //!
 //! - [`params`]: the parameters and their defaults (§1, §6, §8);
 //! - [`activation`]: excitation to activation (§2);
-//! - [`contractile`]: the contractile elements' mathematics (§3, §6, §7); [`muscle_model`]: the
-//!   interface a model implements; [`models`]: the models, one file each; [`model`]: [`MODELS`],
-//!   the one place where they are named;
+//! - [`contractile`]: the contractile elements' mathematics (§3, §6, §7); [`models`]: the
+//!   interface a model implements, the models, one file each, and [`MODELS`], the one place
+//!   where they are named;
 //! - [`spring`], [`tendon`], [`parallel_element`]: the passive elements (§4);
 //! - [`mtu`]: one muscle–tendon unit (§5); [`moment_arm`], [`joint`], [`topology`]: the limb
 //!   (§8, §8b); [`plant`]: the whole limb as one ODE (§5, §8b);
@@ -13,17 +13,15 @@
 //! - [`stepping`]: how a tick is divided into sub-steps (§10);
 //! - [`energetics`]: what a muscle spends, cross-bridge and phenomenological models (§11).
 //!
-//! [`MODELS`]: model::MODELS
+//! [`MODELS`]: models::MODELS
 
 pub mod activation;
 pub mod contractile;
 pub mod energetics;
 pub mod joint;
-pub mod model;
 pub mod models;
 pub mod moment_arm;
 pub mod mtu;
-pub mod muscle_model;
 pub mod observables;
 pub mod parallel_element;
 pub mod params;

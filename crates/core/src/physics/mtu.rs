@@ -8,8 +8,8 @@ use crate::physics::energetics::metabolic::{
     mechanism_rates, MetabolicRates, MetabolicSample, MuscleProbe,
 };
 use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
-use crate::physics::model::ModelKind;
-use crate::physics::muscle_model::{CeInputs, ContractileModel};
+use crate::physics::models::ModelKind;
+use crate::physics::models::{CeInputs, ContractileModel};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::parallel_element::{damper_force, parallel_spring};
 use crate::physics::params::MuscleParams;

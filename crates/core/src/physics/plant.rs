@@ -17,7 +17,7 @@
 //! [`crate::integrator::arrowhead`] exploits.
 
 use crate::physics::joint;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::mtu::Mtu;
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::params::JointParams;

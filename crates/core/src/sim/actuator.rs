@@ -10,7 +10,7 @@
 //! what a robot simulator that owns the joint applies.
 
 use crate::config::ActuatorConfig;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::simulation::{default_stepping, Simulation, StepError, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};

@@ -8,7 +8,7 @@ use crate::integrator::{OdeSystem, Stats};
 use crate::physics::activation::activation_after;
 use crate::physics::energetics::metabolic::MetabolicSample;
 use crate::physics::energetics::probe::ExcitationTerms;
-use crate::physics::muscle_model::SubstepMotion;
+use crate::physics::models::SubstepMotion;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::stepping::Stepping;
 use crate::sim::energy::{MuscleEnergy, TickEnergy};

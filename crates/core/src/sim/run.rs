@@ -4,7 +4,7 @@
 //! whole run, so that keeping a tick's record copies it and allocates nothing; read back as
 //! borrowed [`Record`]s.
 
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 
 /// One recorded tick, borrowed from its [`Run`].

@@ -38,10 +38,10 @@
 //! version changes with any change of what is saved or of its order (a field added to a saved
 //! struct fails to compile until it is saved: the save functions name every field).
 //!
-//! [`ContractileModel::save_state`]: crate::physics::muscle_model::ContractileModel::save_state
+//! [`ContractileModel::save_state`]: crate::physics::models::ContractileModel::save_state
 
 use crate::config::ActuatorConfig;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::stepping::{Stepping, MAX_SUBSTEPS};
 use crate::sim::actuator::Actuator;
 use crate::sim::snapshot::{

@@ -3,7 +3,7 @@
 //! `scenarios/example.toml`).
 
 use crate::config::ActuatorConfig;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::params::MuscleParams;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;

@@ -5,7 +5,7 @@
 //! contractile model.
 
 use crate::integrator::Stats;
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::observables::EnergeticsOutputs;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
@@ -23,7 +23,7 @@ pub const MAX_THREADS: usize = 256;
 /// Highest tick rate, Hz (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;
 
-/// The default stepping of a model (its [`ModelSpec::stepping`](crate::physics::muscle_model::ModelSpec::stepping)).
+/// The default stepping of a model (its [`ModelSpec::stepping`](crate::physics::models::ModelSpec::stepping)).
 pub fn default_stepping(model: ModelKind) -> Stepping {
     model.spec().stepping
 }

@@ -12,7 +12,7 @@ use crate::physics::energetics::bridge_power::BridgeEnergyScale;
 use crate::physics::energetics::steady::{
     dm_curve, exact_point, hill_steady_force, probe_point, SteadyPoint,
 };
-use crate::physics::model::ModelKind;
+use crate::physics::models::ModelKind;
 use crate::physics::params::{EnergyModel, MuscleParams};
 
 /// Velocities when none is given: every 0.05 vmax.

@@ -4,7 +4,7 @@
 
 use super::limits;
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::model::ModelKind;
+use muscle_actuator_core::physics::models::ModelKind;
 use muscle_actuator_core::physics::plant::{Inputs, Plant};
 use muscle_actuator_core::physics::topology::Topology;
 use muscle_actuator_core::sim::simulation::{Simulation, Stepping};

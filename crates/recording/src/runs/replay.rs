@@ -6,7 +6,7 @@ use super::metadata::{AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
 use crate::msgs::state_messages;
-use muscle_actuator_core::physics::model::ModelKind;
+use muscle_actuator_core::physics::models::ModelKind;
 use muscle_actuator_core::sim::simulation::{default_stepping, Simulation, Stepping};
 use muscle_actuator_core::sim::snapshot::StateSnapshot;
 use muscle_actuator_core::text::excerpt;

@@ -4,7 +4,7 @@ use super::limits;
 use super::metadata::{driven_motion, AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::model::ModelKind;
+use muscle_actuator_core::physics::models::ModelKind;
 use muscle_actuator_core::sim::scenario::{Run, Scenario, SetupKind};
 use muscle_actuator_core::sim::simulation::{default_stepping, Stepping};
 use muscle_actuator_core::time::{now_ns, TimeBase};

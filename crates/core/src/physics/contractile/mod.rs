@@ -1,7 +1,8 @@
 //! Contractile elements: Hill-type, and Huxley-type cross-bridges (Distribution-Moment and full).
 //! The mathematics only; the models built on it are in [`crate::physics::models`].
 //!
-//! - [`force_length`]: f(l_m), shared by both kinds; [`hill`]: the Hill element (§3);
+//! - [`force_length`]: f(l_m), shared by both kinds; [`hill_equation`]: Hill's force–velocity
+//!   equation and the Hill element's force (§3);
 //! - [`crossbridge`]: Huxley's attachment and detachment rates (§6);
 //! - [`distribution_moment`]: Zahalak's moment equations and their closure (§6);
 //!   [`closure_limits`]: its limits' values kept for the fluxes at a tick's end (§11.1);
@@ -16,6 +17,6 @@ pub mod closure_limits;
 pub mod crossbridge;
 pub mod distribution_moment;
 pub mod force_length;
-pub mod hill;
+pub mod hill_equation;
 pub mod huxley_exact;
 pub mod huxley_grid;

@@ -6,7 +6,7 @@
 use crate::physics::contractile::calibration::CrossBridgeScale;
 use crate::physics::contractile::crossbridge::Rates;
 use crate::physics::contractile::distribution_moment::{self as dm, SteadyStateError};
-use crate::physics::contractile::hill::{force_velocity, hill_force};
+use crate::physics::contractile::hill_equation::{force_velocity, hill_force};
 use crate::physics::contractile::huxley_exact;
 use crate::physics::energetics::bridge_flux::{gaussian_fluxes, EnergyFluxes};
 use crate::physics::energetics::bridge_power::{

@@ -9,11 +9,11 @@ use crate::physics::energetics::bridge_flux::{gaussian_fluxes_near, EnergyFluxes
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::energetics::steady::dm_isometric_bridge_w;
-use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec};
+use crate::physics::models::contractile_model::{CeInputs, ContractileModel, ModelSpec};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
-/// The model's entry in [`crate::physics::model::MODELS`].
+/// The model's entry in [`crate::physics::models::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
     name: "huxley",
     label: "Huxley (DM)",

@@ -4,12 +4,12 @@
 //! (§8).
 
 use crate::physics::contractile::calibration;
-use crate::physics::contractile::hill::{force_velocity, hill_force};
-use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec};
+use crate::physics::contractile::hill_equation::{force_velocity, hill_force};
+use crate::physics::models::contractile_model::{CeInputs, ContractileModel, ModelSpec};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
-/// The model's entry in [`crate::physics::model::MODELS`].
+/// The model's entry in [`crate::physics::models::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
     name: "hill",
     label: "Hill",

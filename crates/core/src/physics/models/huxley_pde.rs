@@ -11,12 +11,14 @@ use crate::physics::energetics::bridge_flux::{grid_fluxes, EnergyFluxes};
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::energetics::steady::exact_isometric_bridge_w;
-use crate::physics::muscle_model::{CeInputs, ContractileModel, ModelSpec, SubstepMotion};
+use crate::physics::models::contractile_model::{
+    CeInputs, ContractileModel, ModelSpec, SubstepMotion,
+};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
 use crate::state_bytes::{SavedState, StateReader, StateWriter};
 
-/// The model's entry in [`crate::physics::model::MODELS`].
+/// The model's entry in [`crate::physics::models::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
     name: "huxley-pde",
     label: "Huxley (full)",

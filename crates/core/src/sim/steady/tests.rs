@@ -5,7 +5,7 @@
 use super::*;
 use crate::physics::contractile::calibration::CrossBridgeScale;
 use crate::physics::contractile::distribution_moment::steady_curve;
-use crate::physics::contractile::hill::force_velocity;
+use crate::physics::contractile::hill_equation::force_velocity;
 use crate::physics::contractile::huxley_exact::steady_q1;
 use crate::physics::energetics::bridge_power::AVOGADRO_PER_MOL;
 use crate::physics::energetics::tests::assert_rel;

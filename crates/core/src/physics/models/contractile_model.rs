@@ -1,6 +1,6 @@
 //! The interface every contractile-element model implements (docs/model.md §3, §6, §7).
 //!
-//! A model is one file in `physics/models/` plus one line in [`crate::physics::model::MODELS`].
+//! A model is one file in `physics/models/` plus one line in [`crate::physics::models::MODELS`].
 //! It supplies, for one muscle:
 //! - its calibration (the `build` function of its [`ModelSpec`], from the muscle's parameters);
 //! - the size of its own state (0 for Hill, Q0..Q2 for the Huxley models) and their scales;
@@ -124,7 +124,7 @@ pub struct ModelSpec {
     pub build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, String>,
 }
 
-/// A model: a reference to its entry in [`crate::physics::model::MODELS`]. Compared by name.
+/// A model: a reference to its entry in [`crate::physics::models::MODELS`]. Compared by name.
 #[derive(Clone, Copy)]
 pub struct ModelKind(pub &'static ModelSpec);
 
