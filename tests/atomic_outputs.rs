@@ -159,6 +159,14 @@ fn every_command_writes_its_output_whole_and_leaves_no_temporary() {
         &o.stdout,
         "figures summary.md",
     );
+    // Markdown: a blank line before every heading but the first.
+    let md = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = md.lines().collect();
+    for (k, l) in lines.iter().enumerate().skip(1) {
+        if l.starts_with('#') {
+            assert_eq!(lines[k - 1], "", "no blank line before {l:?}");
+        }
+    }
     let images: Vec<String> = names(&figures)
         .into_iter()
         .filter(|n| n.ends_with(".png") || n.ends_with(".svg"))

@@ -3,12 +3,13 @@
 //! those of the message definitions (`msg/msg/*.msg`).
 
 use muscle_actuator::physics::models::ModelKind;
+use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use std::path::PathBuf;
 use std::process::Output;
 
 #[path = "common/cli.rs"]
 mod cli;
-use cli::{assert_clean_failure, bin, stderr};
+use cli::{assert_clean_failure, bin, read_csv, stderr};
 
 fn tmp(name: &str, text: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("muscle_actuator_cli_{}", std::process::id()));
@@ -211,8 +212,7 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&out).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let (header, rows) = read_csv(&text);
     // `time`, `name`, the muscle's fields after its name, then the per-joint arrays of the
     // joint (the stiffness matrix is not per joint).
     let mut columns = vec!["time".to_string(), "name".to_string()];
@@ -229,8 +229,7 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
             .map(|(_, name)| format!("elbow.{name}")),
     );
     assert_eq!(header, columns);
-    let position = header.iter().position(|c| *c == "elbow.position").unwrap();
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let position = header.iter().position(|c| c == "elbow.position").unwrap();
     // 1.5 s at 1 kHz: the initial state and 1500 ticks, two muscles each.
     assert_eq!(rows.len(), 2 * 1501);
     assert!(rows.iter().all(|r| r.len() == columns.len()));
@@ -245,6 +244,64 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
         at_half[position].parse::<f64>().unwrap() > 0.01,
         "{at_half:?}"
     );
+}
+
+/// Names with a comma and quotes (which a configuration allows) are quoted in the CSV (RFC
+/// 4180): read back with the `csv` crate, the header has its columns and every row as many;
+/// the recording of the run exports to the same CSV.
+#[test]
+fn names_with_commas_and_quotes_keep_the_csv_columns() {
+    let (muscle, joint) = (r#"a,"b""#, r#"el,"bow""#);
+    let elbow = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/configs/elbow.toml"))
+        .unwrap()
+        .replace(r#"name = "flexor""#, &format!("name = '{muscle}'"))
+        .replace(r#""elbow""#, &format!("'{joint}'"));
+    assert_eq!(elbow.matches(joint).count(), 3, "{elbow}");
+    let cfg = tmp("quoted_names.toml", &elbow);
+    let scenario = tmp(
+        "quoted_names_scenario.toml",
+        "name = \"q\"\nduration = 0.01\nattachment = \"joint\"\n\
+         [[input]]\nsignal = \"excitation\"\nkind = \"constant\"\nvalue = 0.5\n",
+    );
+    let (csv, mcap, export) = (
+        scenario.with_file_name("quoted.csv"),
+        scenario.with_file_name("quoted.mcap"),
+        scenario.with_file_name("quoted_export.csv"),
+    );
+    let o = bin()
+        .args(["simulate"])
+        .arg(&scenario)
+        .args(["--model", "hill", "--config"])
+        .arg(&cfg)
+        .arg("--csv")
+        .arg(&csv)
+        .arg("--out")
+        .arg(&mcap)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.contains(r#""a,""b""""#), "{text}");
+    let (header, rows) = read_csv(&text);
+    let mut columns = vec!["time".to_string(), "name".to_string()];
+    columns.extend(MuscleSnapshot::FIELDS.iter().map(|f| f.to_string()));
+    columns.extend(JointSnapshot::FIELDS.iter().map(|f| format!("{joint}.{f}")));
+    assert_eq!(header, columns);
+    assert_eq!(rows.len(), 2 * 11);
+    assert!(rows.iter().all(|r| r.len() == columns.len()));
+    assert_eq!(
+        (rows[0][1].as_str(), rows[1][1].as_str()),
+        (muscle, "extensor")
+    );
+    let o = bin()
+        .arg("export")
+        .arg(&mcap)
+        .arg("--csv")
+        .arg(&export)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&export).unwrap(), text);
 }
 
 /// No command writes its output over a file it reads: `replay --out` over its recording,

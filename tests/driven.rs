@@ -12,7 +12,7 @@ use muscle_actuator::sim::Actuator;
 
 #[path = "common/cli.rs"]
 mod cli;
-use cli::{bin, run_ok, temp_dir};
+use cli::{bin, read_csv, run_ok, temp_dir};
 
 const MODELS: [ModelKind; 2] = [ModelKind::HILL, ModelKind::HUXLEY];
 
@@ -410,11 +410,11 @@ fn driven_example_simulates_and_replays_bit_for_bit() {
             .arg(&csv),
     );
     let text = std::fs::read_to_string(&csv).unwrap();
-    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
-    let pos = header.iter().position(|h| *h == "elbow.position").unwrap();
-    // Row of tick 250 (two muscles per tick, header first): θ = 0.1 + 0.5 sin(2π 0.249) plus
-    // one tick of the schedule's slope there.
-    let row: Vec<&str> = text.lines().nth(1 + 2 * 250).unwrap().split(',').collect();
+    let (header, rows) = read_csv(&text);
+    let pos = header.iter().position(|h| h == "elbow.position").unwrap();
+    // Row of tick 250 (two muscles per tick): θ = 0.1 + 0.5 sin(2π 0.249) plus one tick of the
+    // schedule's slope there.
+    let row = &rows[2 * 250];
     let w = 2.0 * std::f64::consts::PI;
     let want = 0.1 + 0.5 * (w * 0.249).sin() + 0.5 * w * (w * 0.249).cos() * 1e-3;
     let got: f64 = row[pos].parse().unwrap();

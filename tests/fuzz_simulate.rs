@@ -210,11 +210,18 @@ fn simulate(name: &str, scenario: &Path, config: Option<&str>, extra: &[&str], d
 
 /// Whether a CSV holds finite numbers only (the `name` column aside).
 fn csv_finite(path: &Path) -> Result<(), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("CSV {}: {e}", path.display()))?;
-    let mut rows = text.lines();
-    rows.next().ok_or("an empty CSV")?;
-    for (r, row) in rows.enumerate() {
-        for (k, field) in row.split(',').enumerate() {
+    let mut reader =
+        csv::Reader::from_path(path).map_err(|e| format!("CSV {}: {e}", path.display()))?;
+    if reader
+        .headers()
+        .map_err(|e| format!("CSV {}: {e}", path.display()))?
+        .is_empty()
+    {
+        return Err("an empty CSV".into());
+    }
+    for (r, row) in reader.records().enumerate() {
+        let row = row.map_err(|e| format!("CSV {}: {e}", path.display()))?;
+        for (k, field) in row.iter().enumerate() {
             if k == 1 || field.is_empty() {
                 continue;
             }

@@ -207,6 +207,19 @@ fn compare_hill_and_huxley_pulse() {
     let table = String::from_utf8_lossy(&o.stdout);
     assert!(table.contains("flexor.force"), "{table}");
     assert!(plot.exists());
+    // Both tables' rows as long as their header, the longest name included: the columns line
+    // up.
+    let mut tables = table.lines().skip(1).collect::<Vec<_>>();
+    tables.retain(|l| !l.is_empty());
+    assert!(tables
+        .iter()
+        .any(|l| l.starts_with("flexor.phenomenological_energy ")));
+    let (signals, energies) =
+        tables.split_at(tables.iter().position(|l| l.starts_with("energy")).unwrap());
+    for rows in [signals, energies] {
+        let len = rows[0].chars().count();
+        assert!(rows.iter().all(|l| l.chars().count() == len), "{table}");
+    }
     let o = run_ok(bin().arg("compare").arg(&hill).arg(&hux).arg("--json"));
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(json["model_b"], "huxley");

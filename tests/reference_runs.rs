@@ -21,19 +21,19 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Column name → values, from CSV text.
+/// Column name → values, from CSV text (read with the `csv` crate).
 fn columns(text: &str) -> HashMap<String, Vec<String>> {
-    let mut lines = text.lines();
-    let header: Vec<String> = lines
-        .next()
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> = r
+        .headers()
         .expect("a header")
-        .split(',')
+        .iter()
         .map(String::from)
         .collect();
     let mut cols: HashMap<String, Vec<String>> =
         header.iter().map(|h| (h.clone(), Vec::new())).collect();
-    for line in lines {
-        for (h, v) in header.iter().zip(line.split(',')) {
+    for row in r.records() {
+        for (h, v) in header.iter().zip(row.expect("a row").iter()) {
             cols.get_mut(h).expect("header").push(v.to_string());
         }
     }

@@ -10,7 +10,7 @@ use std::process::Output;
 
 #[path = "common/cli.rs"]
 mod cli;
-use cli::{assert_clean_failure, bin, run_ok, stderr, temp_dir};
+use cli::{assert_clean_failure, bin, read_csv, run_ok, stderr, temp_dir};
 
 /// Avogadro's number, 1/mol (SI 2019, exact).
 const AVOGADRO_PER_MOL: f64 = 6.022_140_76e23;
@@ -44,20 +44,15 @@ impl Row {
 }
 
 fn parse_csv(text: &str) -> Vec<Row> {
-    let mut lines = text.lines();
-    assert_eq!(
-        lines.next().unwrap().split(',').collect::<Vec<_>>(),
-        COLUMNS
-    );
-    lines
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            assert_eq!(f.len(), COLUMNS.len(), "{l}");
+    let (header, rows) = read_csv(text);
+    assert_eq!(header, COLUMNS);
+    rows.into_iter()
+        .map(|f| {
             let v: Vec<f64> = f[2..].iter().map(|x| x.parse().unwrap()).collect();
-            assert!(v.iter().all(|x| x.is_finite()), "{l}");
+            assert!(v.iter().all(|x| x.is_finite()), "{f:?}");
             Row {
-                model: f[0].into(),
-                source: f[1].into(),
+                model: f[0].clone(),
+                source: f[1].clone(),
                 v: v.try_into().unwrap(),
             }
         })

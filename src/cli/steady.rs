@@ -151,15 +151,17 @@ fn unsigned_zero(x: f64, decimals: i32) -> f64 {
 /// Every row as CSV: a header of [`SteadyRow::FIELDS`], then the names and the values
 /// ([`csv_number`]).
 pub fn write_csv(rows: &[SteadyRow], out: &mut impl Write) -> std::io::Result<()> {
-    writeln!(out, "{}", SteadyRow::FIELDS.join(","))?;
+    let mut w = crate::csv::writer(out);
+    w.write_record(SteadyRow::FIELDS)?;
     for r in rows {
-        write!(out, "{},{}", r.model.name(), r.source.name())?;
+        w.write_field(r.model.name())?;
+        w.write_field(r.source.name())?;
         for x in r.values() {
-            write!(out, ",{}", csv_number(x))?;
+            w.write_field(csv_number(x))?;
         }
-        writeln!(out)?;
+        w.write_record(None::<&[u8]>)?;
     }
-    Ok(())
+    w.flush()
 }
 
 /// A number in the shortest form that reads back exactly: positional, or with an exponent

@@ -3,7 +3,7 @@
 //! isometric co-contraction of the elbow from rest to full excitation, per model.
 
 use super::palette::color;
-use super::plot::{write_chart, Chart, Series};
+use super::plot::{write_chart, write_chart_with_legend, Chart, Series};
 use super::samples::{at, run, series};
 use crate::config::ActuatorConfig;
 use crate::physics::models::ModelKind;
@@ -12,6 +12,7 @@ use crate::sim::scenario::{Run, Scenario, ScheduledInput, SetupKind, Signal};
 use crate::sim::schedule::Schedule;
 use crate::sim::simulation::default_stepping;
 use crate::sim::MuscleSnapshot;
+use plotters::chart::SeriesLabelPosition;
 use plotters::style::RGBColor;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -163,7 +164,8 @@ pub(super) fn stiffness_cost_figure(
             dashed: *dashed,
         })
         .collect();
-    write_chart(
+    // The curves rise steeply and end in the upper right: the legend goes below them.
+    write_chart_with_legend(
         dir,
         "cost_of_stiffness",
         &Chart {
@@ -172,10 +174,11 @@ pub(super) fn stiffness_cost_figure(
             y_label: "joint stiffness (N m/rad)",
             series: lines,
         },
+        SeriesLabelPosition::LowerRight,
     )?;
     let _ = writeln!(
         summary,
-        "## The cost of stiffness: isometric co-contraction of the elbow\n"
+        "\n## The cost of stiffness: isometric co-contraction of the elbow\n"
     );
     let _ = writeln!(summary, "Both muscles at the same excitation for {HOLD_S} s; joint stiffness (N m/rad) and metabolic power of both (W).\n");
     let _ = write!(summary, "| excitation |");

@@ -92,13 +92,14 @@ fn bounds<'a>(points: impl Iterator<Item = &'a [(f64, f64)]>) -> ((f64, f64), (f
 fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     chart: &Chart,
+    legend: SeriesLabelPosition,
 ) -> Result<(), String>
 where
     DB::ErrorType: 'static,
 {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
     root.fill(&WHITE).map_err(err)?;
-    draw_panel(&root, chart, &[], SeriesLabelPosition::UpperRight)?;
+    draw_panel(&root, chart, &[], legend)?;
     root.present().map_err(err)?;
     Ok(())
 }
@@ -208,14 +209,25 @@ where
     Ok(())
 }
 
-/// Writes `stem.png` and `stem.svg` in `dir`.
+/// Writes `stem.png` and `stem.svg` in `dir`, the legend in the upper right corner.
 pub fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> Result<(), String> {
+    write_chart_with_legend(dir, stem, chart, SeriesLabelPosition::UpperRight)
+}
+
+/// Writes `stem.png` and `stem.svg` in `dir`, the legend at `legend` (a corner the curves
+/// leave free).
+pub fn write_chart_with_legend(
+    dir: &Path,
+    stem: &str,
+    chart: &Chart,
+    legend: SeriesLabelPosition,
+) -> Result<(), String> {
     write_png_svg(
         dir,
         stem,
         (1000, 600),
-        |area| draw(area, chart),
-        |area| draw(area, chart),
+        |area| draw(area, chart, legend.clone()),
+        |area| draw(area, chart, legend.clone()),
     )
 }
 

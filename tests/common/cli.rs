@@ -74,3 +74,15 @@ pub fn mcap_records(buf: &[u8]) -> Vec<(usize, u8, u64)> {
     }
     out
 }
+
+/// A CSV table read with the `csv` crate (RFC 4180 quoting): its header and its rows, every row
+/// as long as the header (a ragged row fails the test).
+pub fn read_csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut r = csv::ReaderBuilder::new().from_reader(text.as_bytes());
+    let header = r.headers().unwrap().iter().map(String::from).collect();
+    let rows = r
+        .records()
+        .map(|row| row.unwrap().iter().map(String::from).collect())
+        .collect();
+    (header, rows)
+}

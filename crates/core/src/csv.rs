@@ -4,9 +4,15 @@
 //! joint J of the run `J.position`, `J.velocity`, `J.torque`, `J.external_torque`,
 //! `J.stiffness` (the `ActuatorState` per-joint fields), filled on the rows of the muscles that
 //! span J and empty on the others. The field lists are those of [`crate::sim::snapshot`].
+//!
+//! Every CSV the project writes goes through the `csv` crate ([`writer`]): a name with a comma,
+//! a quote or a line break is quoted (RFC 4180), every other field is written as it is, so an
+//! ordinary table is the plain comma-joined text. The numbers are formatted here (Rust's
+//! shortest round-trip form) and handed to it as text.
 
 use crate::sim::scenario::Run;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
 
@@ -20,29 +26,86 @@ pub fn header(joint_names: &[String]) -> Vec<String> {
     cols
 }
 
+/// A CSV writer on `out`: comma-separated, `\n`-terminated, fields quoted only when they must
+/// be (a delimiter, a quote or a line break in them).
+pub fn writer<W: Write>(out: W) -> ::csv::Writer<W> {
+    ::csv::WriterBuilder::new()
+        .terminator(::csv::Terminator::Any(b'\n'))
+        .quote_style(::csv::QuoteStyle::Necessary)
+        .from_writer(out)
+}
+
+/// Writes `x` as a CSV field in Rust's shortest round-trip form (`{x}`), through `buf`.
+pub fn write_number<W: Write>(
+    w: &mut ::csv::Writer<W>,
+    buf: &mut String,
+    x: f64,
+) -> ::csv::Result<()> {
+    buf.clear();
+    let _ = write!(buf, "{x}");
+    w.write_field(buf.as_bytes())
+}
+
 /// Writes the run as CSV.
 pub fn write_csv(run: &Run, out: &mut impl Write) -> std::io::Result<()> {
-    writeln!(out, "{}", header(&run.joint_names).join(","))?;
-    let blank = ",".repeat(JointSnapshot::FIELDS.len());
+    let mut w = writer(out);
+    w.write_record(header(&run.joint_names))?;
+    let mut buf = String::new();
     for rec in run.records() {
         for (i, (m, name)) in rec.muscles.iter().zip(&run.muscle_names).enumerate() {
-            write!(out, "{},{}", rec.time, name)?;
+            write_number(&mut w, &mut buf, rec.time)?;
+            w.write_field(name)?;
             for x in m.values() {
-                write!(out, ",{x}")?;
+                write_number(&mut w, &mut buf, x)?;
             }
             for (j, joint) in rec.joints.iter().enumerate() {
-                if run.muscle_joints.get(i).is_some_and(|js| js.contains(&j)) {
-                    for x in joint.values() {
-                        write!(out, ",{x}")?;
+                let spans = run.muscle_joints.get(i).is_some_and(|js| js.contains(&j));
+                for x in joint.values() {
+                    if spans {
+                        write_number(&mut w, &mut buf, x)?;
+                    } else {
+                        w.write_field("")?;
                     }
-                } else {
-                    out.write_all(blank.as_bytes())?;
                 }
             }
-            writeln!(out)?;
+            w.write_record(None::<&[u8]>)?;
         }
     }
-    Ok(())
+    w.flush()
+}
+
+/// `fields` as one CSV record without its line end (`""` for none): a list of names kept in one
+/// text value (a recording's `muscles` and `joints`), read back by [`split_record`].
+pub fn join_record(fields: &[String]) -> String {
+    if fields.is_empty() {
+        return String::new();
+    }
+    let mut w = writer(Vec::new());
+    // Writing to memory cannot fail.
+    let _ = w.write_record(fields);
+    let mut bytes = w.into_inner().unwrap_or_default();
+    bytes.pop(); // the line end
+    String::from_utf8(bytes).unwrap_or_default()
+}
+
+/// The fields of one CSV record ([`join_record`]'s text); none for an empty text.
+pub fn split_record(text: &str) -> Result<Vec<String>, String> {
+    let mut r = ::csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(text.as_bytes());
+    let mut records = r.records();
+    let fields = match records.next() {
+        None => Vec::new(),
+        Some(rec) => rec
+            .map_err(|e| e.to_string())?
+            .iter()
+            .map(String::from)
+            .collect(),
+    };
+    match records.next() {
+        None => Ok(fields),
+        Some(_) => Err("more than one line".into()),
+    }
 }
 
 /// Writes the run as CSV to the file `path` (`-`: standard output).

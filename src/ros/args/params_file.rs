@@ -11,7 +11,7 @@ use std::path::Path;
 /// Largest parameters file, bytes.
 pub const MAX_PARAMS_FILE_BYTES: u64 = 1 << 20;
 /// Deepest nesting of YAML flow collections (`[`, `{`) in a parameters file or a `-p` value.
-/// serde_yaml refuses more than 128 levels, but only after libyaml has parsed the rest, which
+/// serde_norway refuses more than 128 levels, but only after libyaml has parsed the rest, which
 /// takes minutes for 100,000 levels: the text is checked before it is parsed.
 pub const MAX_FLOW_DEPTH: usize = 64;
 
@@ -29,10 +29,10 @@ pub fn parse_param_rule(rule: &str) -> Result<ParamAssignment, String> {
         return Err(format!("-p {:?}: empty parameter name", excerpt(rule)));
     }
     check_flow_depth(val).map_err(|e| format!("-p {:?}: {e}", excerpt(rule)))?;
-    let yaml: serde_yaml::Value = if val.is_empty() {
-        serde_yaml::Value::String(String::new())
+    let yaml: serde_norway::Value = if val.is_empty() {
+        serde_norway::Value::String(String::new())
     } else {
-        serde_yaml::from_str(val).unwrap_or(serde_yaml::Value::String(val.into()))
+        serde_norway::from_str(val).unwrap_or(serde_norway::Value::String(val.into()))
     };
     let value = yaml_to_param(&yaml).map_err(|e| format!("-p {:?}: {e}", excerpt(rule)))?;
     Ok(ParamAssignment {
@@ -43,8 +43,8 @@ pub fn parse_param_rule(rule: &str) -> Result<ParamAssignment, String> {
 }
 
 /// Converts a YAML scalar or sequence into a parameter value of the ROS 2 types.
-pub fn yaml_to_param(v: &serde_yaml::Value) -> Result<ParameterValue, String> {
-    use serde_yaml::Value as Y;
+pub fn yaml_to_param(v: &serde_norway::Value) -> Result<ParameterValue, String> {
+    use serde_norway::Value as Y;
     Ok(match v {
         Y::Bool(b) => ParameterValue::Boolean(*b),
         Y::Number(n) => {
@@ -110,11 +110,11 @@ pub fn parse_params_yaml(
     fqn: &str,
 ) -> Result<Vec<ParamAssignment>, String> {
     check_flow_depth(text).map_err(|e| format!("parameters file {source}: {e}"))?;
-    let doc: serde_yaml::Value = serde_yaml::from_str(text)
+    let doc: serde_norway::Value = serde_norway::from_str(text)
         .map_err(|e| format!("parameters file {source}: not valid YAML: {e}"))?;
     let top = match &doc {
-        serde_yaml::Value::Mapping(m) => m,
-        serde_yaml::Value::Null => return Ok(vec![]),
+        serde_norway::Value::Mapping(m) => m,
+        serde_norway::Value::Null => return Ok(vec![]),
         _ => {
             return Err(format!(
                 "parameters file {source}: expected `node_name: {{ros__parameters: {{...}}}}`"
@@ -149,10 +149,10 @@ fn join_node_key(prefix: &str, key: &str) -> String {
 /// the node's namespace (siblings of the node), and a plain value before any
 /// `ros__parameters` is an error.
 fn node_sections<'a>(
-    map: &'a serde_yaml::Mapping,
+    map: &'a serde_norway::Mapping,
     prefix: &str,
     source: &str,
-    out: &mut Vec<(String, &'a serde_yaml::Value)>,
+    out: &mut Vec<(String, &'a serde_norway::Value)>,
 ) -> Result<(), String> {
     let parent = match map.get(PARAMS_KEY) {
         Some(params) => {
@@ -195,7 +195,7 @@ fn node_sections<'a>(
 }
 
 fn flatten(
-    v: &serde_yaml::Value,
+    v: &serde_norway::Value,
     prefix: &str,
     source: &str,
     out: &mut Vec<ParamAssignment>,
@@ -207,8 +207,8 @@ fn flatten(
     };
     for (k, val) in map {
         let k = match k {
-            serde_yaml::Value::String(s) => s.clone(),
-            other => serde_yaml::to_string(other)
+            serde_norway::Value::String(s) => s.clone(),
+            other => serde_norway::to_string(other)
                 .unwrap_or_default()
                 .trim()
                 .to_string(),

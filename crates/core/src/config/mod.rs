@@ -63,6 +63,11 @@ pub enum ConfigError {
     /// One or more parameters break their rules.
     #[error("{}", .0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"))]
     Invalid(Vec<ParamError>),
+    /// Overrides of single values ([`overrides`]) that cannot be applied, or that give a
+    /// configuration breaking its rules: one line (a caller may prefix it, e.g. with the sweep's
+    /// instance).
+    #[error("overrides: {0}")]
+    Overrides(String),
 }
 
 /// The error of `parameter` = `value` breaking `rule`.

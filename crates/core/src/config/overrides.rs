@@ -12,7 +12,8 @@
 use super::{ActuatorConfig, ConfigError};
 use crate::text::excerpt;
 
-/// `cfg` with each `(key, value)` set in turn, validated as a configuration file.
+/// `cfg` with each `(key, value)` set in turn, validated as a configuration file; an error is
+/// [`ConfigError::Overrides`], on one line (several broken rules joined by `; `).
 pub fn with_overrides(
     cfg: &ActuatorConfig,
     overrides: &[(String, toml::Value)],
@@ -20,10 +21,7 @@ pub fn with_overrides(
     if overrides.is_empty() {
         return Ok(cfg.clone());
     }
-    let invalid = |message: String| ConfigError::Parse {
-        path: "<overrides>".into(),
-        message,
-    };
+    let invalid = |message: String| ConfigError::Overrides(message.replace('\n', " "));
     let mut table =
         toml::Table::try_from(cfg).map_err(|e| invalid(format!("configuration as TOML: {e}")))?;
     for (key, value) in overrides {
@@ -33,7 +31,12 @@ pub fn with_overrides(
     let text = toml::to_string(&table).map_err(|e| invalid(format!("as TOML: {e}")))?;
     ActuatorConfig::from_toml_str(&text).map_err(|e| match e {
         ConfigError::Parse { message, .. } => invalid(message),
-        other => other,
+        ConfigError::Invalid(errors) => invalid(
+            (errors.iter().map(|e| e.to_string()))
+                .collect::<Vec<_>>()
+                .join("; "),
+        ),
+        other => invalid(other.to_string()),
     })
 }
 
@@ -179,5 +182,40 @@ mod tests {
             toml::Value::Float(0.1)
         )
         .contains("no span over joint"));
+    }
+
+    /// Every refusal is one line that starts with `overrides: ` (never "configuration file"),
+    /// however many rules the overridden configuration breaks.
+    #[test]
+    fn refusals_are_one_line_naming_the_overrides() {
+        let both = with_overrides(
+            &ActuatorConfig::default(),
+            &[("muscle.*.k_t".into(), toml::Value::Float(-1.0))],
+        );
+        let cases = [
+            both.unwrap_err().to_string(),
+            over("muscle.flexor.k_tt", toml::Value::Float(1.0))
+                .unwrap_err()
+                .to_string(),
+            over("muscle.biceps.k_t", toml::Value::Float(1.0))
+                .unwrap_err()
+                .to_string(),
+            over("tendon.k_t", toml::Value::Float(1.0))
+                .unwrap_err()
+                .to_string(),
+        ];
+        for e in &cases {
+            assert!(e.starts_with("overrides: "), "{e}");
+            assert!(
+                !e.contains('\n') && !e.contains("configuration file"),
+                "{e}"
+            );
+        }
+        // Both muscles' k_t named, on the one line.
+        let e = &cases[0];
+        assert!(
+            e.contains("muscle.flexor.k_t") && e.contains("muscle.extensor.k_t"),
+            "{e}"
+        );
     }
 }

@@ -4,16 +4,19 @@
 //! - [`schema`]: `ros2msg` schema texts with their dependencies appended;
 //! - [`writer`]: the recorder thread (bounded channel, drops counted, chunks flushed on time);
 //! - [`reader`]: reading a recording back (strictly, or recovering what a truncated file holds);
+//! - [`rosbag2`]: rosbag2's YAML in a file (the QoS profiles, the bag's metadata);
 //! - [`recover`]: rewriting a file cut by a crash as a complete, indexed one;
 //! - [`encode_cdr`] / [`decode_cdr`]: CDR with its 4-byte encapsulation header.
 
 pub mod reader;
 pub mod recover;
+pub mod rosbag2;
 pub mod schema;
 pub mod writer;
 
 pub use reader::{read_recording, RawMessage, Recording};
-pub use writer::{qos_yaml, ChannelSpec, RecordSender, Recorder, RecorderOptions, RecorderState};
+pub use rosbag2::qos_yaml;
+pub use writer::{ChannelSpec, RecordSender, Recorder, RecorderOptions, RecorderState};
 
 use byteorder::LittleEndian;
 use serde::{de::DeserializeOwned, Serialize};

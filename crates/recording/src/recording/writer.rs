@@ -9,6 +9,7 @@
 //! A write error (full disk, file gone) stops the recording: the thread records the reason in
 //! [`RecorderStats`] and exits; producers see their messages counted as dropped, nothing more.
 
+use super::rosbag2::{metadata_yaml, Topic, ROS_DISTRO};
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufWriter;
@@ -124,23 +125,6 @@ pub struct Recorder {
 }
 
 type McapWriter = mcap::Writer<BufWriter<File>>;
-
-/// The `offered_qos_profiles` value of a reliable, volatile, keep-last(`depth`) endpoint in
-/// rosbag2's YAML form.
-pub fn qos_yaml(reliable: bool, transient_local: bool, depth: u32) -> String {
-    format!(
-        "- history: keep_last\n  depth: {depth}\n  reliability: {}\n  durability: {}\n  \
-         deadline:\n    sec: 9223372036\n    nsec: 854775807\n  lifespan:\n    sec: 9223372036\n    \
-         nsec: 854775807\n  liveliness: automatic\n  liveliness_lease_duration:\n    \
-         sec: 9223372036\n    nsec: 854775807\n  avoid_ros_namespace_conventions: false\n",
-        if reliable { "reliable" } else { "best_effort" },
-        if transient_local {
-            "transient_local"
-        } else {
-            "volatile"
-        },
-    )
-}
 
 /// Creates the file (and its directory) with its channels and `metadata` records written and
 /// flushed: the MCAP writer and the channel ids, in the order of `channels`.
@@ -556,39 +540,19 @@ impl Worker {
     /// The `rosbag2` metadata record: the bag's `metadata.yaml` content as rosbag2_storage_mcap
     /// writes it (key `serialized_metadata`).
     fn rosbag2_metadata(&self) -> BTreeMap<String, String> {
-        let total: u64 = self.counts.iter().sum();
-        let (start, end) = if total == 0 {
-            (0, 0)
-        } else {
-            (self.first, self.last)
-        };
-        let mut y = String::new();
-        y.push_str("rosbag2_bagfile_information:\n  version: 9\n  storage_identifier: mcap\n");
-        y.push_str(&format!(
-            "  duration:\n    nanoseconds: {}\n  starting_time:\n    nanoseconds_since_epoch: {start}\n",
-            end - start
-        ));
-        y.push_str(&format!(
-            "  message_count: {total}\n  topics_with_message_count:\n"
-        ));
-        for (c, n) in self.channels.iter().zip(&self.counts) {
-            y.push_str(&format!(
-                "    - topic_metadata:\n        name: {}\n        type: {}\n        \
-                 serialization_format: cdr\n        offered_qos_profiles: {:?}\n        \
-                 type_description_hash: {}\n      message_count: {n}\n",
-                c.topic,
-                c.type_name,
-                c.qos_yaml,
-                c.type_hash.clone().unwrap_or_default()
-            ));
-        }
-        y.push_str(
-            "  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths: []\n  \
-             files: []\n  custom_data: ~\n  ros_distro: kilted\n",
-        );
+        let topics: Vec<Topic> = (self.channels.iter().zip(&self.counts))
+            .map(|(c, &n)| Topic {
+                name: &c.topic,
+                type_name: &c.type_name,
+                qos_yaml: &c.qos_yaml,
+                type_hash: c.type_hash.as_deref(),
+                message_count: n,
+            })
+            .collect();
+        let y = metadata_yaml(&topics, self.first, self.last);
         let mut m = BTreeMap::new();
         m.insert("serialized_metadata".to_string(), y);
-        m.insert("ROS_DISTRO".to_string(), "kilted".to_string());
+        m.insert("ROS_DISTRO".to_string(), ROS_DISTRO.to_string());
         m
     }
 }

@@ -316,16 +316,24 @@ impl Comparison {
         Ok(())
     }
 
-    /// A readable table.
+    /// A readable table; the name column as wide as its longest name, so that the numbers
+    /// stay in their columns.
     pub fn table(&self) -> String {
         let opt = |v: Option<f64>| v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "-".into());
+        const SIGNAL: &str = "signal";
+        const ENERGY: &str = "energy over the span";
+        let w = (self.signals.iter().map(|d| d.signal.chars().count()))
+            .chain(self.energies.iter().map(|e| e.muscle.chars().count()))
+            .chain([SIGNAL.len(), ENERGY.len()])
+            .max()
+            .unwrap_or(0);
         let mut s = format!(
             "A: {}   B: {}   compared {:.4}..{:.4} s ({} samples)\n",
             self.model_a, self.model_b, self.start, self.end, self.samples
         );
         s.push_str(&format!(
-            "{:<26} {:>12} {:>12} {:>9} {:>12} {:>12} {:>9} {:>9} {:>9} {:>9}\n",
-            "signal",
+            "{:<w$} {:>12} {:>12} {:>9} {:>12} {:>12} {:>9} {:>9} {:>9} {:>9}\n",
+            SIGNAL,
             "rms diff",
             "max diff",
             "at s",
@@ -338,7 +346,7 @@ impl Comparison {
         ));
         for d in &self.signals {
             s.push_str(&format!(
-                "{:<26} {:>12.5e} {:>12.5e} {:>9.4} {:>12.5e} {:>12.5e} {:>9.4} {:>9.4} {:>9} {:>9}\n",
+                "{:<w$} {:>12.5e} {:>12.5e} {:>9.4} {:>12.5e} {:>12.5e} {:>9.4} {:>9.4} {:>9} {:>9}\n",
                 d.signal,
                 d.rms_diff,
                 d.max_abs_diff,
@@ -352,8 +360,8 @@ impl Comparison {
             ));
         }
         s.push_str(&format!(
-            "\n{:<26} {:>12} {:>12} {:>12} {:>12} {:>14} {:>14}\n",
-            "energy over the span",
+            "\n{:<w$} {:>12} {:>12} {:>12} {:>12} {:>14} {:>14}\n",
+            ENERGY,
             "A (J)",
             "B (J)",
             "rms P A (W)",
@@ -363,7 +371,7 @@ impl Comparison {
         ));
         for e in &self.energies {
             s.push_str(&format!(
-                "{:<26} {:>12.5e} {:>12.5e} {:>12.5e} {:>12.5e} {:>14.5e} {:>14.5e}\n",
+                "{:<w$} {:>12.5e} {:>12.5e} {:>12.5e} {:>12.5e} {:>14.5e} {:>14.5e}\n",
                 e.muscle,
                 e.energy_a_j,
                 e.energy_b_j,

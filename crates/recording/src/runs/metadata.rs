@@ -174,8 +174,15 @@ impl RunMeta {
                 .collect();
             put("initial_joint_motion", v.join(" "));
         }
-        put("muscles", self.muscles.join(","));
-        put("joints", self.joints.join(","));
+        // One CSV record each: a name with a comma or a quote is quoted.
+        put(
+            "muscles",
+            muscle_actuator_core::csv::join_record(&self.muscles),
+        );
+        put(
+            "joints",
+            muscle_actuator_core::csv::join_record(&self.joints),
+        );
         put("program_version", env!("CARGO_PKG_VERSION").into());
         put("program", "muscle_actuator".into());
         Ok(m)
@@ -209,15 +216,12 @@ impl RunMeta {
                 e.to_string().replace('\n', "; ")
             )
         })?;
-        let list = |k: &str| -> Vec<String> {
-            m.get(k)
-                .map(|s| {
-                    s.split(',')
-                        .filter(|x| !x.is_empty())
-                        .map(String::from)
-                        .collect()
-                })
-                .unwrap_or_default()
+        let list = |k: &str| -> Result<Vec<String>, String> {
+            m.get(k).map_or(Ok(Vec::new()), |s| {
+                muscle_actuator_core::csv::split_record(s)
+                    .map(|v| v.into_iter().filter(|x| !x.is_empty()).collect())
+                    .map_err(|e| format!("{}: {e}", bad(k, s)))
+            })
         };
         let time_base = time_base_from(m)?;
         let meta = RunMeta {
@@ -234,8 +238,8 @@ impl RunMeta {
                 .unwrap_or(0),
             time_base,
             initial_joint_motion: initial_motion_from(m)?,
-            muscles: list("muscles"),
-            joints: list("joints"),
+            muscles: list("muscles")?,
+            joints: list("joints")?,
         };
         meta.check()?;
         Ok(meta)
