@@ -2,7 +2,8 @@
 //! `use_sim_time`), each with the table's type and default, so the page cannot drift from the
 //! node.
 
-use super::table::{DefaultValue, Kind, USE_SIM_TIME};
+use super::table::{DefaultValue, USE_SIM_TIME};
+use super::Kind;
 use super::{NodeParams, PARAMETERS};
 
 const DOC: &str = include_str!("../../../docs/ros-interface.md");

@@ -2,15 +2,39 @@
 //! view), read as its type: the checks every parameter of a type shares, with their one-line
 //! errors.
 
-use super::table::{Kind, ParameterSpec};
-use super::{MAX_NAME_CHARS, MAX_PATH_BYTES};
+use super::limits::{MAX_NAME_CHARS, MAX_PATH_BYTES};
 use crate::text::excerpt;
 use ros2_client::ParameterValue;
 
-/// A value for parameter `spec`; `lenient` (start-up values from `-p` and files) also accepts an
+/// A parameter's ROS type; strings are limited by what they hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Bool,
+    Integer,
+    Double,
+    /// A name (a model, a clock mode): at most [`MAX_NAME_CHARS`] characters.
+    Name,
+    /// A path: at most [`MAX_PATH_BYTES`] bytes.
+    Path,
+}
+
+impl Kind {
+    /// The type as docs/ros-interface.md writes it.
+    pub fn doc_name(self) -> &'static str {
+        match self {
+            Kind::Bool => "bool",
+            Kind::Integer => "integer",
+            Kind::Double => "double",
+            Kind::Name | Kind::Path => "string",
+        }
+    }
+}
+
+/// A value for parameter `name` of type `kind`; `lenient` (start-up values from `-p` and files) also accepts an
 /// integer for a double.
 pub struct Given<'a> {
-    pub spec: &'a ParameterSpec,
+    pub name: &'a str,
+    pub kind: Kind,
     pub value: &'a ParameterValue,
     pub lenient: bool,
 }
@@ -23,7 +47,7 @@ impl Given<'_> {
             ParameterValue::Integer(i) if self.lenient => Ok(*i as f64),
             other => Err(format!(
                 "parameter {:?} must be a double (e.g. 1000.0), got {}",
-                self.spec.name,
+                self.name,
                 Self::describe(other)
             )),
         }
@@ -32,10 +56,10 @@ impl Given<'_> {
     /// A string parameter's value: a name ([`Kind::Name`]) of at most [`MAX_NAME_CHARS`]
     /// characters, a path of at most [`MAX_PATH_BYTES`] bytes.
     pub fn string(&self) -> Result<String, String> {
-        let name = self.spec.name;
+        let name = self.name;
         match self.value {
             ParameterValue::String(s) => {
-                let (limit, too_long) = if self.spec.kind == Kind::Name {
+                let (limit, too_long) = if self.kind == Kind::Name {
                     ("64 characters", s.chars().count() > MAX_NAME_CHARS)
                 } else {
                     ("4096 bytes", s.len() > MAX_PATH_BYTES)

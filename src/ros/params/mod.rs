@@ -4,61 +4,19 @@
 #[cfg(test)]
 mod docs_table;
 mod given;
+mod limits;
+mod node_params;
 pub mod table;
 
-pub use given::Given;
+pub use given::{Given, Kind};
+pub use limits::*;
+pub use node_params::{publish_every, NodeParams};
 pub use table::{spec, OnChange, ParameterSpec, PARAMETERS};
 
-use super::clock::ClockMode;
 use crate::physics::model::ModelKind;
-use crate::physics::params::EnergyModel;
-use crate::sim::Actuator;
-use crate::{config::ActuatorConfig, text::excerpt};
+use crate::ros::clock::ClockMode;
+use crate::text::excerpt;
 use ros2_client::ParameterValue;
-
-/// The live view's port unless set: Foxglove's own default for a WebSocket connection
-/// (`ws://localhost:8765`), so that a first-time user connects without looking it up.
-pub const DEFAULT_FOXGLOVE_PORT: u16 = 8765;
-/// Highest `real_time_factor` (beyond it, 0 = as fast as possible is the honest value).
-pub const MAX_REAL_TIME_FACTOR: f64 = 1e6;
-
-/// Upper bound on the tick rate (the simulation's).
-pub use crate::sim::simulation::MAX_RATE_HZ;
-/// Longest `model` value, characters (a model name).
-pub const MAX_NAME_CHARS: usize = 64;
-/// Longest `config` and `record_dir` values, bytes (PATH_MAX).
-pub const MAX_PATH_BYTES: usize = 4096;
-
-/// The values of the node's parameters.
-#[derive(Debug, Clone, PartialEq)]
-pub struct NodeParams {
-    /// Contractile-element model.
-    pub model: ModelKind,
-    /// Tick rate, Hz.
-    pub rate_hz: f64,
-    /// State publication rate, Hz; 0 (or >= rate_hz) = every tick.
-    pub publish_rate_hz: f64,
-    /// Configuration file ("" = the embedded default).
-    pub config: String,
-    /// Record to MCAP.
-    pub record: bool,
-    /// Directory for recordings ("" = no recording).
-    pub record_dir: String,
-    /// How ticks are paced and stamped (fixed at start-up).
-    pub clock: ClockMode,
-    /// `sim`: simulated seconds per wall-clock second; 0 = as fast as the steps go.
-    pub real_time_factor: f64,
-    /// `sim`, `lockstep`: `/clock` messages per simulated second; 0 = every tick.
-    pub clock_rate_hz: f64,
-    /// Driven joints: ticks without a `JointState` after which their input is reported stale.
-    pub joint_state_timeout_ticks: i64,
-    /// The phenomenological energy model of every muscle; `None` (the parameter empty): each
-    /// muscle's `energetics.energy_model` from the configuration.
-    pub energy_model: Option<EnergyModel>,
-    /// The live view's TCP port (the Foxglove WebSocket protocol, docs/live-view.md); 0 = off
-    /// (fixed at start-up).
-    pub foxglove_port: u16,
-}
 
 impl Default for NodeParams {
     /// Every parameter at its default ([`ParameterSpec::default`]).
@@ -113,55 +71,19 @@ impl NodeParams {
         (spec.set)(
             self,
             &Given {
-                spec,
+                name: spec.name,
+                kind: spec.kind,
                 value,
                 lenient,
             },
         )
-    }
-
-    /// Loads the configuration these parameters name, with `energy_model` applied.
-    pub fn load_config(&self) -> Result<ActuatorConfig, String> {
-        let cfg = if self.config.is_empty() {
-            ActuatorConfig::default()
-        } else {
-            ActuatorConfig::resolve(&self.config).map_err(|e| e.to_string())?
-        };
-        Ok(match self.energy_model {
-            Some(m) => cfg.with_energy_model(m),
-            None => cfg,
-        })
-    }
-
-    /// Builds the actuator these parameters describe (checks the whole set).
-    pub fn build(&self) -> Result<Actuator, String> {
-        let cfg = self.load_config()?;
-        Actuator::new(&cfg, self.model, self.rate_hz)
-    }
-
-    /// Publish every `n`th tick.
-    pub fn publish_every(&self) -> u64 {
-        publish_every(self.rate_hz, self.publish_rate_hz)
-    }
-
-    /// Publish `/clock` every `n`th tick.
-    pub fn clock_every(&self) -> u64 {
-        publish_every(self.rate_hz, self.clock_rate_hz)
-    }
-}
-
-/// Publish every `n`th tick for a tick rate and a publication rate (0 = every tick).
-pub fn publish_every(rate_hz: f64, publish_rate_hz: f64) -> u64 {
-    if publish_rate_hz <= 0.0 || publish_rate_hz >= rate_hz {
-        1
-    } else {
-        (rate_hz / publish_rate_hz).round().max(1.0) as u64
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::params::EnergyModel;
 
     #[test]
     fn rules() {

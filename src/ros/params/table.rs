@@ -8,35 +8,12 @@
 //! Adding a parameter: a field of [`NodeParams`] and one entry here (its row in
 //! docs/ros-interface.md follows; the test says what to write).
 
-use super::given::Given;
-use super::{NodeParams, DEFAULT_FOXGLOVE_PORT, MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
+use super::given::{Given, Kind};
+use super::limits::{DEFAULT_FOXGLOVE_PORT, MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
+use super::node_params::NodeParams;
 use crate::physics::model::ModelKind;
 use crate::physics::params::EnergyModel;
 use ros2_client::ParameterValue;
-
-/// A parameter's ROS type; strings are limited by what they hold.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
-    Bool,
-    Integer,
-    Double,
-    /// A name (a model, a clock mode): at most [`super::MAX_NAME_CHARS`] characters.
-    Name,
-    /// A path: at most [`super::MAX_PATH_BYTES`] bytes.
-    Path,
-}
-
-impl Kind {
-    /// The type as docs/ros-interface.md writes it.
-    pub fn doc_name(self) -> &'static str {
-        match self {
-            Kind::Bool => "bool",
-            Kind::Integer => "integer",
-            Kind::Double => "double",
-            Kind::Name | Kind::Path => "string",
-        }
-    }
-}
 
 /// A default value (a constant, unlike [`ParameterValue`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
