@@ -7,7 +7,7 @@
 use crate::cli::{self, Cli};
 use crate::physics::models::{test_model, ModelKind};
 use crate::physics::stepping::Stepping;
-use crate::ros::params::{NodeParams, MODEL};
+use crate::ros::params::NodeParams;
 use clap::{CommandFactory, Parser};
 use ros2_client::ParameterValue;
 use std::path::{Path, PathBuf};
@@ -135,20 +135,21 @@ fn the_node_takes_it_as_its_model_parameter() {
     assert_eq!(actuator.model(), fourth());
 
     let mut p = NodeParams::default();
-    p.set(MODEL, &ParameterValue::String("hill-copy".into()), false)
+    p.set("model", &ParameterValue::String("hill-copy".into()), false)
         .unwrap();
     assert_eq!(p.model, fourth());
     assert_eq!(
-        p.value(MODEL),
+        p.value("model"),
         Some(ParameterValue::String("hill-copy".into()))
     );
     let e = p
-        .set(MODEL, &ParameterValue::String("hill-cop".into()), false)
+        .set("model", &ParameterValue::String("hill-cop".into()), false)
         .unwrap_err();
     assert!(e.contains("hill-copy"), "{e}");
     let usage = crate::ros::args::usage();
+    let words = usage.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
-        usage.contains("model (hill|huxley|huxley-pde|hill-copy, default huxley)"),
+        words.contains("model (contractile model; one of hill|huxley|huxley-pde|hill-copy;"),
         "{usage}"
     );
 }

@@ -1,10 +1,12 @@
 //! The DDS side's set-up: the participant (discovery kept on this host unless asked otherwise)
-//! and the node's endpoints under the remap rules: those the executor serves (input topics,
-//! services, `/diagnostics`) and those the publisher thread writes the tick loop's states to.
+//! and the node's endpoints ([`super::endpoints::ENDPOINTS`]) under the remap rules: those the
+//! executor serves (input topics, services, `/diagnostics`) and those the publisher thread
+//! writes the tick loop's states to.
 
 use super::args;
 use super::args::DEFAULT_NODE_NAME;
 use super::clock::ClockMode;
+use super::endpoints::{spec_of, Direction, Endpoint, Endpoint as E, Names, Qos, When, ENDPOINTS};
 use super::logging::Logger;
 use super::setup::Setup;
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
@@ -94,41 +96,27 @@ pub(crate) fn qos_reliable(depth: usize) -> QosProfile {
         .history(History::KeepLast { depth })
 }
 
-/// `/clock` as rclpy's time source subscribes to it: best effort, keep last `depth` (1 to
-/// publish; more to follow, so that a jump back between two looks is still seen). A best-effort
-/// reader takes reliable and best-effort writers alike.
-fn qos_clock(depth: usize) -> QosProfile {
-    QosProfile::publisher_default()
-        .reliability(Reliability::BestEffort)
-        .durability(Durability::Volatile)
-        .history(History::KeepLast { depth })
+/// The QoS profile of `qos` (docs/ros-interface.md): best effort as rclpy's time source
+/// subscribes to `/clock` (a best-effort reader takes reliable and best-effort writers alike).
+fn profile(qos: Qos) -> QosProfile {
+    match qos {
+        Qos::Reliable => qos_reliable(10),
+        Qos::BestEffort { depth } => QosProfile::publisher_default()
+            .reliability(Reliability::BestEffort)
+            .durability(Durability::Volatile)
+            .history(History::KeepLast { depth }),
+    }
 }
 
 fn dds_name(resolved: &str) -> Result<Name, String> {
     Name::parse(resolved).map_err(|e| format!("invalid name {resolved:?}: {e:?}"))
 }
 
-/// The resolved names of the node's endpoints.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct EndpointNames {
-    pub(crate) activation: String,
-    pub(crate) activation_array: String,
-    /// One per muscle topic opened, in order.
-    pub(crate) muscle_commands: Vec<String>,
-    pub(crate) load: String,
-    pub(crate) state: String,
-    pub(crate) joint_states: String,
-    pub(crate) reset: String,
-    pub(crate) step: String,
-    /// `~/joint_states_in` and `~/joint_efforts`, with driven joints.
-    pub(crate) driven: Option<(String, String)>,
-}
-
 /// The node's topics and services.
 pub(crate) struct Endpoints {
     pub(crate) served: Served,
     pub(crate) published: Published,
-    pub(crate) names: EndpointNames,
+    pub(crate) names: Names,
 }
 
 /// What the executor serves: the inputs, the services and `/diagnostics`.
@@ -159,11 +147,14 @@ pub(crate) struct Published {
     pub(crate) joint_efforts: Option<Publisher<Float64MultiArray>>,
 }
 
-/// Creates endpoints on one node under the set-up's namespace, name and remap rules.
+/// Creates the table's endpoints ([`ENDPOINTS`]) on one node under the set-up's namespace, name
+/// and remap rules, noting each name made.
 struct Maker<'a> {
     node: &'a mut Node,
     setup: &'a Setup,
-    qos: QosProfile,
+    clock_mode: ClockMode,
+    driven_joints: bool,
+    names: Names,
 }
 
 impl Maker<'_> {
@@ -178,90 +169,119 @@ impl Maker<'_> {
         )
     }
 
-    fn topic(&self, name: &str, ty: (&str, &str)) -> Result<(rustdds::Topic, String), String> {
-        let resolved = self.resolve(name);
+    /// Whether this node has `when`'s endpoints.
+    fn has(&self, when: When) -> bool {
+        match when {
+            When::Always | When::Library => true,
+            When::DrivenJoints => self.driven_joints,
+            When::PublishesClock => self.clock_mode.publishes_clock(),
+            When::FollowsClock => self.clock_mode == ClockMode::Follow,
+        }
+    }
+
+    /// The topic of `e` (its `k`-th instance, named `relative`), resolved and noted.
+    fn topic(
+        &mut self,
+        e: Endpoint,
+        k: usize,
+        relative: &str,
+    ) -> Result<(rustdds::Topic, String, QosProfile), String> {
+        let spec = spec_of(e);
+        let resolved = self.resolve(relative);
+        let (pkg, ty) = spec.package_and_type();
+        let qos = profile(spec.qos);
         let t = self
             .node
-            .create_topic(
-                &dds_name(&resolved)?,
-                MessageTypeName::new(ty.0, ty.1),
-                &self.qos,
-            )
+            .create_topic(&dds_name(&resolved)?, MessageTypeName::new(pkg, ty), &qos)
             .map_err(|e| format!("cannot create topic {resolved}: {e:?}"))?;
-        Ok((t, resolved))
+        self.names.add(e, k, resolved.clone());
+        Ok((t, resolved, qos))
     }
 
+    /// A subscription to `e`, if this node has it.
     fn subscribe<M: 'static + DeserializeOwned>(
         &mut self,
-        name: &str,
-        ty: (&str, &str),
-    ) -> Result<(Subscription<M>, String), String> {
-        self.subscribe_with(name, ty, self.qos.clone())
+        e: Endpoint,
+    ) -> Result<Option<Subscription<M>>, String> {
+        if !self.has(spec_of(e).when) {
+            return Ok(None);
+        }
+        self.subscribe_as(e, 0, spec_of(e).name).map(Some)
     }
 
-    fn subscribe_with<M: 'static + DeserializeOwned>(
+    fn subscribe_as<M: 'static + DeserializeOwned>(
         &mut self,
-        name: &str,
-        ty: (&str, &str),
-        qos: QosProfile,
-    ) -> Result<(Subscription<M>, String), String> {
-        let (t, resolved) = self.topic(name, ty)?;
-        let sub = self
-            .node
+        e: Endpoint,
+        k: usize,
+        relative: &str,
+    ) -> Result<Subscription<M>, String> {
+        let (t, resolved, qos) = self.topic(e, k, relative)?;
+        self.node
             .create_subscription::<M>(&t, Some(qos))
-            .map_err(|e| format!("cannot subscribe to {resolved}: {e:?}"))?;
-        Ok((sub, resolved))
+            .map_err(|e| format!("cannot subscribe to {resolved}: {e:?}"))
     }
 
-    fn publish<M: Serialize>(
-        &mut self,
-        name: &str,
-        ty: (&str, &str),
-    ) -> Result<(Publisher<M>, String), String> {
-        self.publish_with(name, ty, self.qos.clone())
-    }
-
-    fn publish_with<M: Serialize>(
-        &mut self,
-        name: &str,
-        ty: (&str, &str),
-        qos: QosProfile,
-    ) -> Result<(Publisher<M>, String), String> {
-        let (t, resolved) = self.topic(name, ty)?;
-        let p = self
-            .node
+    /// A publisher of `e`, if this node has it.
+    fn publish<M: Serialize>(&mut self, e: Endpoint) -> Result<Option<Publisher<M>>, String> {
+        if !self.has(spec_of(e).when) {
+            return Ok(None);
+        }
+        let (t, resolved, qos) = self.topic(e, 0, spec_of(e).name)?;
+        self.node
             .create_publisher::<M>(&t, Some(qos))
-            .map_err(|e| format!("cannot publish {resolved}: {e:?}"))?;
-        Ok((p, resolved))
+            .map(Some)
+            .map_err(|e| format!("cannot publish {resolved}: {e:?}"))
     }
 
-    fn serve<Req, Resp>(
-        &mut self,
-        name: &str,
-        ty: (&str, &str),
-    ) -> Result<(Server<Req, Resp>, String), String>
+    /// The server of `e`.
+    fn serve<Req, Resp>(&mut self, e: Endpoint) -> Result<Server<Req, Resp>, String>
     where
         Req: 'static + ros2_client::Message + Clone,
         Resp: 'static + ros2_client::Message,
     {
-        let resolved = self.resolve(name);
+        let spec = spec_of(e);
+        let resolved = self.resolve(spec.name);
+        let (pkg, ty) = spec.package_and_type();
+        let qos = profile(spec.qos);
         let server = self
             .node
             .create_server::<Req, Resp>(
                 ServiceMapping::Enhanced,
                 &dds_name(&resolved)?,
-                &ServiceTypeName::new(ty.0, ty.1),
-                self.qos.clone(),
-                self.qos.clone(),
+                &ServiceTypeName::new(pkg, ty),
+                qos.clone(),
+                qos,
             )
             .map_err(|e| format!("cannot create service {resolved}: {e:?}"))?;
-        Ok((server, resolved))
+        self.names.add(e, 0, resolved);
+        Ok(server)
+    }
+
+    /// Notes the endpoints made elsewhere: by the client library (`/rosout`) and the
+    /// recording's own (`~/applied/...`, named under the node, never remapped).
+    fn note_unmade(&mut self) {
+        for s in ENDPOINTS {
+            if !self.has(s.when) {
+                continue;
+            }
+            if s.direction == Direction::Recorded {
+                let name = args::expand(s.name, &self.setup.namespace, &self.setup.name);
+                self.names.add(s.endpoint, 0, name);
+            } else if s.when == When::Library {
+                self.names.add(s.endpoint, 0, s.name.to_string());
+            }
+        }
     }
 }
 
+/// Every `Some` of a table entry the node always has.
+fn always<T>(e: Endpoint, made: Option<T>) -> Result<T, String> {
+    made.ok_or_else(|| format!("internal error: endpoint {e:?} was not made"))
+}
+
 impl Endpoints {
-    /// Every endpoint; one `~/<muscle>/cmd_activation` per muscle of `muscles` whose name makes
-    /// a valid topic name (the others are warned about).
+    /// Every endpoint of [`ENDPOINTS`] this node has; one `~/<muscle>/cmd_activation` per
+    /// muscle of `muscles` whose name makes a valid topic name (the others are warned about).
     pub(crate) fn create(
         node: &mut Node,
         setup: &Setup,
@@ -273,61 +293,38 @@ impl Endpoints {
         let mut m = Maker {
             node,
             setup,
-            qos: qos_reliable(10),
+            clock_mode,
+            driven_joints,
+            names: Names::default(),
         };
-        const OURS: &str = "muscle_actuator_msgs";
-        let (activation, activation_name) =
-            m.subscribe("~/activation", (OURS, "ActivationCommand"))?;
-        let (activation_array, activation_array_name) =
-            m.subscribe("~/activation_array", ("std_msgs", "Float64MultiArray"))?;
+        let activation = always(E::Activation, m.subscribe(E::Activation)?)?;
+        let activation_array = always(E::ActivationArray, m.subscribe(E::ActivationArray)?)?;
         let mut muscle_commands = Vec::new();
-        let mut muscle_command_names = Vec::new();
+        let template = spec_of(E::MuscleCommand).name;
         for muscle in muscles {
-            let rel = format!("~/{muscle}/cmd_activation");
+            let rel = template.replace("<muscle>", muscle);
             if let Err(e) = args::check_name(&rel) {
                 logger.warn(&format!(
-                    "no ~/<muscle>/cmd_activation topic for muscle {}: not a valid name ({e})",
+                    "no {template} topic for muscle {}: not a valid name ({e})",
                     input::quote(muscle)
                 ));
                 continue;
             }
-            let (sub, name) = m.subscribe(&rel, ("std_msgs", "Float64"))?;
+            let sub = m.subscribe_as(E::MuscleCommand, muscle_commands.len(), &rel)?;
             muscle_commands.push((muscle.clone(), sub));
-            muscle_command_names.push(name);
         }
-        let (load, load_name) = m.subscribe("~/external_load", (OURS, "ExternalLoad"))?;
-        let (state, state_name) = m.publish("~/state", (OURS, "ActuatorState"))?;
-        let (joint_states, joint_states_name) =
-            m.publish("joint_states", ("sensor_msgs", "JointState"))?;
-        let (diagnostics, _) = m.publish("/diagnostics", ("diagnostic_msgs", "DiagnosticArray"))?;
-        let (reset, reset_name) = m.serve("~/reset", ("std_srvs", "Trigger"))?;
-        let (step, step_name) = m.serve("~/step", (OURS, "Step"))?;
-        let (step_topic, _) = m.subscribe("~/step", ("std_msgs", "Int64"))?;
-        let (joint_states_in, joint_efforts, driven_names) = if driven_joints {
-            let (sub, sub_name) =
-                m.subscribe("~/joint_states_in", ("sensor_msgs", "JointState"))?;
-            let (publ, pub_name) =
-                m.publish("~/joint_efforts", ("std_msgs", "Float64MultiArray"))?;
-            (Some(sub), Some(publ), Some((sub_name, pub_name)))
-        } else {
-            (None, None, None)
-        };
-        let clock = if clock_mode.publishes_clock() {
-            Some(
-                m.publish_with("/clock", ("rosgraph_msgs", "Clock"), qos_clock(1))?
-                    .0,
-            )
-        } else {
-            None
-        };
-        let clock_in = if clock_mode == ClockMode::Follow {
-            Some(
-                m.subscribe_with("/clock", ("rosgraph_msgs", "Clock"), qos_clock(10))?
-                    .0,
-            )
-        } else {
-            None
-        };
+        let load = always(E::Load, m.subscribe(E::Load)?)?;
+        let state = always(E::State, m.publish(E::State)?)?;
+        let joint_states = always(E::JointStates, m.publish(E::JointStates)?)?;
+        let diagnostics = always(E::Diagnostics, m.publish(E::Diagnostics)?)?;
+        let reset = m.serve(E::Reset)?;
+        let step = m.serve(E::Step)?;
+        let step_topic = always(E::StepTopic, m.subscribe(E::StepTopic)?)?;
+        let joint_states_in = m.subscribe(E::JointStatesIn)?;
+        let joint_efforts = m.publish(E::JointEfforts)?;
+        let clock = m.publish(E::ClockOut)?;
+        let clock_in = m.subscribe(E::ClockIn)?;
+        m.note_unmade();
         Ok(Self {
             served: Served {
                 activation,
@@ -347,17 +344,7 @@ impl Endpoints {
                 clock,
                 joint_efforts,
             },
-            names: EndpointNames {
-                activation: activation_name,
-                activation_array: activation_array_name,
-                muscle_commands: muscle_command_names,
-                load: load_name,
-                state: state_name,
-                joint_states: joint_states_name,
-                reset: reset_name,
-                step: step_name,
-                driven: driven_names,
-            },
+            names: m.names,
         })
     }
 }

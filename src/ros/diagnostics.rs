@@ -3,7 +3,8 @@
 
 use super::args::Severity;
 use super::clock::{ClockMode, NodeClock};
-use super::live::{LiveStatus, LiveTap, Outlet};
+use super::endpoints::Endpoint;
+use super::live::{LiveStatus, LiveTap};
 use super::logging::Reporter;
 use super::param_callbacks::Shared;
 use super::params::NodeParams;
@@ -484,7 +485,7 @@ pub(crate) async fn publish_task(
             r.put(Channel::Diagnostics, msg.header.stamp.to_nanos(), &msg);
         }
         if let Some(l) = &live {
-            l.put(Outlet::Diagnostics, msg.header.stamp.to_nanos(), &msg);
+            l.put(Endpoint::Diagnostics, msg.header.stamp.to_nanos(), &msg);
         }
         if let Err(e) = publisher.async_publish(msg).await {
             log.logger

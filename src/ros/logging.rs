@@ -4,7 +4,8 @@
 
 use super::args::Severity;
 use super::clock::NodeClock;
-use super::live::{LiveTap, Outlet};
+use super::endpoints::Endpoint;
+use super::live::LiveTap;
 use super::record::RecordTx;
 use crate::msgs::Log;
 use crate::msgs::Time;
@@ -79,7 +80,7 @@ impl Logger {
                     r.put(Channel::Rosout, stamp.to_nanos(), &line);
                 }
                 if let Some(l) = live {
-                    l.put(Outlet::Rosout, stamp.to_nanos(), &line);
+                    l.put(Endpoint::Rosout, stamp.to_nanos(), &line);
                 }
             }
         }

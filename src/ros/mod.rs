@@ -5,6 +5,7 @@
 //! - `setup`: what the command line asks of the node, resolved before DDS starts;
 //! - [`params`]: the parameters and their rules; `param_callbacks`: changes at run time;
 //! - [`clock`]: wall, sim or lockstep time, or following `/clock`;
+//! - `endpoints`: the node's topics and services, each declared once;
 //! - [`dds`]: the participant and the node's endpoints.
 //!
 //! Running:
@@ -26,6 +27,7 @@ pub mod args;
 pub mod clock;
 pub mod dds;
 pub mod diagnostics;
+pub(crate) mod endpoints;
 pub(crate) mod live;
 mod live_requests;
 pub mod logging;

@@ -3,9 +3,10 @@
 
 use super::args::Severity;
 use super::clock::{ClockMode, NodeClock};
-use super::dds::{Dds, EndpointNames, Endpoints, Served};
+use super::dds::{Dds, Endpoints, Served};
 use super::diagnostics::{self, DiagSources, InputStats};
-use super::live::{Catalogue, LiveOptions, LiveStatus, LiveView, Request, Topics};
+use super::endpoints::{Endpoint, Names};
+use super::live::{Catalogue, LiveOptions, LiveStatus, LiveView, Request};
 use super::live_requests;
 use super::logging::{Logger, Reporter};
 use super::param_callbacks::Shared;
@@ -120,7 +121,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
 fn start_live(
     setup: &Setup,
     dds: &Dds,
-    n: &EndpointNames,
+    n: &Names,
     mode: ClockMode,
     logger: &Logger,
 ) -> (Option<LiveView>, String) {
@@ -128,18 +129,7 @@ fn start_live(
     if port == 0 {
         return (None, String::new());
     }
-    let topics = Topics {
-        state: n.state.clone(),
-        joint_states: n.joint_states.clone(),
-        activation: n.activation.clone(),
-        activation_array: n.activation_array.clone(),
-        muscle_commands: n.muscle_commands.clone(),
-        load: n.load.clone(),
-        reset: n.reset.clone(),
-        step: n.step.clone(),
-        joint_efforts: n.driven.as_ref().map(|(_, e)| e.clone()),
-    };
-    let started = Catalogue::new(&topics, mode.publishes_clock()).and_then(|catalogue| {
+    let started = Catalogue::new(n).and_then(|catalogue| {
         LiveView::start(LiveOptions {
             port,
             local: dds.local,
@@ -207,7 +197,7 @@ fn log_notes(setup: &Setup, logger: &Logger) {
 fn log_up(
     setup: &Setup,
     dds: &Dds,
-    n: &EndpointNames,
+    n: &Names,
     mode: ClockMode,
     logger: &Logger,
     model: ModelKind,
@@ -220,12 +210,12 @@ fn log_up(
         mode.name(),
         dds.domain,
         if dds.local { "localhost" } else { "subnet" },
-        n.activation,
-        n.load,
-        n.state,
-        n.joint_states,
-        n.reset,
-        n.step
+        n.name(Endpoint::Activation),
+        n.name(Endpoint::Load),
+        n.name(Endpoint::State),
+        n.name(Endpoint::JointStates),
+        n.name(Endpoint::Reset),
+        n.name(Endpoint::Step)
     ));
 }
 
@@ -380,7 +370,7 @@ fn logger(setup: &Setup, node: &ros2_client::Node, clock: &Arc<NodeClock>) -> Lo
 /// The recording the parameters ask for, or why it could not start (reported, never fatal).
 fn start_recording(
     setup: &Setup,
-    names: &EndpointNames,
+    names: &Names,
     actuator: &crate::sim::Actuator,
     clock: &Arc<NodeClock>,
     tick_origin_ns: i64,
@@ -389,19 +379,10 @@ fn start_recording(
     if !record::enabled(&setup.params) {
         return (None, String::new());
     }
-    let topics = record::Topics {
-        state: &names.state,
-        joint_states: &names.joint_states,
-        activation: &names.activation,
-        load: &names.load,
-        activation_array: &names.activation_array,
-        muscle_commands: &names.muscle_commands,
-        driven: names.driven.as_ref().map(|(a, b)| (a.as_str(), b.as_str())),
-    };
     match record::start(
         &setup.params,
         &setup.fqn,
-        &topics,
+        names,
         actuator,
         clock,
         tick_origin_ns,

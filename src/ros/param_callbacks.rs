@@ -3,7 +3,7 @@
 //! is applied by sending the tick loop the rebuilt actuator.
 
 use super::logging::Logger;
-use super::params::{self, NodeParams};
+use super::params::{self, NodeParams, OnChange};
 use super::tick::{self, Command};
 use crate::sim::Actuator;
 use ros2_client::NodeOptions;
@@ -171,13 +171,15 @@ fn validate_param(
             candidate.clock.name()
         ));
     }
-    if matches!(
-        name,
-        params::MODEL | params::RATE_HZ | params::CONFIG | params::ENERGY_MODEL
-    ) {
+    if on_change(name) == Some(OnChange::Rebuild) {
         build_off_executor(&candidate)?;
     }
     Ok(())
+}
+
+/// What a change of parameter `name` does (its [`params::ParameterSpec::on_change`]).
+fn on_change(name: &str) -> Option<OnChange> {
+    params::spec(name).map(|s| s.on_change)
 }
 
 /// Applies an accepted parameter change.
@@ -195,8 +197,8 @@ fn apply_param(
         .map_err(|_| "internal error: parameter lock poisoned".to_string())?;
     let mut candidate = p.clone();
     candidate.set(name, value, false)?;
-    match name {
-        params::MODEL | params::RATE_HZ | params::CONFIG | params::ENERGY_MODEL => {
+    match on_change(name) {
+        Some(OnChange::Rebuild) => {
             let act = build_off_executor(&candidate)?;
             if let Ok(mut n) = shared.names.write() {
                 *n = Names::of(&act);
@@ -205,12 +207,15 @@ fn apply_param(
             shared.send(Command::PublishEvery(candidate.publish_every()));
             shared.send(Command::ClockEvery(candidate.clock_every()));
         }
-        params::PUBLISH_RATE_HZ => shared.send(Command::PublishEvery(candidate.publish_every())),
-        params::REAL_TIME_FACTOR => {
+        Some(OnChange::PublishEvery) => {
+            shared.send(Command::PublishEvery(candidate.publish_every()))
+        }
+        Some(OnChange::RealTimeFactor) => {
             shared.send(Command::RealTimeFactor(candidate.real_time_factor))
         }
-        params::CLOCK_RATE_HZ => shared.send(Command::ClockEvery(candidate.clock_every())),
-        _ => {}
+        Some(OnChange::ClockEvery) => shared.send(Command::ClockEvery(candidate.clock_every())),
+        // Refused ones never pass `validate_param`.
+        Some(OnChange::NextStart | OnChange::Refused) | None => {}
     }
     *p = candidate;
     drop(p);

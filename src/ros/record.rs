@@ -6,36 +6,20 @@
 //! followed `/clock`'s time (docs/time.md, "Time in recordings").
 
 use super::clock::NodeClock;
+use super::endpoints::Names;
 use super::params::NodeParams;
 use super::tick::{Applied, AppliedInput};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
 use crate::msgs::Time;
 use crate::msgs::{DiagnosticStatus, Header, KeyValue};
 use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
-use crate::runs::{
-    self, AttachmentMeta, Channel, Layout, RunMeta, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
-    APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE,
-    FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC,
-    STATE_TYPE,
-};
+use crate::runs::{self, AttachmentMeta, Channel, Layout, RunMeta};
 use crate::sim::Actuator;
 use crate::time::{self, TimeBase};
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::Receiver;
 use std::sync::Arc;
-
-/// The resolved topic names the node uses.
-pub struct Topics<'a> {
-    pub state: &'a str,
-    pub joint_states: &'a str,
-    pub activation: &'a str,
-    pub load: &'a str,
-    pub activation_array: &'a str,
-    pub muscle_commands: &'a [String],
-    /// `~/joint_states_in` and `~/joint_efforts`, with driven joints.
-    pub driven: Option<(&'a str, &'a str)>,
-}
 
 /// Where the node's threads hand messages for the recording: the recorder's sender and the
 /// channel layout (cheap to clone).
@@ -123,11 +107,23 @@ pub fn file_path(p: &NodeParams, fqn: &str, start_ns: i64) -> PathBuf {
     PathBuf::from(&p.record_dir).join(format!("{name}_{t}.mcap"))
 }
 
+/// The recording's channels: every endpoint the node has that the table records
+/// ([`super::endpoints::ENDPOINTS`]), in the table's order, under its resolved name.
+pub(crate) fn layout(names: &Names) -> Result<Layout, String> {
+    let mut layout = Layout::new();
+    for r in names.in_table_order() {
+        if let Some(ch) = r.channel() {
+            layout.add(ch, &r.name, r.spec().type_name)?;
+        }
+    }
+    Ok(layout)
+}
+
 /// Starts the recording of a node run whose tick 0 is stamped `tick_origin_ns` on `clock`.
-pub fn start(
+pub(crate) fn start(
     p: &NodeParams,
     fqn: &str,
-    topics: &Topics,
+    names: &Names,
     actuator: &Actuator,
     clock: &Arc<NodeClock>,
     tick_origin_ns: i64,
@@ -164,40 +160,7 @@ pub fn start(
         muscles: actuator.muscle_names().to_vec(),
         joints: actuator.joint_names().to_vec(),
     };
-    let mut layout = Layout::new();
-    layout.add(Channel::State, topics.state, STATE_TYPE)?;
-    layout.add(Channel::JointStates, topics.joint_states, JOINT_STATE_TYPE)?;
-    layout.add(Channel::Activation, topics.activation, ACTIVATION_TYPE)?;
-    layout.add(Channel::Load, topics.load, LOAD_TYPE)?;
-    layout.add(
-        Channel::AppliedActivation,
-        &format!("{fqn}{APPLIED_ACTIVATION_SUFFIX}"),
-        ACTIVATION_TYPE,
-    )?;
-    layout.add(
-        Channel::AppliedLoad,
-        &format!("{fqn}{APPLIED_LOAD_SUFFIX}"),
-        LOAD_TYPE,
-    )?;
-    layout.add(Channel::Diagnostics, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE)?;
-    layout.add(Channel::Rosout, ROSOUT_TOPIC, LOG_TYPE)?;
-    layout.add(
-        Channel::ActivationArray,
-        topics.activation_array,
-        FLOAT64_ARRAY_TYPE,
-    )?;
-    for (k, t) in topics.muscle_commands.iter().enumerate() {
-        layout.add(Channel::MuscleCommand(k), t, FLOAT64_TYPE)?;
-    }
-    if let Some((joint_states_in, efforts)) = topics.driven {
-        layout.add(Channel::JointStatesIn, joint_states_in, JOINT_STATE_TYPE)?;
-        layout.add(Channel::JointEfforts, efforts, FLOAT64_ARRAY_TYPE)?;
-        layout.add(
-            Channel::AppliedJointMotion,
-            &format!("{fqn}{APPLIED_JOINT_MOTION_SUFFIX}"),
-            JOINT_STATE_TYPE,
-        )?;
-    }
+    let layout = layout(names)?;
     let recorder = Recorder::start(
         &file_path(p, fqn, start_ns),
         layout.specs(),
@@ -316,5 +279,69 @@ pub fn diagnostic(fqn: &str, params: &NodeParams, status: &Status) -> Diagnostic
         message,
         hardware_id: fqn.into(),
         values,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ros::args::expand;
+    use crate::ros::clock::ClockMode;
+    use crate::ros::endpoints::{Endpoint, ENDPOINTS};
+
+    /// Every endpoint the table records is a channel of the file the node's recorder writes,
+    /// under its name and with its type (here every endpoint made, as with driven joints).
+    #[test]
+    fn every_recorded_endpoint_is_in_the_file() {
+        let dir = std::env::temp_dir().join(format!("node_record_{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let p = NodeParams {
+            record_dir: dir.display().to_string(),
+            ..NodeParams::default()
+        };
+        let fqn = "/lab/muscle_actuator";
+        let mut names = Names::default();
+        for s in ENDPOINTS {
+            names.add(s.endpoint, 0, expand(s.name, "/lab", "muscle_actuator"));
+        }
+        names.add(
+            Endpoint::MuscleCommand,
+            1,
+            "/lab/muscle_actuator/b/cmd_activation".into(),
+        );
+        let actuator = p.build().unwrap();
+        let clock = Arc::new(NodeClock::new(ClockMode::Sim));
+        let r = start(&p, fqn, &names, &actuator, &clock, 0).unwrap();
+        let path = r.recorder.stats().path.clone();
+        r.recorder.finish();
+        let file = crate::recording::read_recording(&path, false).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let channels: Vec<(String, String)> = file
+            .channels
+            .values()
+            .map(|c| {
+                let ty = c
+                    .schema
+                    .as_ref()
+                    .map(|s| s.name.clone())
+                    .unwrap_or_default();
+                (c.topic.clone(), ty)
+            })
+            .collect();
+        let mut recorded = 0;
+        for s in ENDPOINTS.iter().filter(|s| s.record.is_some()) {
+            let name = expand(s.name, "/lab", "muscle_actuator");
+            assert!(
+                channels.contains(&(name.clone(), s.type_name.to_string())),
+                "{name} ({}) is not in the recording: {channels:?}",
+                s.type_name
+            );
+            recorded += 1;
+        }
+        assert!(channels.contains(&(
+            "/lab/muscle_actuator/b/cmd_activation".into(),
+            "std_msgs/msg/Float64".into()
+        )));
+        assert_eq!(channels.len(), recorded + 1);
     }
 }

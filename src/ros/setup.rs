@@ -40,7 +40,7 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
     for a in ros_args.resolved_params(&fqn)? {
         // As rclcpp and rclpy do (without `allow_undeclared_parameters`), a parameter this
         // node does not declare is ignored: a shared file holds other nodes' parameters.
-        if a.name != "use_sim_time" && !params::ALL.contains(&a.name.as_str()) {
+        if a.name != params::table::USE_SIM_TIME && params::spec(&a.name).is_none() {
             ignored.push(format!(
                 "ignoring undeclared parameter {:?} (from {})",
                 crate::text::excerpt(&a.name),
@@ -48,7 +48,7 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
             ));
             continue;
         }
-        if a.name == "use_sim_time" {
+        if a.name == params::table::USE_SIM_TIME {
             match a.value {
                 ros2_client::ParameterValue::Boolean(b) => use_sim_time = b,
                 _ => return Err(format!("{}: use_sim_time must be a bool", a.source)),

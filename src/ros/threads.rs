@@ -3,7 +3,8 @@
 //! order, the tick loop first, each ending when its input channel closes.
 
 use super::dds::Published;
-use super::live::{LiveTap, Outlet};
+use super::endpoints::{spec_of, Endpoint};
+use super::live::LiveTap;
 use super::logging::Logger;
 use super::record::{self, RecordTx};
 use super::tick::{
@@ -12,7 +13,6 @@ use super::tick::{
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
 use crate::msgs::Time;
 use crate::msgs::{state_messages, Clock, Float64MultiArray, JointState, MultiArrayLayout};
-use crate::runs::Channel;
 use crate::sim::Actuator;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -53,61 +53,64 @@ pub(crate) fn efforts_msg(s: &Sample) -> Float64MultiArray {
 
 /// Where the publisher thread sends what the tick loop hands over.
 struct Outlets {
-    state: Publisher<ActuatorState>,
-    joint_states: Publisher<JointState>,
-    /// `/clock`, with a simulated clock.
-    clock: Option<Publisher<Clock>>,
-    /// `~/joint_efforts`, with driven joints.
-    efforts: Option<Publisher<Float64MultiArray>>,
+    published: Published,
     errors: Arc<AtomicU64>,
     rec: Option<RecordTx>,
     /// The live view's clients.
     live: Option<LiveTap>,
 }
 
-/// The publisher thread: takes states and times from the tick thread, records and publishes
-/// them.
-fn publish_loop(rx: Receiver<Output>, out: Outlets) {
-    let failed = |ok: bool| {
-        if !ok {
-            out.errors.fetch_add(1, Ordering::Relaxed);
+impl Outlets {
+    /// `msg` of endpoint `e`, stamped with its tick's `stamp_ns`, to wherever the endpoints'
+    /// table sends it: the recording (its channel), the live view (its outlet) and DDS
+    /// (`publisher`, when the node has it). A failed publication is counted.
+    fn emit<M: serde::Serialize>(
+        &self,
+        e: Endpoint,
+        stamp_ns: i64,
+        msg: M,
+        publisher: Option<&Publisher<M>>,
+    ) {
+        if let (Some(r), Some(ch)) = (&self.rec, spec_of(e).record) {
+            r.put_tick(ch, stamp_ns, &msg);
         }
-    };
+        if let Some(l) = &self.live {
+            l.put(e, stamp_ns, &msg);
+        }
+        if let Some(p) = publisher {
+            if p.publish(msg).is_err() {
+                self.errors.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+    }
+}
+
+/// The publisher thread: takes states and times from the tick thread, records and publishes
+/// them ([`Outlets::emit`]).
+fn publish_loop(rx: Receiver<Output>, out: Outlets) {
+    let p = &out.published;
     while let Ok(o) = rx.recv() {
         match o {
             Output::State(s) => {
                 let (state, js) = sample_to_msgs(&s);
-                if let Some(r) = &out.rec {
-                    r.put_tick(Channel::State, s.stamp_ns, &state);
-                    r.put_tick(Channel::JointStates, s.stamp_ns, &js);
-                }
-                if let Some(l) = &out.live {
-                    l.put(Outlet::State, s.stamp_ns, &state);
-                    l.put(Outlet::JointStates, s.stamp_ns, &js);
-                }
-                failed(out.state.publish(state).is_ok());
-                failed(out.joint_states.publish(js).is_ok());
-                if let (Some(p), false) = (&out.efforts, s.driven.is_empty()) {
-                    let efforts = efforts_msg(&s);
-                    if let Some(r) = &out.rec {
-                        r.put_tick(Channel::JointEfforts, s.stamp_ns, &efforts);
-                    }
-                    if let Some(l) = &out.live {
-                        l.put(Outlet::JointEfforts, s.stamp_ns, &efforts);
-                    }
-                    failed(p.publish(efforts).is_ok());
+                out.emit(Endpoint::State, s.stamp_ns, state, Some(&p.state));
+                out.emit(Endpoint::JointStates, s.stamp_ns, js, Some(&p.joint_states));
+                if let (Some(efforts), false) = (&p.joint_efforts, s.driven.is_empty()) {
+                    out.emit(
+                        Endpoint::JointEfforts,
+                        s.stamp_ns,
+                        efforts_msg(&s),
+                        Some(efforts),
+                    );
                 }
             }
             Output::Clock(ns) => {
                 let clock = Clock {
                     clock: Time::from_nanos(ns),
                 };
+                out.emit(Endpoint::ClockOut, ns, clock, p.clock.as_ref());
                 if let Some(l) = &out.live {
-                    l.put(Outlet::Clock, ns, &clock);
                     l.time(ns);
-                }
-                if let Some(p) = &out.clock {
-                    failed(p.publish(clock).is_ok());
                 }
             }
         }
@@ -158,10 +161,7 @@ impl Threads {
         let (event_tx, event_rx) = mpsc::sync_channel::<Event>(EVENT_QUEUE);
         let publish_errors = Arc::new(AtomicU64::new(0));
         let outlets = Outlets {
-            state: t.published.state,
-            joint_states: t.published.joint_states,
-            clock: t.published.clock,
-            efforts: t.published.joint_efforts,
+            published: t.published,
             errors: publish_errors.clone(),
             rec: t.rec.clone(),
             live: t.live,

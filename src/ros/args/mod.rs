@@ -15,8 +15,6 @@ pub use params_file::{
     yaml_to_param, MAX_FLOW_DEPTH, MAX_PARAMS_FILE_BYTES,
 };
 
-use super::params::NodeParams;
-use crate::physics::models::ModelKind;
 use crate::text::excerpt;
 use ros2_client::ParameterValue;
 use std::path::Path;
@@ -85,36 +83,22 @@ pub struct RosArgs {
     pub help: bool,
 }
 
-/// Usage text of `muscle_actuator node`: the models from [`MODELS`](crate::physics::models::MODELS),
-/// the defaults from [`NodeParams::default`].
+/// Width of `node --help`'s parameter lines, columns (as its widest fixed line).
+const USAGE_WIDTH: usize = 92;
+
+/// Usage text of `muscle_actuator node`: the parameters from
+/// [`PARAMETERS`](super::params::PARAMETERS).
 pub fn usage() -> String {
-    let defaults = NodeParams::default();
     format!(
         "\
 usage: muscle_actuator node [--ros-args [-r __ns:=/NS] [-r __node:=NAME] [-r FROM:=TO]...
                              [-p NAME:=VALUE]... [--params-file FILE.yaml]...
                              [--log-level [LOGGER:=]LEVEL] [--]]
 
-parameters: model ({models}, default {model}), rate_hz (default {rate:?}),
-            publish_rate_hz (0 = every tick), config ({configs} or a TOML file,
-            \"\" = elbow), record (bool, default {record}), record_dir (default {record_dir:?}),
-            clock (wall|sim|lockstep, default wall), real_time_factor (sim; 0 = as fast as
-            it goes), clock_rate_hz (/clock per simulated second, default {clock_rate:?}),
-            joint_state_timeout_ticks (default {timeout}), use_sim_time (follow /clock)
+{parameters}
 environment: ROS_DOMAIN_ID (default 0); ROS_AUTOMATIC_DISCOVERY_RANGE=SUBNET to discover
              beyond this host (default: loopback only)",
-        models = ModelKind::names_joined("|", "|"),
-        model = defaults.model,
-        rate = defaults.rate_hz,
-        configs = crate::config::BUILT_IN
-            .iter()
-            .map(|(name, _)| *name)
-            .collect::<Vec<_>>()
-            .join("|"),
-        record = defaults.record,
-        record_dir = defaults.record_dir,
-        clock_rate = defaults.clock_rate_hz,
-        timeout = defaults.joint_state_timeout_ticks,
+        parameters = super::params::table::usage(USAGE_WIDTH),
     )
 }
 

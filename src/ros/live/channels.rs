@@ -1,35 +1,13 @@
 //! What the live view offers: the node's published topics as channels (with the recordings'
-//! `ros2msg` schemas), the input topics a client may publish on, and the two services.
+//! `ros2msg` schemas), the input topics a client may publish on, and the two services; which
+//! ones, the endpoints' table says ([`crate::ros::endpoints::Live`]).
 
 use crate::msgs::definition;
 use crate::recording::schema::ros2msg_schema;
-use crate::runs::channels::{
-    ACTIVATION_TYPE, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE,
-    JOINT_STATE_TYPE, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC, STATE_TYPE,
-};
+use crate::ros::endpoints::{Live, Names};
 use serde_json::{json, Value};
 
-/// A topic the node publishes, served as a live channel.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(crate) enum Outlet {
-    State,
-    JointStates,
-    Diagnostics,
-    Rosout,
-    /// With a simulated clock.
-    Clock,
-    /// With driven joints.
-    JointEfforts,
-}
-
-/// Number of [`Outlet`]s: the size of per-outlet tables.
-pub(crate) const OUTLETS: usize = 6;
-
-impl Outlet {
-    pub(crate) fn index(self) -> usize {
-        self as usize
-    }
-}
+pub(crate) use crate::ros::endpoints::{InputTopic, Outlet, Service, OUTLETS};
 
 /// One advertised channel: id (its [`Outlet`]'s index + 1), topic, type and schema.
 #[derive(Debug, Clone)]
@@ -39,33 +17,6 @@ pub(crate) struct ChannelInfo {
     pub(crate) topic: String,
     pub(crate) type_name: &'static str,
     pub(crate) schema: String,
-}
-
-/// An input topic a client may advertise and publish on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum InputTopic {
-    Activation,
-    ActivationArray,
-    /// The k-th `~/<muscle>/cmd_activation` topic the node opened.
-    MuscleCommand(usize),
-    Load,
-}
-
-/// A service served to clients.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Service {
-    Reset = 1,
-    Step = 2,
-}
-
-impl Service {
-    pub(crate) fn from_id(id: u32) -> Option<Self> {
-        match id {
-            1 => Some(Self::Reset),
-            2 => Some(Self::Step),
-            _ => None,
-        }
-    }
 }
 
 /// The `.srv` text of `~/step`, split into request and response below.
@@ -85,22 +36,6 @@ fn service_part(name: &str) -> Option<&'static str> {
     }
 }
 
-/// The node's resolved topic and service names.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Topics {
-    pub(crate) state: String,
-    pub(crate) joint_states: String,
-    pub(crate) activation: String,
-    pub(crate) activation_array: String,
-    /// One per muscle topic opened, in order.
-    pub(crate) muscle_commands: Vec<String>,
-    pub(crate) load: String,
-    pub(crate) reset: String,
-    pub(crate) step: String,
-    /// `~/joint_efforts`, with driven joints.
-    pub(crate) joint_efforts: Option<String>,
-}
-
 /// Everything the live view serves, resolved once at start-up.
 #[derive(Debug, Clone)]
 pub(crate) struct Catalogue {
@@ -112,47 +47,33 @@ pub(crate) struct Catalogue {
 }
 
 impl Catalogue {
-    /// The node's channels under its resolved names; `/clock` with a simulated clock.
-    pub(crate) fn new(names: &Topics, publishes_clock: bool) -> Result<Self, String> {
+    /// The channels, inputs and services of the endpoints the node has, under their resolved
+    /// names; a channel's id is its [`Outlet`]'s index + 1.
+    pub(crate) fn new(names: &Names) -> Result<Self, String> {
         let mut channels = Vec::new();
-        let mut add =
-            |outlet: Outlet, topic: &str, type_name: &'static str| -> Result<(), String> {
-                channels.push(ChannelInfo {
-                    outlet,
-                    id: outlet.index() as u32 + 1,
-                    topic: topic.into(),
-                    type_name,
-                    schema: ros2msg_schema(type_name, &definition)?,
-                });
-                Ok(())
-            };
-        add(Outlet::State, &names.state, STATE_TYPE)?;
-        add(Outlet::JointStates, &names.joint_states, JOINT_STATE_TYPE)?;
-        add(Outlet::Diagnostics, DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE)?;
-        add(Outlet::Rosout, ROSOUT_TOPIC, LOG_TYPE)?;
-        if publishes_clock {
-            add(Outlet::Clock, "/clock", "rosgraph_msgs/msg/Clock")?;
+        let mut inputs = Vec::new();
+        let mut services = Vec::new();
+        for r in names.in_table_order() {
+            let type_name = r.spec().type_name;
+            match r.live() {
+                Live::No => {}
+                Live::Outlet => {
+                    let Some(outlet) = Outlet::of(r.endpoint) else {
+                        continue;
+                    };
+                    channels.push(ChannelInfo {
+                        outlet,
+                        id: outlet.index() as u32 + 1,
+                        topic: r.name.clone(),
+                        type_name,
+                        schema: ros2msg_schema(type_name, &definition)?,
+                    });
+                }
+                Live::Input(kind) => inputs.push((r.name.clone(), kind, type_name)),
+                Live::Service(service) => services.push((service, r.name.as_str(), type_name)),
+            }
         }
-        if let Some(efforts) = &names.joint_efforts {
-            add(Outlet::JointEfforts, efforts, FLOAT64_ARRAY_TYPE)?;
-        }
-        let mut inputs = vec![
-            (
-                names.activation.clone(),
-                InputTopic::Activation,
-                ACTIVATION_TYPE,
-            ),
-            (
-                names.activation_array.clone(),
-                InputTopic::ActivationArray,
-                FLOAT64_ARRAY_TYPE,
-            ),
-            (names.load.clone(), InputTopic::Load, LOAD_TYPE),
-        ];
-        for (k, t) in names.muscle_commands.iter().enumerate() {
-            inputs.push((t.clone(), InputTopic::MuscleCommand(k), FLOAT64_TYPE));
-        }
-        let services_json = services_json(names)?;
+        let services_json = services_json(&services)?;
         Ok(Self {
             channels,
             inputs,
@@ -228,24 +149,15 @@ fn part(schema_name: &str, lookup_name: &str) -> Result<(Value, String), String>
     ))
 }
 
-fn services_json(names: &Topics) -> Result<String, String> {
+/// `advertiseServices` for (service, resolved name, `pkg/srv/Type`).
+fn services_json(served: &[(Service, &str, &str)]) -> Result<String, String> {
     let mut services = Vec::new();
-    for (service, name, ty, pkg, srv) in [
-        (
-            Service::Reset,
-            &names.reset,
-            "std_srvs/srv/Trigger",
-            "std_srvs",
-            "Trigger",
-        ),
-        (
-            Service::Step,
-            &names.step,
-            "muscle_actuator_msgs/srv/Step",
-            "muscle_actuator_msgs",
-            "Step",
-        ),
-    ] {
+    for &(service, name, ty) in served {
+        let mut parts = ty.split('/');
+        let (pkg, srv) = (
+            parts.next().unwrap_or_default(),
+            parts.last().unwrap_or_default(),
+        );
         let (req, req_schema) = part(
             &format!("{pkg}/srv/{srv}_Request"),
             &format!("{pkg}/msg/{srv}_Request"),
@@ -271,23 +183,78 @@ fn services_json(names: &Topics) -> Result<String, String> {
 mod tests {
     use super::*;
 
-    fn names() -> Topics {
-        Topics {
-            activation: "/m/activation".into(),
-            activation_array: "/m/activation_array".into(),
-            muscle_commands: vec!["/m/flexor/cmd_activation".into()],
-            load: "/m/external_load".into(),
-            state: "/m/state".into(),
-            joint_states: "/joint_states".into(),
-            reset: "/m/reset".into(),
-            step: "/m/step".into(),
-            joint_efforts: None,
+    use crate::ros::endpoints::{Endpoint as E, ENDPOINTS};
+    use crate::runs::channels::STATE_TYPE;
+
+    /// A node `/m` (`prefix`) with one muscle, `/clock` when `clock`.
+    fn names_under(prefix: &str, clock: bool) -> Names {
+        let mut n = Names::default();
+        for (e, name) in [
+            (E::Activation, format!("{prefix}/activation")),
+            (E::ActivationArray, format!("{prefix}/activation_array")),
+            (E::MuscleCommand, format!("{prefix}/flexor/cmd_activation")),
+            (E::Load, format!("{prefix}/external_load")),
+            (E::State, format!("{prefix}/state")),
+            (E::JointStates, "/joint_states".into()),
+            (E::Diagnostics, "/diagnostics".into()),
+            (E::Reset, format!("{prefix}/reset")),
+            (E::Step, format!("{prefix}/step")),
+            (E::Rosout, "/rosout".into()),
+        ] {
+            n.add(e, 0, name);
         }
+        if clock {
+            n.add(E::ClockOut, 0, "/clock".into());
+        }
+        n
+    }
+
+    fn names() -> Names {
+        names_under("/m", false)
+    }
+
+    /// Every endpoint the table serves live is advertised (a channel, an input or a service)
+    /// under its resolved name, with its type.
+    #[test]
+    fn every_live_endpoint_is_advertised() {
+        let mut n = Names::default();
+        for s in ENDPOINTS {
+            n.add(s.endpoint, 0, format!("/t/{:?}", s.endpoint));
+        }
+        let c = Catalogue::new(&n).unwrap();
+        let advertised: Value = serde_json::from_str(&c.advertise_json()).unwrap();
+        let services: Value = serde_json::from_str(&c.services_json).unwrap();
+        let mut live = 0;
+        for s in ENDPOINTS {
+            let name = format!("/t/{:?}", s.endpoint);
+            let found = match s.live {
+                Live::No => continue,
+                Live::Outlet => advertised["channels"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .any(|ch| ch["topic"] == name.as_str() && ch["schemaName"] == s.type_name),
+                Live::Input(_) => c.input(&name, s.type_name).is_ok(),
+                Live::Service(_) => services["services"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .any(|sv| sv["name"] == name.as_str() && sv["type"] == s.type_name),
+            };
+            assert!(
+                found,
+                "{:?} ({name}) is not in the live view's advertisement",
+                s.endpoint
+            );
+            live += 1;
+        }
+        assert_eq!(c.channels.len(), OUTLETS);
+        assert!(live >= 11, "{live}");
     }
 
     #[test]
     fn channels_carry_the_recordings_schemas() {
-        let c = Catalogue::new(&names(), true).unwrap();
+        let c = Catalogue::new(&names_under("/m", true)).unwrap();
         let topics: Vec<&str> = c.channels.iter().map(|c| c.topic.as_str()).collect();
         assert_eq!(
             topics,
@@ -304,15 +271,12 @@ mod tests {
         assert!(c.channels[4]
             .schema
             .starts_with("builtin_interfaces/Time clock\n"));
-        assert!(Catalogue::new(&names(), false)
-            .unwrap()
-            .channel(5)
-            .is_none());
+        assert!(Catalogue::new(&names()).unwrap().channel(5).is_none());
     }
 
     #[test]
     fn services_carry_their_parts() {
-        let c = Catalogue::new(&names(), false).unwrap();
+        let c = Catalogue::new(&names()).unwrap();
         let v: Value = serde_json::from_str(&c.services_json).unwrap();
         let step = &v["services"][1];
         assert_eq!(step["name"], "/m/step");
@@ -335,10 +299,7 @@ mod tests {
         use crate::recording::schema::field_names;
         let layout: Value =
             serde_json::from_str(include_str!("../../../docs/foxglove-layout.json")).unwrap();
-        let mut n = names();
-        n.state = "/muscle_actuator/state".into();
-        n.activation = "/muscle_actuator/activation".into();
-        let c = Catalogue::new(&n, false).unwrap();
+        let c = Catalogue::new(&names_under("/muscle_actuator", false)).unwrap();
         let panels = layout["configById"].as_object().unwrap();
         let mut checked = 0;
         for (id, cfg) in panels {
@@ -374,7 +335,7 @@ mod tests {
 
     #[test]
     fn inputs_are_checked_by_topic_and_type() {
-        let c = Catalogue::new(&names(), false).unwrap();
+        let c = Catalogue::new(&names()).unwrap();
         assert_eq!(
             c.input("/m/activation", "muscle_actuator_msgs/ActivationCommand"),
             Ok(InputTopic::Activation)

@@ -8,6 +8,7 @@ use super::protocol;
 use super::queue::{Client, Frame, LiveStats};
 use super::request::Request;
 use crate::recording::encode_cdr;
+use crate::ros::endpoints::Endpoint;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::SyncSender;
 use std::sync::{Arc, Mutex};
@@ -110,9 +111,13 @@ impl Hub {
 pub(crate) struct LiveTap(pub(crate) Arc<Hub>);
 
 impl LiveTap {
-    /// `msg`, stamped `stamp_ns`, to every client subscribed to `outlet`: encoded once (the
-    /// recordings' CDR bytes), queued to each.
-    pub(crate) fn put<T: serde::Serialize>(&self, outlet: Outlet, stamp_ns: i64, msg: &T) {
+    /// `msg` of `endpoint`, stamped `stamp_ns`, to every client subscribed to its channel:
+    /// encoded once (the recordings' CDR bytes), queued to each. Nothing for an endpoint the
+    /// live view does not serve as a channel.
+    pub(crate) fn put<T: serde::Serialize>(&self, endpoint: Endpoint, stamp_ns: i64, msg: &T) {
+        let Some(outlet) = Outlet::of(endpoint) else {
+            return;
+        };
         let hub = &self.0;
         if hub.subscribers[outlet.index()].load(Ordering::Relaxed) == 0 {
             return;

@@ -26,7 +26,7 @@ mod queue;
 mod request;
 mod server;
 
-pub(crate) use channels::{Catalogue, Outlet, Topics};
+pub(crate) use channels::Catalogue;
 pub(crate) use hub::LiveTap;
 pub(crate) use request::{Answer, Input, Request};
 pub(crate) use server::{LiveOptions, LiveStatus, LiveView};

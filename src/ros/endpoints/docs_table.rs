@@ -1,0 +1,90 @@
+//! docs/ros-interface.md's table of topics and services lists exactly the endpoints of
+//! [`ENDPOINTS`] on DDS (kind, name, type), and docs/recordings.md names the recording's own,
+//! so the pages cannot drift from the node.
+
+use super::table::{Direction, ENDPOINTS};
+
+const INTERFACE: &str = include_str!("../../../docs/ros-interface.md");
+const RECORDINGS: &str = include_str!("../../../docs/recordings.md");
+
+/// The rows (kind, name, type) of the table under `## Topics and services`.
+fn doc_rows() -> Vec<(String, String, String)> {
+    let section = INTERFACE
+        .split("\n## Topics and services\n")
+        .nth(1)
+        .expect("docs/ros-interface.md has a `## Topics and services` section");
+    let cell = |c: &str| c.trim().trim_matches('`').to_string();
+    section
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .skip(2) // the header and its rule
+        .map(|l| {
+            let cells: Vec<&str> = l.split('|').collect();
+            (cell(cells[1]), cell(cells[2]), cell(cells[3]))
+        })
+        .collect()
+}
+
+#[test]
+fn the_docs_list_every_endpoint() {
+    let mut rows = doc_rows();
+    let mut want: Vec<(String, String, String)> = ENDPOINTS
+        .iter()
+        .filter(|s| s.direction != Direction::Recorded)
+        .map(|s| {
+            (
+                s.direction.doc_name().to_string(),
+                s.name.to_string(),
+                s.type_name.to_string(),
+            )
+        })
+        .collect();
+    rows.sort();
+    want.sort();
+    assert_eq!(
+        rows, want,
+        "docs/ros-interface.md's topics and services table must list every entry of \
+         src/ros/endpoints/table.rs on DDS as `| kind | `name` | `type` | notes |`"
+    );
+    for s in ENDPOINTS
+        .iter()
+        .filter(|s| s.direction == Direction::Recorded)
+    {
+        assert!(
+            RECORDINGS.contains(&format!("`{}`", s.name)),
+            "docs/recordings.md does not name {}",
+            s.name
+        );
+    }
+}
+
+#[test]
+fn every_endpoint_has_one_entry() {
+    use super::table::{spec_of, Endpoint as E};
+    let all = [
+        E::State,
+        E::JointStates,
+        E::Activation,
+        E::Load,
+        E::AppliedActivation,
+        E::AppliedLoad,
+        E::Diagnostics,
+        E::Rosout,
+        E::ActivationArray,
+        E::MuscleCommand,
+        E::ClockOut,
+        E::ClockIn,
+        E::JointStatesIn,
+        E::JointEfforts,
+        E::AppliedJointMotion,
+        E::Reset,
+        E::Step,
+        E::StepTopic,
+    ];
+    assert_eq!(all.len(), ENDPOINTS.len());
+    for e in all {
+        assert_eq!(ENDPOINTS.iter().filter(|s| s.endpoint == e).count(), 1);
+        assert_eq!(spec_of(e).endpoint, e);
+    }
+}

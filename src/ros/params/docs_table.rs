@@ -1,0 +1,71 @@
+//! docs/ros-interface.md's parameters table lists exactly [`PARAMETERS`] (and the standard
+//! `use_sim_time`), each with the table's type and default, so the page cannot drift from the
+//! node.
+
+use super::table::{DefaultValue, USE_SIM_TIME};
+use super::Kind;
+use super::{NodeParams, PARAMETERS};
+
+const DOC: &str = include_str!("../../../docs/ros-interface.md");
+
+/// The rows (name, type, default) of the table under `## Parameters`.
+fn doc_rows() -> Vec<(String, String, String)> {
+    let section = DOC
+        .split("\n## Parameters\n")
+        .nth(1)
+        .expect("docs/ros-interface.md has a `## Parameters` section");
+    section
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .skip(2) // the header and its rule
+        .map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            (
+                cells[1].trim_matches('`').to_string(),
+                cells[2].to_string(),
+                cells[3].to_string(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn the_docs_list_every_parameter_with_its_type_and_default() {
+    let rows = doc_rows();
+    let mut want: Vec<(String, String, String)> = PARAMETERS
+        .iter()
+        .map(|s| {
+            (
+                s.name.to_string(),
+                s.kind.doc_name().to_string(),
+                s.default.text(true),
+            )
+        })
+        .collect();
+    want.push((USE_SIM_TIME.into(), "bool".into(), "false".into()));
+    assert_eq!(
+        rows, want,
+        "docs/ros-interface.md's parameters table must list, in order, every entry of \
+         src/ros/params/table.rs as `| `name` | type | default | meaning |`"
+    );
+}
+
+#[test]
+fn defaults_pass_their_checks_and_read_back() {
+    let p = NodeParams::default();
+    for s in PARAMETERS {
+        assert_eq!((s.get)(&p), s.default.value(), "{}", s.name);
+    }
+    assert_eq!(
+        super::spec("model").unwrap().default,
+        DefaultValue::Str(crate::physics::models::ModelKind::DEFAULT.name())
+    );
+    // Names are unique.
+    let mut names = super::table::names();
+    names.sort();
+    names.dedup();
+    assert_eq!(names.len(), PARAMETERS.len());
+    assert!(PARAMETERS.iter().all(|s| s.kind != Kind::Name
+        || matches!(s.default, DefaultValue::Str(d) if d.len() <= super::MAX_NAME_CHARS)));
+}
