@@ -21,7 +21,9 @@ use std::sync::{Arc, Mutex, OnceLock};
 /// started once and kept (the last 4 sizes asked for), so that a call does not pay for starting
 /// threads.
 fn pool(threads: Option<i64>) -> PyResult<Arc<rayon::ThreadPool>> {
-    static POOLS: OnceLock<Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>>> = OnceLock::new();
+    /// The pools kept, by their number of threads.
+    type Pools = Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>>;
+    static POOLS: OnceLock<Pools> = OnceLock::new();
     let n = match threads
         .map(|t| crate::config::count("threads", t))
         .transpose()?

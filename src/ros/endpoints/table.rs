@@ -155,7 +155,7 @@ impl EndpointSpec {
     pub(crate) fn package_and_type(&self) -> (&'static str, &'static str) {
         let mut parts = self.type_name.split('/');
         let pkg = parts.next().unwrap_or_default();
-        (pkg, parts.last().unwrap_or_default())
+        (pkg, parts.next_back().unwrap_or_default())
     }
 }
 

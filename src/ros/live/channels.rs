@@ -156,7 +156,7 @@ fn services_json(served: &[(Service, &str, &str)]) -> Result<String, String> {
         let mut parts = ty.split('/');
         let (pkg, srv) = (
             parts.next().unwrap_or_default(),
-            parts.last().unwrap_or_default(),
+            parts.next_back().unwrap_or_default(),
         );
         let (req, req_schema) = part(
             &format!("{pkg}/srv/{srv}_Request"),

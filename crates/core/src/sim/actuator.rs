@@ -120,7 +120,7 @@ impl Actuator {
     /// (between a simulator's joint-state messages: linear extrapolation). Returns false,
     /// changing nothing, for a joint that is not driven, an unknown index or a non-finite value.
     pub fn set_joint_motion(&mut self, index: usize, angle_rad: f64, velocity_rad_s: f64) -> bool {
-        if !self.driven.contains(&index) || !(angle_rad.is_finite() && velocity_rad_s.is_finite()) {
+        if !self.driven.contains(&index) || !angle_rad.is_finite() || !velocity_rad_s.is_finite() {
             return false;
         }
         let inputs = self.sim.inputs_mut();

@@ -233,7 +233,7 @@ mod tests {
         let known = s(&["flexor", "extensor"]);
         let huge = "x".repeat(1 << 20);
         for e in [
-            validate_activation(&[huge.clone()], &[0.5], &known).unwrap_err(),
+            validate_activation(std::slice::from_ref(&huge), &[0.5], &known).unwrap_err(),
             validate_activation(&s(&["flexor"]), &[0.5, 0.1], &known).unwrap_err(),
         ] {
             assert!(e.to_string().len() < 200, "{} bytes", e.to_string().len());

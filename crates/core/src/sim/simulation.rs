@@ -376,8 +376,8 @@ impl Simulation {
                 None => all(),
             }
         } else {
-            for i in 0..m {
-                out.muscles[i] = published(plant, y, activation, inputs, &energy[i], i);
+            for (i, (s, e)) in out.muscles.iter_mut().zip(energy.iter()).enumerate() {
+                *s = published(plant, y, activation, inputs, e, i);
             }
         }
         let muscles = &out.muscles;

@@ -78,6 +78,10 @@ impl ClosureLimits {
         let k = &self.kept[i];
         let t0 = f64::from_bits(k[0].load(Ordering::Relaxed));
         let d = tau - t0;
+        #[allow(
+            clippy::neg_cmp_op_on_partial_ord,
+            reason = "a NaN distance is not near: the negated comparison gives None for it"
+        )]
         if !((1.0 + t0.abs()) * d.abs() <= TAYLOR_REACH) {
             return None;
         }

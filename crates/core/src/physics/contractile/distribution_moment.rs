@@ -386,8 +386,8 @@ mod tests {
         let rates = huxley_rates();
         let q = isometric_steady_state(&rates).unwrap();
         let phi = closure(&rates, &q);
-        for k in 0..3 {
-            assert!((phi[k] - rates.beta(k)).abs() < 1e-12 * rates.beta(k).abs().max(1.0));
+        for (k, phi_k) in phi.iter().enumerate() {
+            assert!((phi_k - rates.beta(k)).abs() < 1e-12 * rates.beta(k).abs().max(1.0));
         }
     }
 }
