@@ -28,6 +28,8 @@ python3 scripts/check-structure.py
 python3 scripts/check-structure.py --src crates/core/src --crate-name muscle_actuator_core
 python3 scripts/check-structure.py --src crates/recording/src --crate-name muscle_actuator_recording
 python3 scripts/check-structure.py --src python/src --crate-name _core
+echo "== benches/without_energetics.patch still applies (the tick without its energetics)" >&2
+git apply --check benches/without_energetics.patch
 echo "== ROS 2 tests (rclpy peer)" >&2
 MUSCLE_ACTUATOR_BUILT=1 bash scripts/test-ros.sh -q
 echo "== Python package (scripts/test-python.sh)" >&2

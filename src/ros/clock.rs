@@ -123,7 +123,7 @@ impl NodeClock {
     /// `/clock`: no origin until the first message).
     pub fn time_base(&self, tick_origin_ns: i64) -> TimeBase {
         match self.mode {
-            ClockMode::Wall => TimeBase::Wall { tick_origin_ns },
+            ClockMode::Wall => TimeBase::WallOrigin { tick_origin_ns },
             ClockMode::Follow => TimeBase::RosClock {
                 tick_origin_ns: None,
             },
@@ -165,7 +165,7 @@ mod tests {
     fn ticks_covered_are_those_stamped_at_or_before() {
         for rate in [1000.0, 333.0, 2500.0, 7.0] {
             for origin in [0, 5_000_000_000_123, 7] {
-                let clock = TimeBase::Wall {
+                let clock = TimeBase::WallOrigin {
                     tick_origin_ns: origin,
                 };
                 assert_eq!(ticks_covered(clock, origin - 1, rate), 0);

@@ -1,14 +1,14 @@
 //! The node's `/diagnostics`: the tick loop's, the inputs' and the recorder's figures, once a
 //! second, published and recorded.
 
-use super::args::Severity;
 use super::clock::{ClockMode, NodeClock};
 use super::endpoints::Endpoint;
 use super::live::{LiveStatus, LiveTap};
 use super::logging::Reporter;
-use super::param_callbacks::Shared;
+use super::node_state::NodeState;
 use super::params::NodeParams;
 use super::record::{self, RecordTx};
+use super::severity::Severity;
 use super::tick::TickStats;
 use crate::msgs::Time;
 use crate::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
@@ -356,7 +356,7 @@ pub(crate) struct DiagSources<'a> {
     pub(crate) fqn: &'a str,
     pub(crate) ticks: &'a TickStats,
     pub(crate) inputs: &'a InputStats,
-    pub(crate) shared: &'a Shared,
+    pub(crate) shared: &'a NodeState,
     pub(crate) publish_errors: &'a AtomicU64,
     /// The recording as configured at start-up, and how its start went.
     pub(crate) startup_params: &'a NodeParams,

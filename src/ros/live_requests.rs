@@ -3,15 +3,15 @@
 //! parameters through the node's parameter store (the validator and action of `ros2 param
 //! set`), and `~/reset` / `~/step` with their services' answers.
 
-use super::args::Severity;
 use super::clock::ClockMode;
 use super::live::channels::Service;
 use super::live::protocol::{self, Level, ParameterIn};
 use super::live::{Answer, Input, Request};
 use super::logging::Reporter;
-use super::param_callbacks::Shared;
+use super::node_state::NodeState;
+use super::sample_messages::sample_to_msgs;
+use super::severity::Severity;
 use super::tasks::{self, InputContext};
-use super::threads::sample_to_msgs;
 use super::tick::Command;
 use crate::msgs::{StepRequest, StepResponse};
 use crate::recording::{decode_cdr, encode_cdr};
@@ -26,7 +26,7 @@ use std::cell::Cell;
 pub(crate) struct Context<'a> {
     pub(crate) inputs: &'a InputContext<'a>,
     pub(crate) node: &'a Node,
-    pub(crate) shared: &'a Shared,
+    pub(crate) shared: &'a NodeState,
     pub(crate) mode: ClockMode,
     pub(crate) log: &'a Reporter,
     /// The muscle of each `~/<muscle>/cmd_activation` topic, in order.

@@ -2,11 +2,11 @@
 //! and into the recording as published on `/rosout`; repeats held back (at most one a second
 //! per kind); late ticks summarised every 10 s.
 
-use super::args::Severity;
 use super::clock::NodeClock;
 use super::endpoints::Endpoint;
 use super::live::LiveTap;
 use super::record::RecordTx;
+use super::severity::Severity;
 use crate::msgs::Log;
 use crate::msgs::Time;
 use crate::runs::Channel;

@@ -1,45 +1,51 @@
 //! The ROS 2 node (`muscle_actuator node`): docs/ros-interface.md.
 //!
-//! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS. Start-up:
-//! - [`args`]: the standard ROS 2 command-line arguments, name expansion and remapping;
+//! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS. Its public face is
+//! [`run_node`]; the modules are the crate's own. Start-up:
+//! - `args`: the standard ROS 2 command-line arguments, name expansion and remapping;
 //! - `setup`: what the command line asks of the node, resolved before DDS starts;
-//! - [`params`]: the parameters and their rules; `param_callbacks`: changes at run time;
-//! - [`clock`]: wall, sim or lockstep time, or following `/clock`;
+//! - `params`: the parameters and their rules; `param_callbacks`: changes at run time;
+//!   `node_state`: what the node's tasks share (parameters in force, names, the loop's queue);
+//! - `clock`: wall, sim or lockstep time, or following `/clock`;
 //! - `endpoints`: the node's topics and services, each declared once;
-//! - [`dds`]: the participant and the node's endpoints.
+//! - `dds`: the participant and the node's endpoints.
 //!
 //! Running:
-//! - [`tick`]: the fixed-rate loop on its own thread (queues in and out, never waits on DDS);
+//! - `tick`: the fixed-rate loop on its own thread (queues in and out, never waits on DDS);
+//! - `sample_messages`: a tick's sample as the published messages;
 //! - `threads`: the tick loop, the publisher and the applied-inputs recorder, started and stopped
 //!   together;
 //! - `tasks`: the executor's tasks: the input topics, the services, the loop's events;
 //! - incoming commands are validated by [`crate::sim::input`] (the core crate's rules, shared
 //!   with the Python package);
-//! - [`diagnostics`]: `/diagnostics`, once a second;
-//! - [`logging`]: stderr, `/rosout` and the recording's log;
-//! - [`record`]: the node's MCAP recording (off the tick thread);
+//! - `diagnostics`: `/diagnostics`, once a second;
+//! - `logging`: stderr, `/rosout` and the recording's log, at a `severity`;
+//! - `record`: the node's MCAP recording (off the tick thread);
 //! - `live`: the live view, a Foxglove WebSocket server (off the tick thread);
 //!   `live_requests`: what its clients ask, answered on the executor;
 //! - `signals`: SIGINT and SIGTERM;
-//! - [`node`]: the node's main, which wires these together.
+//! - `node`: the node's main, which wires these together.
 
-pub mod args;
-pub mod clock;
-pub mod dds;
-pub mod diagnostics;
+pub(crate) mod args;
+pub(crate) mod clock;
+pub(crate) mod dds;
+pub(crate) mod diagnostics;
 pub(crate) mod endpoints;
 pub(crate) mod live;
 mod live_requests;
-pub mod logging;
-pub mod node;
+pub(crate) mod logging;
+pub(crate) mod node;
+mod node_state;
 mod param_callbacks;
-pub mod params;
-pub mod record;
+pub(crate) mod params;
+pub(crate) mod record;
+mod sample_messages;
 pub(crate) mod setup;
+pub(crate) mod severity;
 mod signals;
 mod tasks;
 mod threads;
-pub mod tick;
+pub(crate) mod tick;
 
 pub use args::DEFAULT_NODE_NAME;
 

@@ -1,7 +1,6 @@
 //! The node's main: set-up, the DDS endpoints, the recording, the threads, the tasks on the
 //! executor, and the stop. Each piece lives in its own module; this one only wires them.
 
-use super::args::Severity;
 use super::clock::{ClockMode, NodeClock};
 use super::dds::{Dds, Endpoints, Served};
 use super::diagnostics::{self, DiagSources, InputStats};
@@ -9,9 +8,11 @@ use super::endpoints::{Endpoint, Names};
 use super::live::{Catalogue, LiveOptions, LiveStatus, LiveView, Request};
 use super::live_requests;
 use super::logging::{Logger, Reporter};
-use super::param_callbacks::Shared;
+use super::node_state::NodeState;
+use super::param_callbacks;
 use super::record::{self, NodeRecorder, RecordTx};
 use super::setup::{setup, Setup};
+use super::severity::Severity;
 use super::signals::StopSignals;
 use super::tasks::{self, InputContext};
 use super::threads::{self, ThreadInputs, Threads};
@@ -34,7 +35,7 @@ pub fn run(argv: &[String]) -> Result<(), String> {
     let signals = StopSignals::install()?;
     let dds = Dds::start()?;
     let (cmd_tx, cmd_rx) = tick::command_channel();
-    let shared = Arc::new(Shared::new(&setup.params, &actuator, cmd_tx));
+    let shared = Arc::new(NodeState::new(&setup.params, &actuator, cmd_tx));
     let mut node = create_node(&setup, &dds, &shared)?;
     let clock = Arc::new(NodeClock::new(
         setup.params.clock.with_sim_time(setup.use_sim_time),
@@ -162,7 +163,7 @@ fn start_live(
 fn create_node(
     setup: &Setup,
     dds: &Dds,
-    shared: &Arc<Shared>,
+    shared: &Arc<NodeState>,
 ) -> Result<ros2_client::Node, String> {
     let mut options = NodeOptions::new()
         .enable_rosout(!setup.ros_args.disable_rosout)
@@ -174,7 +175,10 @@ fn create_node(
     let node_name = NodeName::new(&setup.namespace, &setup.name)
         .map_err(|e| format!("invalid node name {}: {e:?}", setup.fqn))?;
     dds.context
-        .new_node(node_name, shared.attach(options, &setup.params))
+        .new_node(
+            node_name,
+            param_callbacks::attach(shared, options, &setup.params),
+        )
         .map_err(|e| format!("cannot create node {}: {e:?}", setup.fqn))
 }
 
@@ -223,7 +227,7 @@ fn log_up(
 struct Executor<'a> {
     setup: &'a Setup,
     served: &'a Served,
-    shared: &'a Shared,
+    shared: &'a NodeState,
     threads: &'a Threads,
     events: &'a Receiver<Event>,
     recorder: Option<&'a NodeRecorder>,

@@ -2,117 +2,31 @@
 //! current set, building the actuator it would give, before it is accepted; once accepted it
 //! is applied by sending the tick loop the rebuilt actuator.
 
-use super::logging::Logger;
+use super::node_state::{Names, NodeState};
 use super::params::{self, NodeParams, OnChange};
-use super::tick::{self, Command};
+use super::tick::Command;
 use crate::sim::Actuator;
 use ros2_client::NodeOptions;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::sync::mpsc;
-use std::sync::{Arc, Mutex, OnceLock, RwLock};
+use std::sync::Arc;
 use std::time::Duration;
 
-/// Names that commands are checked against (they change with the `config` parameter).
-#[derive(Clone, Default)]
-struct Names {
-    muscles: Vec<String>,
-    joints: Vec<String>,
-    /// (index, name) of the driven joints.
-    driven: Vec<(usize, String)>,
-}
-
-impl Names {
-    fn of(a: &Actuator) -> Self {
-        Self {
-            muscles: a.muscle_names().to_vec(),
-            joints: a.joint_names().to_vec(),
-            driven: a
-                .driven_joints()
-                .iter()
-                .map(|&j| (j, a.joint_names()[j].clone()))
-                .collect(),
-        }
+/// The declared parameters with their start-up values, the validator and the action, on
+/// `options`.
+pub(crate) fn attach(
+    state: &Arc<NodeState>,
+    mut options: NodeOptions,
+    initial: &NodeParams,
+) -> NodeOptions {
+    for (n, v) in initial.values() {
+        options = options.declare_parameter(n, v);
     }
-}
-
-/// State shared between the parameter callbacks (on the spinner) and the rest.
-pub(crate) struct Shared {
-    params: Mutex<NodeParams>,
-    names: RwLock<Names>,
-    commands: tick::CommandSender,
-    /// Parameter changes act only once the node is up (the store also runs the action for the
-    /// initial values).
-    armed: AtomicBool,
-    logger: OnceLock<Logger>,
-}
-
-impl Shared {
-    pub(crate) fn new(
-        params: &NodeParams,
-        actuator: &Actuator,
-        commands: tick::CommandSender,
-    ) -> Self {
-        Self {
-            params: Mutex::new(params.clone()),
-            names: RwLock::new(Names::of(actuator)),
-            commands,
-            armed: AtomicBool::new(false),
-            logger: OnceLock::new(),
-        }
-    }
-    /// The declared parameters with their start-up values, the validator and the action, on
-    /// `options`.
-    pub(crate) fn attach(
-        self: &Arc<Self>,
-        mut options: NodeOptions,
-        initial: &NodeParams,
-    ) -> NodeOptions {
-        for (n, v) in initial.values() {
-            options = options.declare_parameter(n, v);
-        }
-        let sv = self.clone();
-        let sa = self.clone();
-        options
-            .parameter_validator(Box::new(move |n, v| validate_param(&sv, n, v)))
-            .parameter_set_action(Box::new(move |n, v| apply_param(&sa, n, v)))
-    }
-    /// From now on accepted changes act (and are logged to `logger`).
-    pub(crate) fn arm(&self, logger: &Logger) {
-        let _ = self.logger.set(logger.clone());
-        self.armed.store(true, Ordering::SeqCst);
-    }
-    fn log(&self) -> Option<&Logger> {
-        self.logger.get()
-    }
-    pub(crate) fn send(&self, c: Command) {
-        // Never waits for the tick loop; a full queue drops (and counts) the command.
-        let _ = self.commands.send(c);
-    }
-    /// The parameters in force.
-    pub(crate) fn params(&self) -> NodeParams {
-        self.params.lock().map(|p| p.clone()).unwrap_or_default()
-    }
-    /// The muscles commands name now.
-    pub(crate) fn muscles(&self) -> Vec<String> {
-        self.names
-            .read()
-            .map(|n| n.muscles.clone())
-            .unwrap_or_default()
-    }
-    /// The joints loads name now.
-    pub(crate) fn joints(&self) -> Vec<String> {
-        self.names
-            .read()
-            .map(|n| n.joints.clone())
-            .unwrap_or_default()
-    }
-    /// The driven joints now: (index, name).
-    pub(crate) fn driven(&self) -> Vec<(usize, String)> {
-        self.names
-            .read()
-            .map(|n| n.driven.clone())
-            .unwrap_or_default()
-    }
+    let sv = state.clone();
+    let sa = state.clone();
+    options
+        .parameter_validator(Box::new(move |n, v| validate_param(&sv, n, v)))
+        .parameter_set_action(Box::new(move |n, v| apply_param(&sa, n, v)))
 }
 
 /// Longest a parameter change may take to build its actuator (configuration file read and
@@ -144,7 +58,7 @@ fn build_off_executor(params: &NodeParams) -> Result<Actuator, String> {
 /// Checks one parameter change against the current set (and builds the actuator it would give
 /// when it affects the simulation), without applying it.
 fn validate_param(
-    shared: &Shared,
+    shared: &NodeState,
     name: &str,
     value: &ros2_client::ParameterValue,
 ) -> Result<(), String> {
@@ -184,7 +98,7 @@ fn on_change(name: &str) -> Option<OnChange> {
 
 /// Applies an accepted parameter change.
 fn apply_param(
-    shared: &Shared,
+    shared: &NodeState,
     name: &str,
     value: &ros2_client::ParameterValue,
 ) -> Result<(), String> {

@@ -4,13 +4,13 @@
 //! service and topic, and the tick loop's events turned into log lines. None of them waits on the
 //! tick loop.
 
-use super::args::Severity;
 use super::clock::ClockMode;
 use super::diagnostics::InputStats;
 use super::logging::{LateTicks, Reporter, LATE_WARN_PERIODS};
-use super::param_callbacks::Shared;
+use super::node_state::NodeState;
 use super::record::RecordTx;
-use super::threads::sample_to_msgs;
+use super::sample_messages::sample_to_msgs;
+use super::severity::Severity;
 use super::tick::{Command, Event, Sample, TickStats};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::msgs::{
@@ -30,7 +30,7 @@ use std::time::Duration;
 /// What the input tasks share: the commands' destination and names, the counters, the log and
 /// the recording.
 pub(crate) struct InputContext<'a> {
-    pub(crate) shared: &'a Shared,
+    pub(crate) shared: &'a NodeState,
     pub(crate) stats: &'a InputStats,
     pub(crate) log: &'a Reporter,
     pub(crate) rec: Option<RecordTx>,
@@ -297,7 +297,7 @@ const RESET_ANSWER_TIMEOUT: Duration = Duration::from_secs(2);
 /// `~/reset` (`std_srvs/Trigger`): back to the initial state, answered with the ticks run.
 pub(crate) async fn reset(
     server: &Server<TriggerRequest, TriggerResponse>,
-    shared: &Shared,
+    shared: &NodeState,
     log: &Reporter,
 ) {
     let mut stream = server.receive_request_stream();
@@ -314,7 +314,7 @@ pub(crate) async fn reset(
 }
 
 /// Resets the actuator and answers as `~/reset` does (from DDS or the live view).
-pub(crate) async fn reset_answer(shared: &Shared) -> TriggerResponse {
+pub(crate) async fn reset_answer(shared: &NodeState) -> TriggerResponse {
     let (tx, rx) = futures::channel::oneshot::channel();
     shared.send(Command::Reset(Some(tx)));
     let timeout = smol::Timer::after(RESET_ANSWER_TIMEOUT);
@@ -445,7 +445,7 @@ pub(crate) fn step_failed(message: String) -> StepResponse {
 /// after the last tick. One step at a time: a request while one is running is refused at once.
 pub(crate) async fn step(
     server: &Server<StepRequest, StepResponse>,
-    shared: &Shared,
+    shared: &NodeState,
     mode: ClockMode,
     log: &Reporter,
 ) {

@@ -7,12 +7,12 @@ use super::endpoints::{spec_of, Endpoint};
 use super::live::LiveTap;
 use super::logging::Logger;
 use super::record::{self, RecordTx};
+use super::sample_messages::{efforts_msg, sample_to_msgs};
 use super::tick::{
-    self, Applied, CommandReceiver, Event, LoopIo, Output, Pacing, RunSummary, Sample, TickStats,
+    self, Applied, CommandReceiver, Event, LoopIo, Output, Pacing, RunSummary, TickStats,
 };
-use crate::msgs::muscle_actuator_msgs::ActuatorState;
+use crate::msgs::Clock;
 use crate::msgs::Time;
-use crate::msgs::{state_messages, Clock, Float64MultiArray, JointState, MultiArrayLayout};
 use crate::sim::Actuator;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -29,27 +29,6 @@ const APPLIED_QUEUE: usize = 1024;
 
 /// How long a stop waits for the tick loop to return from its step.
 const TICK_STOP_GRACE: Duration = Duration::from_millis(500);
-
-/// Converts a sample into the two published messages.
-pub(crate) fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {
-    state_messages(
-        s.stamp_ns,
-        s.model.name(),
-        s.tick,
-        &s.muscle_names,
-        &s.joint_names,
-        &s.state,
-    )
-}
-
-/// `~/joint_efforts`: the muscles' net torque on each driven joint, N m, in configuration
-/// order (ros2_control's `forward_command_controller` convention).
-pub(crate) fn efforts_msg(s: &Sample) -> Float64MultiArray {
-    Float64MultiArray {
-        layout: MultiArrayLayout::default(),
-        data: s.driven.iter().map(|&j| s.state.joints[j].torque).collect(),
-    }
-}
 
 /// Where the publisher thread sends what the tick loop hands over.
 struct Outlets {

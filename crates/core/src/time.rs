@@ -1,9 +1,10 @@
 //! The time base of a run: what its log times and header stamps count, and ticks ↔ stamps.
 //!
 //! One time base per recording, named in its metadata ([`TimeBase`]): every log time and header
-//! stamp of an offline run is simulated time from zero; every one of a node run is wall-clock
-//! time (ns since the Unix epoch), or the time of the external `/clock` it followed. Inputs are
-//! recorded stamped with the tick at which they take effect: stamp = tick origin + tick / rate,
+//! stamp of an offline run is simulated time from zero; every one of a node run counts from a
+//! wall-clock origin (ns since the Unix epoch), or from the time of the external `/clock` it
+//! followed. Inputs are recorded stamped with the tick at which they take effect:
+//! stamp = tick origin + tick / rate,
 //! so tick = round((stamp − origin) · rate), with origin 0 offline and the node's tick origin
 //! (the time of its tick 0) in a node run.
 
@@ -12,9 +13,12 @@
 pub enum TimeBase {
     /// Simulated time from zero: tick k at k / rate (offline runs).
     Simulated,
-    /// Wall-clock time, ns since the Unix epoch; tick k of the run is stamped
-    /// `tick_origin_ns + k / rate` (node runs).
-    Wall { tick_origin_ns: i64 },
+    /// Stamps counted from a wall-clock origin (node runs): tick k is stamped
+    /// `tick_origin_ns + k / rate`, the origin being the wall-clock time of the node's tick 0
+    /// (ns since the Unix epoch). Under `clock:=wall` the stamps keep to the wall clock; under
+    /// `sim` and `lockstep` they are simulated time from that origin. Named `wall` in a
+    /// recording's metadata.
+    WallOrigin { tick_origin_ns: i64 },
     /// The time of an external `/clock` the node followed (`use_sim_time`), ns; tick k is
     /// stamped `tick_origin_ns + k / rate`, the origin being the first `/clock` time received
     /// (`None` until one arrived: the run has no tick yet).
@@ -29,7 +33,7 @@ impl TimeBase {
             | TimeBase::RosClock {
                 tick_origin_ns: None,
             } => 0,
-            TimeBase::Wall { tick_origin_ns }
+            TimeBase::WallOrigin { tick_origin_ns }
             | TimeBase::RosClock {
                 tick_origin_ns: Some(tick_origin_ns),
             } => tick_origin_ns,
@@ -113,7 +117,7 @@ mod tests {
     /// from the origin it gave.
     #[test]
     fn time_base_maps_stamps_to_ticks() {
-        let wall = TimeBase::Wall {
+        let wall = TimeBase::WallOrigin {
             tick_origin_ns: 1_763_800_000_000_000_123,
         };
         for rate in [1000.0, 333.0, 2500.0] {

@@ -8,50 +8,13 @@ mod params_file;
 
 pub use names::{
     check_name, check_node_name, expand, normalise_namespace, resolve, Remap, DEFAULT_NODE_NAME,
-    MAX_NAMESPACE_CHARS, MAX_NODE_NAME_CHARS, MAX_TOPIC_NAME_CHARS,
 };
-pub use params_file::{
-    check_flow_depth, node_key_matches, parse_param_rule, parse_params_yaml, read_params_file,
-    yaml_to_param, MAX_FLOW_DEPTH, MAX_PARAMS_FILE_BYTES,
-};
+pub use params_file::{parse_param_rule, read_params_file};
 
+use super::severity::Severity;
 use crate::text::excerpt;
 use ros2_client::ParameterValue;
 use std::path::Path;
-
-/// Log severities, ordered.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Severity {
-    Debug,
-    Info,
-    Warn,
-    Error,
-    Fatal,
-}
-
-impl Severity {
-    /// Parses `debug`, `info`, `warn`/`warning`, `error`, `fatal` (any case).
-    pub fn parse(s: &str) -> Option<Self> {
-        match s.to_ascii_lowercase().as_str() {
-            "debug" => Some(Self::Debug),
-            "info" => Some(Self::Info),
-            "warn" | "warning" => Some(Self::Warn),
-            "error" => Some(Self::Error),
-            "fatal" => Some(Self::Fatal),
-            _ => None,
-        }
-    }
-    /// Upper-case name as ROS prints it.
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::Debug => "DEBUG",
-            Self::Info => "INFO",
-            Self::Warn => "WARN",
-            Self::Error => "ERROR",
-            Self::Fatal => "FATAL",
-        }
-    }
-}
 
 /// A parameter assignment from `-p` or a parameters file, in command-line order.
 #[derive(Debug, Clone, PartialEq)]

@@ -2,8 +2,8 @@
 //! `use_sim_time`), each with the table's type and default, so the page cannot drift from the
 //! node.
 
+use super::given::Kind;
 use super::table::{DefaultValue, USE_SIM_TIME};
-use super::Kind;
 use super::{NodeParams, PARAMETERS};
 
 const DOC: &str = include_str!("../../../docs/ros-interface.md");
@@ -67,5 +67,5 @@ fn defaults_pass_their_checks_and_read_back() {
     names.dedup();
     assert_eq!(names.len(), PARAMETERS.len());
     assert!(PARAMETERS.iter().all(|s| s.kind != Kind::Name
-        || matches!(s.default, DefaultValue::Str(d) if d.len() <= super::MAX_NAME_CHARS)));
+        || matches!(s.default, DefaultValue::Str(d) if d.len() <= super::limits::MAX_NAME_CHARS)));
 }

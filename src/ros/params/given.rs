@@ -20,6 +20,7 @@ pub enum Kind {
 
 impl Kind {
     /// The type as docs/ros-interface.md writes it.
+    #[cfg(test)]
     pub fn doc_name(self) -> &'static str {
         match self {
             Kind::Bool => "bool",

@@ -8,10 +8,9 @@ mod limits;
 mod node_params;
 pub mod table;
 
-pub use given::{Given, Kind};
-pub use limits::*;
-pub use node_params::{publish_every, NodeParams};
-pub use table::{spec, OnChange, ParameterSpec, PARAMETERS};
+pub use given::Given;
+pub use node_params::NodeParams;
+pub use table::{spec, OnChange, PARAMETERS};
 
 use crate::physics::models::ModelKind;
 use crate::ros::clock::ClockMode;
@@ -48,6 +47,7 @@ impl Default for NodeParams {
 
 impl NodeParams {
     /// The value of parameter `name` as declared to ROS.
+    #[cfg(test)]
     pub fn value(&self, name: &str) -> Option<ParameterValue> {
         spec(name).map(|s| (s.get)(self))
     }
@@ -121,6 +121,7 @@ mod tests {
         assert!(p
             .set("nope", &ParameterValue::Boolean(true), false)
             .is_err());
+        use super::node_params::publish_every;
         assert_eq!(publish_every(1000.0, 0.0), 1);
         assert_eq!(publish_every(1000.0, 100.0), 10);
         assert_eq!(publish_every(1000.0, 2000.0), 1);

@@ -129,7 +129,7 @@ impl TickLoop {
         match self.follow_until {
             None => {
                 // The first clock message: the tick reached (0) is at its time.
-                self.clock = TimeBase::Wall {
+                self.clock = TimeBase::WallOrigin {
                     tick_origin_ns: ns - crate::time::tick_ns(self.actuator.tick(), rate) as i64,
                 };
                 self.event(Event::ClockAnchored {
@@ -144,7 +144,7 @@ impl TickLoop {
             {
                 let before = self.actuator.tick();
                 self.back_to_rest();
-                self.clock = TimeBase::Wall { tick_origin_ns: ns };
+                self.clock = TimeBase::WallOrigin { tick_origin_ns: ns };
                 self.io.stats.clock_jumps.fetch_add(1, Ordering::Relaxed);
                 self.event(Event::ClockJumped {
                     from_ns: last,
@@ -164,7 +164,7 @@ impl TickLoop {
     /// Tick 0 re-anchored after a reset or a rebuild from `tick`: one period before now (wall),
     /// or at the simulated time `tick` reached (simulated clocks, whose time never goes back).
     pub(super) fn reanchor(&mut self, tick: u64) {
-        self.clock = TimeBase::Wall {
+        self.clock = TimeBase::WallOrigin {
             tick_origin_ns: match self.mode {
                 ClockMode::Wall => wall_ns() - self.period.as_nanos() as i64,
                 _ => self.clock.stamp_ns(tick, self.actuator.rate_hz()),

@@ -74,7 +74,9 @@ pub struct Sample {
 /// `tick` to `tick + 1`. The values are moved from the command (nothing is allocated).
 #[derive(Debug, Clone)]
 pub struct Applied {
-    /// The actuator's tick when they took effect.
+    /// The actuator's tick when they took effect (the recording keeps the stamp; the tests
+    /// read the tick).
+    #[cfg_attr(not(test), expect(dead_code, reason = "read by the tick loop's tests"))]
     pub tick: u64,
     /// That tick's stamp (tick origin + tick / rate), ns since the Unix epoch.
     pub stamp_ns: i64,

@@ -26,15 +26,10 @@ mod tick_loop;
 #[cfg(test)]
 mod tests;
 
-pub use apply::FOLLOW_MAX_AHEAD_S;
 pub use messages::{Applied, AppliedInput, Command, Event, Output, Sample};
 pub use pacing::Pacing;
-pub use queue::{
-    command_channel, command_channel_with, CommandReceiver, CommandSender, Drain, COMMAND_CAPACITY,
-    CONTROL_RESERVE,
-};
-pub use schedule::{SCHEDULE_CAPACITY, SCHEDULE_HORIZON_S};
-pub use stats::{Histogram, RunSummary, TickStats};
+pub use queue::{command_channel, CommandReceiver, CommandSender};
+pub use stats::{RunSummary, TickStats};
 pub use tick_loop::LoopIo;
 
 use crate::sim::Actuator;

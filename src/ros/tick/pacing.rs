@@ -6,7 +6,7 @@
 //! (`lockstep`, following `/clock`) has no deadline: it parks for at most [`LOCKSTEP_IDLE`]
 //! until a command arrives.
 
-use super::super::clock::{ClockMode, NodeClock};
+use super::super::clock::NodeClock;
 use std::sync::Arc;
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
@@ -19,17 +19,6 @@ pub struct Pacing {
     pub real_time_factor: f64,
     /// Publish `/clock` every `n`th tick (simulated clocks).
     pub clock_every: u64,
-}
-
-impl Pacing {
-    /// Ticks paced by the wall clock, stamped with it.
-    pub fn wall() -> Self {
-        Self {
-            clock: Arc::new(NodeClock::new(ClockMode::Wall)),
-            real_time_factor: 0.0,
-            clock_every: 1,
-        }
-    }
 }
 
 /// Longest a lockstep loop sleeps between looks at its stop flag when no step is asked for.

@@ -73,6 +73,7 @@ impl CommandSender {
     }
 
     /// Commands dropped so far because the queue was full.
+    #[cfg(test)]
     pub fn dropped(&self) -> u64 {
         self.queue.dropped.load(Ordering::Relaxed)
     }

@@ -98,6 +98,7 @@ impl Histogram {
         self.count += 1;
         self.max_ns = self.max_ns.max(ns);
     }
+    #[cfg(test)]
     pub fn count(&self) -> u64 {
         self.count
     }

@@ -1,4 +1,6 @@
 use super::super::clock::{ClockMode, NodeClock};
+use super::queue::{command_channel_with, Drain};
+use super::stats::Histogram;
 use super::*;
 use crate::time::TimeBase;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -142,7 +144,7 @@ fn states_and_applied_inputs_share_the_tick_clock() {
     let origin: i64 = 1_700_000_000_123_456_789;
     let l = TestLoop::start_at(ClockMode::Wall, 1, origin);
     let (tx, rate) = (&l.tx, l.rate_hz);
-    let clock = TimeBase::Wall {
+    let clock = TimeBase::WallOrigin {
         tick_origin_ns: origin,
     };
     let next_state = || loop {

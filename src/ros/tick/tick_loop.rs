@@ -126,7 +126,7 @@ impl TickLoop {
             .store(actuator.rate_hz().to_bits(), Ordering::Relaxed);
         let timing = Timing::new();
         let deadlines = Deadlines::start();
-        let clock = TimeBase::Wall {
+        let clock = TimeBase::WallOrigin {
             tick_origin_ns: io.tick_origin_ns,
         };
         Self {

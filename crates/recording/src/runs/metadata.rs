@@ -93,7 +93,7 @@ fn time_base_from(m: &BTreeMap<String, String>) -> Result<TimeBase, String> {
         None | Some("simulated") => TimeBase::Simulated,
         Some("wall") => {
             let v = get(m, "tick_origin_ns")?;
-            TimeBase::Wall {
+            TimeBase::WallOrigin {
                 tick_origin_ns: v.parse().map_err(|_| bad("tick_origin_ns", v))?,
             }
         }
@@ -156,7 +156,7 @@ impl RunMeta {
         put("start_time", iso8601(self.start_time_ns));
         match self.time_base {
             TimeBase::Simulated => put("time_base", "simulated".into()),
-            TimeBase::Wall { tick_origin_ns } => {
+            TimeBase::WallOrigin { tick_origin_ns } => {
                 put("time_base", "wall".into());
                 put("tick_origin_ns", tick_origin_ns.to_string());
             }
@@ -346,7 +346,7 @@ mod tests {
     /// so does the driven joints' initial motion, which must fit them.
     #[test]
     fn time_base_and_initial_motion_round_trip_the_record() {
-        let wall = TimeBase::Wall {
+        let wall = TimeBase::WallOrigin {
             tick_origin_ns: 1_763_800_000_000_000_123,
         };
         let cfg = ActuatorConfig::default();
