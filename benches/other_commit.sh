@@ -9,8 +9,8 @@
 #                            OTHER_TARGET_DIR: where to build it
 #   executable_of KIND       the last executable of KIND (bench, example) in cargo's JSON
 #                            messages on stdin
-#   example_pair NAME        after other_checkout: examples/NAME.rs (this checkout's, copied
-#                            into the other) built in both, as "$TMP/this" and "$TMP/other_bin"
+#   example_pair NAME        after other_checkout: examples/NAME.rs built in both (the other's
+#                            own, or this checkout's copied where it has none), as "$TMP/this" and "$TMP/other_bin"
 #   steady_ticks_pair        example_pair steady_ticks
 #   bench_pair NAME          after other_checkout: each checkout's own benches/NAME.rs built in
 #                            it, as "$TMP/this" and "$TMP/other_bin"
@@ -39,7 +39,8 @@ example_pair() { # NAME: this checkout's examples/NAME.rs built here and in the 
     (cd "$1" && cargo build --release --example "$2" --message-format=json 2>/dev/null) |
       executable_of example
   }
-  cp "$ROOT/examples/$1.rs" "$TMP/other/examples/"
+  # The other commit's own copy where it has one (its API may have other paths); else this one.
+  [ -e "$TMP/other/examples/$1.rs" ] || cp "$ROOT/examples/$1.rs" "$TMP/other/examples/"
   cp "$(built "$ROOT" "$1")" "$TMP/this"
   cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1")" "$TMP/other_bin"
 }
