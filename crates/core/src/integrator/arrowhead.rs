@@ -12,7 +12,7 @@
 
 use crate::integrator::dense::{invert, Lu};
 use crate::integrator::{IterationMatrix, OdeSystem};
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// One leaf's part of the Jacobian.
 #[derive(Debug, Clone, Default)]
@@ -236,7 +236,7 @@ fn restore_entries(
     what: &str,
     (rows, cols): (usize, usize),
     entries: &mut Vec<(usize, usize, f64)>,
-) -> Result<(), String> {
+) -> Result<(), StateError> {
     let n = input.usize(what, usize::MAX)?;
     input.check_room(n, 24, what)?;
     entries.clear();
@@ -246,7 +246,9 @@ fn restore_entries(
         entries.push((r, c, input.f64(what)?));
     }
     if n > 0 && rows * cols == 0 {
-        return Err(format!("{what}: entries saved for an empty block"));
+        return Err(StateError::Invalid(format!(
+            "{what}: entries saved for an empty block"
+        )));
     }
     Ok(())
 }
@@ -271,7 +273,7 @@ impl SavedState for ArrowheadMatrix {
         out.f64s(&self.x_core);
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         let nc = self.core;
         input.f64s_into("Jacobian core block", &mut self.jac.core)?;
         input.expect_len("Jacobian leaf blocks", self.leaves.len())?;

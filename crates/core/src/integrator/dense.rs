@@ -5,7 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::integrator::{IterationMatrix, OdeSystem};
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// Dense `I - d J`, row-major, with its LU.
 #[derive(Debug, Clone)]
@@ -169,14 +169,16 @@ impl SavedState for Lu {
         out.f64s(&self.x);
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         input.f64s_into("LU factors", &mut self.rows)?;
         input.expect_len("LU permutation", self.n)?;
         let mut seen = vec![false; self.n];
         for p in self.perm.iter_mut() {
             *p = input.usize("LU permutation", self.n.saturating_sub(1))?;
             if std::mem::replace(&mut seen[*p], true) {
-                return Err(format!("LU permutation: row {p} appears twice"));
+                return Err(StateError::Invalid(format!(
+                    "LU permutation: row {p} appears twice"
+                )));
             }
         }
         input.f64s_into("LU pivot row", &mut self.pivot_row)?;

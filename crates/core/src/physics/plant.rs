@@ -23,7 +23,7 @@ use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::params::JointParams;
 use crate::physics::stiffness::add_muscle_joint_stiffness;
 use crate::physics::topology::{Anchor, Span, Topology};
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// Inputs held over a tick.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -83,7 +83,7 @@ impl SavedState for Inputs {
         }
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         input.f64s_into("excitations", &mut self.excitation)?;
         input.f64s_into("external torques", &mut self.external_torque)?;
         input.f64s_into("tendon forces", &mut self.tendon_force)?;

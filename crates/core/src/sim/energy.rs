@@ -12,7 +12,7 @@ use crate::physics::energetics::metabolic::{
     EnergyPowers, MetabolicRates, MetabolicSample, MuscleProbe,
 };
 use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// One muscle's energetics carried from tick to tick.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -152,7 +152,7 @@ impl SavedState for MuscleEnergy {
         out.f64(self.phenomenological_j);
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         let bridges = input.bool("energetics' bridges flag")?;
         let mut v = || input.f64("energetics");
         let probe_inputs = ProbeInputs {

@@ -13,7 +13,7 @@ use crate::physics::plant::{Inputs, Plant};
 use crate::physics::stepping::Stepping;
 use crate::sim::energy::{MuscleEnergy, TickEnergy};
 use crate::sim::jacobian::{self, JacobianScratch, PlantSystem};
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use std::cell::RefCell;
 
 /// The activations at one time within the tick (Newton iterates at one stage time many times),
@@ -339,10 +339,11 @@ impl SavedState for Part {
         self.stepper.save_state(out);
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         input.expect_len("part's muscles", self.plant.mtus.len())?;
         for (k, mtu) in self.plant.mtus.iter_mut().enumerate() {
-            (mtu.ce.restore_state(input)).map_err(|e| format!("muscle {k} of the part: {e}"))?;
+            (mtu.ce.restore_state(input))
+                .map_err(|e| e.in_part(format!("muscle {k} of the part")))?;
         }
         input.f64s_into("part's state", &mut self.y)?;
         self.h = input.f64("carried sub-step")?;

@@ -47,7 +47,7 @@ use crate::sim::actuator::Actuator;
 use crate::sim::snapshot::{
     JointSnapshot, MuscleSnapshot, StateSnapshot, JOINT_FIELD_COUNT, MUSCLE_FIELD_COUNT,
 };
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use sha2::{Digest, Sha256};
 
 /// The first bytes of a saved state.
@@ -81,24 +81,54 @@ impl Actuator {
     /// what is wrong for bytes that are not such a state (empty, wrong magic or version,
     /// truncated, checksum mismatch, a configuration or model this build refuses, sizes that
     /// are not those of the actuator the configuration describes). Never panics.
-    pub fn from_bytes(bytes: &[u8]) -> Result<Actuator, String> {
-        let body = unseal(bytes).map_err(|e| format!("saved actuator state: {e}"))?;
-        restore(body).map_err(|e| format!("saved actuator state: {e}"))
+    pub fn from_bytes(bytes: &[u8]) -> Result<Actuator, SavedStateError> {
+        restore(unseal(bytes)?)
+    }
+}
+
+/// Why bytes are not a saved actuator state; one line, `saved actuator state: …`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SavedStateError {
+    /// Not sealed bytes of this format: empty, wrong magic or version, truncated or trailing
+    /// bytes, checksum mismatch.
+    #[error("saved actuator state: {0}")]
+    Seal(String),
+    /// A body that does not fit the actuator it describes.
+    #[error("saved actuator state: {0}")]
+    Body(#[from] StateError),
+    /// A configuration, model or stepping that this build refuses or cannot build.
+    #[error("saved actuator state: {0}")]
+    Refused(String),
+}
+
+/// For callers whose errors are still one-line text.
+impl From<SavedStateError> for String {
+    fn from(e: SavedStateError) -> String {
+        e.to_string()
     }
 }
 
 /// The actuator the body describes.
-fn restore(body: &[u8]) -> Result<Actuator, String> {
+fn restore(body: &[u8]) -> Result<Actuator, SavedStateError> {
+    let refused = SavedStateError::Refused;
     let mut input = StateReader::new(body);
     let toml = input.str("configuration", MAX_CONFIG_BYTES)?;
-    let config = ActuatorConfig::from_toml_str(toml)
-        .map_err(|e| format!("configuration: {}", crate::text::one_line(&e.to_string())))?;
+    let config = ActuatorConfig::from_toml_str(toml).map_err(|e| {
+        refused(format!(
+            "configuration: {}",
+            crate::text::one_line(&e.to_string())
+        ))
+    })?;
     let name = input.str("model name", 256)?;
-    let model: ModelKind = name.parse().map_err(|e| format!("model: {e}"))?;
+    let model: ModelKind = name.parse().map_err(|e| refused(format!("model: {e}")))?;
     let rate_hz = input.f64("tick rate")?;
     let stepping = restore_stepping(&mut input)?;
-    let mut actuator = Actuator::with_stepping(&config, model, rate_hz, stepping)
-        .map_err(|e| format!("cannot rebuild the actuator: {}", crate::text::one_line(&e)))?;
+    let mut actuator = Actuator::with_stepping(&config, model, rate_hz, stepping).map_err(|e| {
+        refused(format!(
+            "cannot rebuild the actuator: {}",
+            crate::text::one_line(&e)
+        ))
+    })?;
     let (sim, state) = actuator.restore_target();
     sim.restore_state(&mut input)?;
     restore_snapshot(&mut input, state)?;
@@ -123,16 +153,19 @@ fn save_stepping(out: &mut StateWriter, stepping: Stepping) {
     }
 }
 
-fn restore_stepping(input: &mut StateReader) -> Result<Stepping, String> {
+fn restore_stepping(input: &mut StateReader) -> Result<Stepping, StateError> {
     let stepping = match input.u8("stepping")? {
         0 => Stepping::Adaptive {
             tolerance: input.f64("stepping tolerance")?,
             max_substeps: input.usize("most sub-steps", MAX_SUBSTEPS)?,
         },
         1 => Stepping::Fixed(input.usize("sub-steps", MAX_SUBSTEPS)?),
-        tag => return Err(format!("stepping: unknown kind {tag}")),
+        tag => return Err(StateError::Invalid(format!("stepping: unknown kind {tag}"))),
     };
-    stepping.check().map(|()| stepping)
+    stepping
+        .check()
+        .map(|()| stepping)
+        .map_err(StateError::Invalid)
 }
 
 fn save_snapshot(out: &mut StateWriter, s: &StateSnapshot) {
@@ -153,7 +186,7 @@ fn save_snapshot(out: &mut StateWriter, s: &StateSnapshot) {
     out.f64s(&s.stiffness_matrix);
 }
 
-fn restore_snapshot(input: &mut StateReader, s: &mut StateSnapshot) -> Result<(), String> {
+fn restore_snapshot(input: &mut StateReader, s: &mut StateSnapshot) -> Result<(), StateError> {
     input.expect_len("published muscle states", s.muscles.len())?;
     input.expect_len("published muscle fields", MUSCLE_FIELD_COUNT)?;
     for m in s.muscles.iter_mut() {
@@ -188,26 +221,29 @@ fn seal(body: &[u8]) -> Vec<u8> {
 }
 
 /// The body of sealed bytes, once their magic, version, length and checksum are checked.
-fn unseal(bytes: &[u8]) -> Result<&[u8], String> {
+fn unseal(bytes: &[u8]) -> Result<&[u8], SavedStateError> {
+    let seal = SavedStateError::Seal;
     if bytes.is_empty() {
-        return Err("empty (0 bytes)".into());
+        return Err(seal("empty (0 bytes)".into()));
     }
     let start = &bytes[..bytes.len().min(MAGIC.len())];
     if !MAGIC.starts_with(start) {
-        return Err("wrong magic: these bytes are not a saved state".into());
+        return Err(seal(
+            "wrong magic: these bytes are not a saved state".into(),
+        ));
     }
     if bytes.len() < HEADER_BYTES + CHECKSUM_BYTES {
-        return Err(format!(
+        return Err(seal(format!(
             "truncated: {} bytes, fewer than a header and a checksum ({})",
             bytes.len(),
             HEADER_BYTES + CHECKSUM_BYTES
-        ));
+        )));
     }
     let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
     if version != VERSION {
-        return Err(format!(
+        return Err(seal(format!(
             "format version {version}, this build reads version {VERSION}"
-        ));
+        )));
     }
     let announced = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes"));
     let body_len = bytes.len() - HEADER_BYTES - CHECKSUM_BYTES;
@@ -218,14 +254,50 @@ fn unseal(bytes: &[u8]) -> Result<&[u8], String> {
         } else {
             "trailing bytes"
         };
-        return Err(format!(
+        return Err(seal(format!(
             "{what}: {} bytes, the header announces {whole}",
             bytes.len()
-        ));
+        )));
     }
     let (sealed, sum) = bytes.split_at(HEADER_BYTES + body_len);
     if Sha256::digest(sealed).as_slice() != sum {
-        return Err("checksum mismatch: the bytes were changed or damaged".into());
+        return Err(seal(
+            "checksum mismatch: the bytes were changed or damaged".into(),
+        ));
     }
     Ok(&sealed[HEADER_BYTES..])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A refusal says at which stage the bytes failed: the seal, the body, or what this build
+    /// can rebuild.
+    #[test]
+    fn refusals_name_their_stage() {
+        let e = Actuator::from_bytes(b"").unwrap_err();
+        assert_eq!(e, SavedStateError::Seal("empty (0 bytes)".into()));
+        assert_eq!(e.to_string(), "saved actuator state: empty (0 bytes)");
+        let mut body = StateWriter::new();
+        body.usize(10);
+        body.raw(b"ab");
+        let e = Actuator::from_bytes(&seal(body.bytes())).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                SavedStateError::Body(StateError::Truncated { needed: 10, .. })
+            ),
+            "{e:?}"
+        );
+        let mut body = StateWriter::new();
+        body.str("muscle = 3");
+        let e = Actuator::from_bytes(&seal(body.bytes())).unwrap_err();
+        assert!(matches!(e, SavedStateError::Refused(_)), "{e:?}");
+        assert!(
+            e.to_string()
+                .starts_with("saved actuator state: configuration: "),
+            "{e}"
+        );
+    }
 }

@@ -11,7 +11,7 @@ use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
 use crate::sim::part::Part;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use rayon::prelude::*;
 use std::sync::Arc;
 
@@ -434,7 +434,7 @@ impl SavedState for Simulation {
         }
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         self.tick = input.u64("tick")?;
         self.inputs.restore_state(input)?;
         input.f64s_into("activations", &mut self.activation)?;
@@ -442,12 +442,12 @@ impl SavedState for Simulation {
         input.expect_len("muscles' energetics", self.energy.len())?;
         for (i, e) in self.energy.iter_mut().enumerate() {
             e.restore_state(input)
-                .map_err(|e| format!("muscle {i}: {e}"))?;
+                .map_err(|e| e.in_part(format!("muscle {i}")))?;
         }
         input.expect_len("parts", self.parts.len())?;
         for (k, p) in self.parts.iter_mut().enumerate() {
             p.restore_state(input)
-                .map_err(|e| format!("part {k}: {e}"))?;
+                .map_err(|e| e.in_part(format!("part {k}")))?;
         }
         Ok(())
     }

@@ -3,7 +3,7 @@
 
 use super::Esdirk;
 use crate::integrator::Stats;
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// What a stepper carries from call to call: the iteration matrix (its Jacobian and
 /// factorisation) and whether they are valid, Newton's carried error factor and threshold, the
@@ -63,10 +63,12 @@ impl<M: SavedState> SavedState for Esdirk<M> {
         self.matrix.save_state(out);
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         self.high_active = input.bool("stepper's fourth-order flag")?;
         if self.high_active && self.high.is_none() {
-            return Err("the stepper's fourth-order flag is set for a stepper without it".into());
+            return Err(StateError::Invalid(
+                "the stepper's fourth-order flag is set for a stepper without it".into(),
+            ));
         }
         self.jac_valid = input.bool("stepper's Jacobian flag")?;
         self.lu_valid = input.bool("stepper's factorisation flag")?;

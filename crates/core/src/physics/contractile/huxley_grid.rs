@@ -10,7 +10,7 @@
 //! Written by hand: no crate offers a moving-grid characteristic solver for this equation.
 
 use crate::physics::contractile::crossbridge::Rates;
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use std::collections::VecDeque;
 
 /// Bond fraction below which an outer cell is dropped.
@@ -223,7 +223,7 @@ impl SavedState for CrossBridgeGrid {
         }
     }
 
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         self.first_centre = input.f64("bond grid's first cell")?;
         self.n.clear();
         let cells = input.f64s_extend("bond grid cells", self.capacity, &mut self.n)?;
@@ -236,10 +236,10 @@ impl SavedState for CrossBridgeGrid {
             && self.first_centre - 0.5 * self.dxi <= lo
             && self.last_centre() + 0.5 * self.dxi >= hi;
         if !covers {
-            return Err(format!(
+            return Err(StateError::Invalid(format!(
                 "bond grid: {cells} cells from {} do not cover the attachment range",
                 self.first_centre
-            ));
+            )));
         }
         Ok(())
     }
@@ -275,7 +275,8 @@ mod tests {
         moved.save_state(&mut out);
         let e = back
             .restore_state(&mut StateReader::new(out.bytes()))
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("do not cover"), "{e}");
 
         let mut out = StateWriter::new();
@@ -283,7 +284,8 @@ mod tests {
         out.usize(grid.capacity + 1);
         let e = back
             .restore_state(&mut StateReader::new(out.bytes()))
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("over its bound"), "{e}");
     }
 }

@@ -17,7 +17,7 @@ use crate::physics::energetics::bridge_flux::EnergyFluxes;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
-use crate::state_bytes::{StateReader, StateWriter};
+use crate::state_bytes::{StateError, StateReader, StateWriter};
 use std::fmt;
 
 /// What the contractile element sees at one instant.
@@ -88,7 +88,7 @@ pub trait ContractileModel: fmt::Debug + Send + Sync {
     fn save_state(&self, _out: &mut StateWriter) {}
     /// Reads back what [`ContractileModel::save_state`] wrote, into an element built from the
     /// same parameters; Err, naming the value, for bytes that do not fit it.
-    fn restore_state(&mut self, _input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, _input: &mut StateReader) -> Result<(), StateError> {
         Ok(())
     }
     /// A copy behind a new box.

@@ -16,7 +16,7 @@ use crate::physics::models::contractile_model::{
 };
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
-use crate::state_bytes::{SavedState, StateReader, StateWriter};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// The model's entry in [`crate::physics::models::MODELS`].
 pub static SPEC: ModelSpec = ModelSpec {
@@ -157,9 +157,9 @@ impl ContractileModel for HuxleyPde {
             out.f64(v);
         }
     }
-    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), String> {
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
         self.grid.restore_state(input)?;
-        let three = |input: &mut StateReader, what: &str| -> Result<[f64; 3], String> {
+        let three = |input: &mut StateReader, what: &str| -> Result<[f64; 3], StateError> {
             Ok([input.f64(what)?, input.f64(what)?, input.f64(what)?])
         };
         let phi = three(input, "held closure")?;
