@@ -34,6 +34,8 @@ pub(crate) mod endpoints;
 pub(crate) mod live;
 mod live_requests;
 pub(crate) mod logging;
+#[cfg(test)]
+mod markdown_table;
 pub(crate) mod node;
 mod node_state;
 mod param_callbacks;

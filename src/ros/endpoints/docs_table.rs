@@ -3,26 +3,17 @@
 //! so the pages cannot drift from the node.
 
 use super::table::{Direction, ENDPOINTS};
+use crate::ros::markdown_table::rows_under;
 
 const INTERFACE: &str = include_str!("../../../docs/ros-interface.md");
 const RECORDINGS: &str = include_str!("../../../docs/recordings.md");
 
 /// The rows (kind, name, type) of the table under `## Topics and services`.
 fn doc_rows() -> Vec<(String, String, String)> {
-    let section = INTERFACE
-        .split("\n## Topics and services\n")
-        .nth(1)
-        .expect("docs/ros-interface.md has a `## Topics and services` section");
-    let cell = |c: &str| c.trim().trim_matches('`').to_string();
-    section
-        .lines()
-        .skip_while(|l| !l.starts_with('|'))
-        .take_while(|l| l.starts_with('|'))
-        .skip(2) // the header and its rule
-        .map(|l| {
-            let cells: Vec<&str> = l.split('|').collect();
-            (cell(cells[1]), cell(cells[2]), cell(cells[3]))
-        })
+    let cell = |c: &String| c.trim_matches('`').to_string();
+    rows_under(INTERFACE, "Topics and services")
+        .iter()
+        .map(|c| (cell(&c[0]), cell(&c[1]), cell(&c[2])))
         .collect()
 }
 

@@ -5,26 +5,19 @@
 use super::given::Kind;
 use super::table::{DefaultValue, USE_SIM_TIME};
 use super::{NodeParams, PARAMETERS};
+use crate::ros::markdown_table::rows_under;
 
 const DOC: &str = include_str!("../../../docs/ros-interface.md");
 
 /// The rows (name, type, default) of the table under `## Parameters`.
 fn doc_rows() -> Vec<(String, String, String)> {
-    let section = DOC
-        .split("\n## Parameters\n")
-        .nth(1)
-        .expect("docs/ros-interface.md has a `## Parameters` section");
-    section
-        .lines()
-        .skip_while(|l| !l.starts_with('|'))
-        .take_while(|l| l.starts_with('|'))
-        .skip(2) // the header and its rule
-        .map(|l| {
-            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+    rows_under(DOC, "Parameters")
+        .into_iter()
+        .map(|c| {
             (
-                cells[1].trim_matches('`').to_string(),
-                cells[2].to_string(),
-                cells[3].to_string(),
+                c[0].trim_matches('`').to_string(),
+                c[1].clone(),
+                c[2].clone(),
             )
         })
         .collect()
