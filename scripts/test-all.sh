@@ -5,8 +5,8 @@
 #      and the CLI's): unit, integration (physics against closed forms, the adaptive reference
 #      solver, conservation laws; the CLI), and the benchmarks compiled and run once in test mode;
 #      then the fourth model's tests (the `test-model` feature);
-#   2. the structure checks of src/ (scripts/check-structure.py: file sizes, function lengths,
-#      import cycles);
+#   2. the structure checks of every crate's sources (scripts/check-structure.py: file sizes,
+#      function lengths, import cycles), and that benches/without_energetics.patch applies;
 #   3. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
 #      a loopback-only network namespace (scripts/test-ros.sh; it creates .venv and builds the
 #      message package for rclpy on first use);
