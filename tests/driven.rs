@@ -353,7 +353,8 @@ fn driven_scenario_names_must_exist_and_fit() {
             1000.0,
             default_stepping(ModelKind::HILL),
         )
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
     assert!(
         err.contains("unknown joint \"knee\"") && err.contains("elbow"),
         "{err}"
@@ -366,7 +367,8 @@ fn driven_scenario_names_must_exist_and_fit() {
             1000.0,
             default_stepping(ModelKind::HILL),
         )
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("\"elbow\" is driven"), "{err}");
     // An external torque on a driven joint would do nothing.
     let torque = input(
@@ -382,7 +384,8 @@ fn driven_scenario_names_must_exist_and_fit() {
             1000.0,
             default_stepping(ModelKind::HILL),
         )
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("no effect"), "{err}");
     // joint_angle belongs to attachment "driven" only (checked when the file is read).
     let dir = temp_dir("driven");
@@ -392,7 +395,7 @@ fn driven_scenario_names_must_exist_and_fit() {
         "duration = 0.1\nattachment = \"joint\"\n[[input]]\nsignal = \"joint_angle\"\nkind = \"constant\"\nvalue = 0.1\n",
     )
     .unwrap();
-    let err = Scenario::from_file(&path).unwrap_err();
+    let err = Scenario::from_file(&path).unwrap_err().to_string();
     assert!(err.contains("JointAngle") && err.contains("Joint"), "{err}");
 }
 

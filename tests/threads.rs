@@ -63,7 +63,7 @@ fn a_thread_count_out_of_range_is_refused() {
     let mut act = Actuator::new(&ActuatorConfig::default(), ModelKind::HILL, 1000.0).unwrap();
     for bad in [0, 257] {
         let e = act.set_threads(bad).unwrap_err();
-        assert!(e.contains(&format!("threads = {bad}")), "{e}");
+        assert!(e.to_string().contains(&format!("threads = {bad}")), "{e}");
     }
     assert_eq!(act.simulation().threads(), 1);
 }

@@ -135,7 +135,7 @@ fn check_scenario(
         Err(e) => {
             let path = std::path::Path::new(scenario);
             Err(if path.exists() {
-                file_error(path, e, config_error)
+                file_error(path, e.to_string(), config_error)
             } else if scenario.ends_with(".toml") {
                 file_not_found(e)
             } else {

@@ -177,7 +177,7 @@ pub fn csv_number(x: f64) -> String {
 
 /// The CSV to the file `path` (`-`: standard output).
 fn write_csv_to(rows: &[SteadyRow], path: &Path) -> Result<(), String> {
-    crate::csv::write_text_to(path, |out| write_csv(rows, out))
+    crate::csv::write_text_to(path, |out| write_csv(rows, out)).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

@@ -11,6 +11,7 @@ use crate::sim::MuscleSnapshot;
 pub fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String> {
     let sc = Scenario::built_in(name, &cfg.muscles[0].params)?;
     sc.run(cfg, model, 1000.0, default_stepping(model))
+        .map_err(|e| e.to_string())
 }
 
 /// The first muscle's signal `f` over the run, (time s, value).

@@ -16,6 +16,68 @@ use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
 
+/// Why a text is not one CSV record ([`split_record`]).
+#[derive(Debug, thiserror::Error)]
+pub enum SplitError {
+    /// The text does not read as CSV.
+    #[error(transparent)]
+    Csv(#[from] ::csv::Error),
+    /// The text holds more than one record.
+    #[error("more than one line")]
+    MoreThanOneLine,
+}
+
+/// For callers whose errors are still one-line text.
+impl From<SplitError> for String {
+    fn from(e: SplitError) -> String {
+        e.to_string()
+    }
+}
+
+/// Why a CSV file cannot be written ([`write_text_to`]).
+#[derive(Debug, thiserror::Error)]
+pub enum CsvWriteError {
+    /// The file cannot be created (its directory missing or unwritable, a directory there).
+    #[error("cannot create {}: {source}", .path.display())]
+    Create {
+        /// The path.
+        path: std::path::PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The table cannot be written or the file put in place.
+    #[error("cannot write CSV {}: {source}", .path.display())]
+    Write {
+        /// The path.
+        path: std::path::PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+}
+
+impl CsvWriteError {
+    /// The kind of the I/O error.
+    pub fn io_kind(&self) -> std::io::ErrorKind {
+        match self {
+            CsvWriteError::Create { source, .. } | CsvWriteError::Write { source, .. } => {
+                source.kind()
+            }
+        }
+    }
+
+    /// Whether the path does not exist (its directory missing).
+    pub fn is_not_found(&self) -> bool {
+        self.io_kind() == std::io::ErrorKind::NotFound
+    }
+}
+
+/// For callers whose errors are still one-line text.
+impl From<CsvWriteError> for String {
+    fn from(e: CsvWriteError) -> String {
+        e.to_string()
+    }
+}
+
 /// The header line's columns for a run with these joints.
 pub fn header(joint_names: &[String]) -> Vec<String> {
     let mut cols = vec!["time".to_string(), "name".to_string()];
@@ -89,27 +151,23 @@ pub fn join_record(fields: &[String]) -> String {
 }
 
 /// The fields of one CSV record ([`join_record`]'s text); none for an empty text.
-pub fn split_record(text: &str) -> Result<Vec<String>, String> {
+pub fn split_record(text: &str) -> Result<Vec<String>, SplitError> {
     let mut r = ::csv::ReaderBuilder::new()
         .has_headers(false)
         .from_reader(text.as_bytes());
     let mut records = r.records();
     let fields = match records.next() {
         None => Vec::new(),
-        Some(rec) => rec
-            .map_err(|e| e.to_string())?
-            .iter()
-            .map(String::from)
-            .collect(),
+        Some(rec) => rec?.iter().map(String::from).collect(),
     };
     match records.next() {
         None => Ok(fields),
-        Some(_) => Err("more than one line".into()),
+        Some(_) => Err(SplitError::MoreThanOneLine),
     }
 }
 
 /// Writes the run as CSV to the file `path` (`-`: standard output).
-pub fn write_csv_to(run: &Run, path: &Path) -> Result<(), String> {
+pub fn write_csv_to(run: &Run, path: &Path) -> Result<(), CsvWriteError> {
     write_text_to(path, |out| write_csv(run, out))
 }
 
@@ -118,7 +176,7 @@ pub fn write_csv_to(run: &Run, path: &Path) -> Result<(), String> {
 pub fn write_text_to(
     path: &Path,
     body: impl Fn(&mut std::io::BufWriter<&mut dyn Write>) -> std::io::Result<()>,
-) -> Result<(), String> {
+) -> Result<(), CsvWriteError> {
     let write = |out: &mut dyn Write| {
         let mut buf = std::io::BufWriter::new(out);
         body(&mut buf)?;
@@ -127,9 +185,45 @@ pub fn write_text_to(
     if path.as_os_str() == "-" {
         write(&mut std::io::stdout().lock())
     } else {
-        let mut f = crate::files::AtomicFile::create(path)
-            .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+        let mut f =
+            crate::files::AtomicFile::create(path).map_err(|source| CsvWriteError::Create {
+                path: path.to_path_buf(),
+                source,
+            })?;
         write(f.file()).and_then(|()| f.commit())
     }
-    .map_err(|e| format!("cannot write CSV {}: {e}", path.display()))
+    .map_err(|source| CsvWriteError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file in a missing directory cannot be created, and says it is not found.
+    #[test]
+    fn a_missing_directory_is_not_found() {
+        let path = Path::new("/nonexistent/dir/out.csv");
+        let e = write_text_to(path, |_| Ok(())).unwrap_err();
+        assert!(
+            matches!(e, CsvWriteError::Create { .. }) && e.is_not_found(),
+            "{e}"
+        );
+        assert!(e
+            .to_string()
+            .starts_with("cannot create /nonexistent/dir/out.csv: "));
+    }
+
+    /// One record splits into its fields; two lines are refused.
+    #[test]
+    fn one_record_splits() {
+        let fields = vec!["a".to_string(), "b,c".to_string()];
+        assert_eq!(split_record(&join_record(&fields)).unwrap(), fields);
+        assert!(matches!(
+            split_record("a\nb"),
+            Err(SplitError::MoreThanOneLine)
+        ));
+    }
 }

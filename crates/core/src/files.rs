@@ -67,17 +67,37 @@ pub fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
 pub fn check_not_an_input(
     out: &std::path::Path,
     inputs: &[&std::path::Path],
-) -> Result<(), String> {
+) -> Result<(), OverwritesInput> {
     if out.as_os_str() == "-" {
         return Ok(());
     }
     match inputs.iter().find(|i| same_file(i, out)) {
-        Some(input) => Err(format!(
-            "{}: the output would overwrite {}, which this command reads; give another path",
-            out.display(),
-            input.display()
-        )),
+        Some(input) => Err(OverwritesInput {
+            out: out.to_path_buf(),
+            input: input.to_path_buf(),
+        }),
         None => Ok(()),
+    }
+}
+
+/// An output that would be written over a file the command reads ([`check_not_an_input`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{}: the output would overwrite {}, which this command reads; give another path",
+    .out.display(),
+    .input.display()
+)]
+pub struct OverwritesInput {
+    /// The output, as named.
+    pub out: std::path::PathBuf,
+    /// The input it names, as named.
+    pub input: std::path::PathBuf,
+}
+
+/// For callers whose errors are still one-line text.
+impl From<OverwritesInput> for String {
+    fn from(e: OverwritesInput) -> String {
+        e.to_string()
     }
 }
 

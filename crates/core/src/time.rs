@@ -47,22 +47,47 @@ impl TimeBase {
     }
 
     /// The tick stamped `ns` at `rate_hz` (refused before the origin: it names no tick).
-    pub fn tick_of(self, ns: i64, rate_hz: f64) -> Result<u64, String> {
+    pub fn tick_of(self, ns: i64, rate_hz: f64) -> Result<u64, StampError> {
         if self
             == (TimeBase::RosClock {
                 tick_origin_ns: None,
             })
         {
-            return Err(format!(
-                "stamp {ns} ns names no tick: the node received no /clock message, so the run \
-                 has no tick origin"
-            ));
+            return Err(StampError::NoOrigin { ns });
         }
         let origin = self.tick_origin_ns();
-        let since = ns.checked_sub(origin).filter(|d| *d >= 0).ok_or_else(|| {
-            format!("stamp {ns} ns is before the run's tick origin ({origin} ns)")
-        })?;
+        let since = (ns.checked_sub(origin).filter(|d| *d >= 0))
+            .ok_or(StampError::BeforeOrigin { ns, origin })?;
         Ok(ns_tick(since as u64, rate_hz))
+    }
+}
+
+/// A stamp that names no tick ([`TimeBase::tick_of`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum StampError {
+    /// Following `/clock`, before any clock message gave the run its tick origin.
+    #[error(
+        "stamp {ns} ns names no tick: the node received no /clock message, so the run has no \
+         tick origin"
+    )]
+    NoOrigin {
+        /// The stamp, ns.
+        ns: i64,
+    },
+    /// A stamp before the run's tick origin.
+    #[error("stamp {ns} ns is before the run's tick origin ({origin} ns)")]
+    BeforeOrigin {
+        /// The stamp, ns.
+        ns: i64,
+        /// The tick origin, ns.
+        origin: i64,
+    },
+}
+
+/// For callers whose errors are still one-line text.
+impl From<StampError> for String {
+    fn from(e: StampError) -> String {
+        e.to_string()
     }
 }
 
@@ -131,6 +156,7 @@ mod tests {
         assert!(wall
             .tick_of(1_763_800_000_000_000_000, 1000.0)
             .unwrap_err()
+            .to_string()
             .contains("before the run's tick origin"));
         assert!(TimeBase::Simulated.tick_of(-1, 1000.0).is_err());
         let rc = TimeBase::RosClock {
@@ -140,6 +166,14 @@ mod tests {
         let none = TimeBase::RosClock {
             tick_origin_ns: None,
         };
-        assert!(none.tick_of(0, 1000.0).unwrap_err().contains("no /clock"));
+        assert!(matches!(
+            none.tick_of(0, 1000.0),
+            Err(StampError::NoOrigin { ns: 0 })
+        ));
+        assert!(none
+            .tick_of(0, 1000.0)
+            .unwrap_err()
+            .to_string()
+            .contains("no /clock"));
     }
 }

@@ -54,7 +54,7 @@ impl NodeParams {
     /// Builds the actuator these parameters describe (checks the whole set).
     pub fn build(&self) -> Result<Actuator, String> {
         let cfg = self.load_config()?;
-        Actuator::new(&cfg, self.model, self.rate_hz)
+        Actuator::new(&cfg, self.model, self.rate_hz).map_err(|e| e.to_string())
     }
 
     /// Publish every `n`th tick.

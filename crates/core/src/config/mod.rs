@@ -24,19 +24,22 @@
 //!
 //! - [`schema`]: the structs, the default and the topology a configuration describes.
 //! - [`pair`]: the antagonistic-pair form.
-//! - [`parse`]: built-in names, files and TOML text.
+//! - [`parse`]: built-in names, files and TOML text; [`parse_error`]: why TOML does not fit.
 //! - [`validate`]: the rules and the warnings.
 //! - [`overrides`]: single values set by dotted keys (`muscle.flexor.k_t`).
 
 pub mod overrides;
 pub mod pair;
 pub mod parse;
+pub mod parse_error;
 pub mod schema;
 pub mod validate;
 
 use crate::physics::params::ParamError;
+pub use overrides::{OverrideKeyError, OverridesError};
 /// For src/main.rs, which quotes warnings with it; the text helpers are [`crate::text`]'s.
 pub use parse::BUILT_IN;
+pub use parse_error::ParseError;
 pub use schema::{
     ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_PATH_PRESTRETCH, DEFAULT_RADIUS,
 };
@@ -51,14 +54,17 @@ pub enum ConfigError {
         path: String,
         /// Why.
         reason: String,
+        /// The kind of the I/O error (`NotFound` for a missing file, `InvalidData` for bytes that
+        /// are not UTF-8 text).
+        kind: std::io::ErrorKind,
     },
-    /// The file is not valid TOML for this schema.
-    #[error("configuration file {path}: {message}")]
+    /// The file is not valid TOML for this schema (the reason on one line).
+    #[error("configuration file {path}: {}", crate::text::one_line(&.error.to_string()))]
     Parse {
-        /// The path.
+        /// The path (`<text>` for text, `<built-in NAME>` for a built-in configuration).
         path: String,
         /// What is wrong.
-        message: String,
+        error: ParseError,
     },
     /// One or more parameters break their rules.
     #[error("{}", .0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"))]
@@ -67,7 +73,26 @@ pub enum ConfigError {
     /// configuration breaking its rules: one line (a caller may prefix it, e.g. with the sweep's
     /// instance).
     #[error("overrides: {0}")]
-    Overrides(String),
+    Overrides(#[from] OverridesError),
+}
+
+impl ConfigError {
+    /// Whether the configuration file does not exist.
+    pub fn is_not_found(&self) -> bool {
+        matches!(self, ConfigError::Io { kind, .. } if *kind == std::io::ErrorKind::NotFound)
+    }
+
+    /// Whether an override names a muscle, joint or span the configuration does not have.
+    pub fn is_unknown_name(&self) -> bool {
+        matches!(self, ConfigError::Overrides(e) if e.is_unknown_name())
+    }
+}
+
+/// For callers whose errors are still one-line text.
+impl From<ConfigError> for String {
+    fn from(e: ConfigError) -> String {
+        e.to_string()
+    }
 }
 
 /// The error of `parameter` = `value` breaking `rule`.

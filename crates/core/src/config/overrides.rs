@@ -9,8 +9,97 @@
 //! The configuration is written out as its TOML table, the values set there, and the table read
 //! back as a file is: every override meets the rules and messages of the configuration file.
 
-use super::{ActuatorConfig, ConfigError};
+use super::{ActuatorConfig, ConfigError, ParseError};
+use crate::physics::params::ParamError;
 use crate::text::excerpt;
+
+/// Why overrides cannot be applied, on one line (the text of [`ConfigError::Overrides`]).
+#[derive(Debug, thiserror::Error)]
+pub enum OverridesError {
+    /// The configuration does not write out as a TOML table.
+    #[error("configuration as TOML: {0}")]
+    ToTable(
+        /// The serializer's reason, on one line.
+        String,
+    ),
+    /// One override cannot be set.
+    #[error("override {:?}: {error}", excerpt(.key))]
+    Key {
+        /// The dotted key.
+        key: String,
+        /// Why.
+        error: OverrideKeyError,
+    },
+    /// The overridden table does not write out as TOML text.
+    #[error("as TOML: {0}")]
+    ToText(
+        /// The serializer's reason, on one line.
+        String,
+    ),
+    /// The overridden configuration does not read back (a value of the wrong type, an unknown
+    /// key).
+    #[error("{}", crate::text::one_line(&.0.to_string()))]
+    Parse(ParseError),
+    /// The overridden configuration breaks rules: every broken rule, joined by `; `.
+    #[error("{}", .0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("; ").replace('\n', " "))]
+    Invalid(Vec<ParamError>),
+    /// Any other refusal of the overridden configuration.
+    #[error("{}", .0.to_string().replace('\n', " "))]
+    Config(Box<ConfigError>),
+}
+
+impl OverridesError {
+    /// Whether an override names a muscle, joint or span the configuration does not have.
+    pub fn is_unknown_name(&self) -> bool {
+        matches!(
+            self,
+            OverridesError::Key {
+                error: OverrideKeyError::UnknownName { .. } | OverrideKeyError::UnknownSpan { .. },
+                ..
+            }
+        )
+    }
+}
+
+/// Why one override (a dotted key and its value) cannot be set in the configuration's table.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum OverrideKeyError {
+    /// The key does not start with `muscle.NAME.` or `joint.NAME.`.
+    #[error("expected muscle.NAME.KEY or joint.NAME.KEY (NAME may be *)")]
+    BadKey,
+    /// No muscle or joint of that name.
+    #[error("no {kind} named {:?}", excerpt(.name))]
+    UnknownName {
+        /// `muscle` or `joint`.
+        kind: &'static str,
+        /// The name.
+        name: String,
+    },
+    /// The configuration has no muscles, or no joints, to set a value of.
+    #[error("the configuration has no {kind}")]
+    NoEntries {
+        /// `muscle` or `joint`.
+        kind: &'static str,
+    },
+    /// The key is a name.
+    #[error("a name cannot be overridden")]
+    Name,
+    /// The muscle's `energetics` is not a table.
+    #[error("energetics is not a table")]
+    EnergeticsNotATable,
+    /// The key is a span's joint.
+    #[error("a span's joint cannot be overridden")]
+    SpanJoint,
+    /// The muscle has no span over that joint.
+    #[error("no span over joint {:?}", excerpt(.joint))]
+    UnknownSpan {
+        /// The joint named.
+        joint: String,
+    },
+    /// After the name, neither `KEY`, `energetics.KEY` nor `span.JOINT.KEY`.
+    #[error("expected KEY, energetics.KEY or span.JOINT.KEY after the name")]
+    BadPath,
+}
 
 /// `cfg` with each `(key, value)` set in turn, validated as a configuration file; an error is
 /// [`ConfigError::Overrides`], on one line (several broken rules joined by `; `).
@@ -21,31 +110,33 @@ pub fn with_overrides(
     if overrides.is_empty() {
         return Ok(cfg.clone());
     }
-    let invalid = |message: String| ConfigError::Overrides(message.replace('\n', " "));
+    let one_line = |e: &dyn std::fmt::Display| e.to_string().replace('\n', " ");
     let mut table =
-        toml::Table::try_from(cfg).map_err(|e| invalid(format!("configuration as TOML: {e}")))?;
+        toml::Table::try_from(cfg).map_err(|e| OverridesError::ToTable(one_line(&e)))?;
     for (key, value) in overrides {
-        set(&mut table, key, value.clone())
-            .map_err(|e| invalid(format!("override {:?}: {e}", excerpt(key))))?;
+        set(&mut table, key, value.clone()).map_err(|error| OverridesError::Key {
+            key: key.clone(),
+            error,
+        })?;
     }
-    let text = toml::to_string(&table).map_err(|e| invalid(format!("as TOML: {e}")))?;
-    ActuatorConfig::from_toml_str(&text).map_err(|e| match e {
-        ConfigError::Parse { message, .. } => invalid(message),
-        ConfigError::Invalid(errors) => invalid(
-            (errors.iter().map(|e| e.to_string()))
-                .collect::<Vec<_>>()
-                .join("; "),
-        ),
-        other => invalid(other.to_string()),
+    let text = toml::to_string(&table).map_err(|e| OverridesError::ToText(one_line(&e)))?;
+    ActuatorConfig::from_toml_str(&text).map_err(|e| {
+        ConfigError::Overrides(match e {
+            ConfigError::Parse { error, .. } => OverridesError::Parse(error),
+            ConfigError::Invalid(errors) => OverridesError::Invalid(errors),
+            ConfigError::Overrides(e) => e,
+            other => OverridesError::Config(Box::new(other)),
+        })
     })
 }
 
 /// Sets `key` = `value` in the configuration's table.
-fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), String> {
+fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), OverrideKeyError> {
     let parts: Vec<&str> = key.split('.').collect();
     let (kind, name, rest) = match parts.as_slice() {
-        [kind @ ("muscle" | "joint"), name, rest @ ..] if !rest.is_empty() => (*kind, *name, rest),
-        _ => return Err("expected muscle.NAME.KEY or joint.NAME.KEY (NAME may be *)".into()),
+        ["muscle", name, rest @ ..] if !rest.is_empty() => ("muscle", *name, rest),
+        ["joint", name, rest @ ..] if !rest.is_empty() => ("joint", *name, rest),
+        _ => return Err(OverrideKeyError::BadKey),
     };
     let entries = named_tables(table, kind)?;
     let mut found = false;
@@ -56,7 +147,10 @@ fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), Str
         }
     }
     if !found {
-        return Err(format!("no {kind} named {:?}", excerpt(name)));
+        return Err(OverrideKeyError::UnknownName {
+            kind,
+            name: name.to_string(),
+        });
     }
     Ok(())
 }
@@ -64,18 +158,22 @@ fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), Str
 /// The `[[muscle]]` or `[[joint]]` tables.
 fn named_tables<'a>(
     table: &'a mut toml::Table,
-    kind: &str,
-) -> Result<impl Iterator<Item = &'a mut toml::Table>, String> {
+    kind: &'static str,
+) -> Result<impl Iterator<Item = &'a mut toml::Table>, OverrideKeyError> {
     match table.get_mut(kind) {
         Some(toml::Value::Array(a)) => Ok(a.iter_mut().filter_map(|v| v.as_table_mut())),
-        _ => Err(format!("the configuration has no {kind}")),
+        _ => Err(OverrideKeyError::NoEntries { kind }),
     }
 }
 
 /// Sets the key path `rest` (`KEY`, `energetics.KEY` or `span.JOINT.KEY`) within one entry.
-fn set_in(entry: &mut toml::Table, rest: &[&str], value: toml::Value) -> Result<(), String> {
+fn set_in(
+    entry: &mut toml::Table,
+    rest: &[&str],
+    value: toml::Value,
+) -> Result<(), OverrideKeyError> {
     match rest {
-        ["name"] => Err("a name cannot be overridden".into()),
+        ["name"] => Err(OverrideKeyError::Name),
         [key] => {
             entry.insert((*key).to_string(), value);
             Ok(())
@@ -89,7 +187,7 @@ fn set_in(entry: &mut toml::Table, rest: &[&str], value: toml::Value) -> Result<
                     t.insert((*key).to_string(), value);
                     Ok(())
                 }
-                None => Err("energetics is not a table".into()),
+                None => Err(OverrideKeyError::EnergeticsNotATable),
             }
         }
         ["span", joint, key] => {
@@ -104,11 +202,13 @@ fn set_in(entry: &mut toml::Table, rest: &[&str], value: toml::Value) -> Result<
                     t.insert((*key).to_string(), value);
                     Ok(())
                 }
-                Some(_) => Err("a span's joint cannot be overridden".into()),
-                None => Err(format!("no span over joint {:?}", excerpt(joint))),
+                Some(_) => Err(OverrideKeyError::SpanJoint),
+                None => Err(OverrideKeyError::UnknownSpan {
+                    joint: (*joint).to_string(),
+                }),
             }
         }
-        _ => Err("expected KEY, energetics.KEY or span.JOINT.KEY after the name".into()),
+        _ => Err(OverrideKeyError::BadPath),
     }
 }
 
@@ -182,6 +282,31 @@ mod tests {
             toml::Value::Float(0.1)
         )
         .contains("no span over joint"));
+    }
+
+    /// An unknown muscle, joint or span is told apart from other refusals.
+    #[test]
+    fn unknown_names_are_told_apart() {
+        let e = over("muscle.biceps.k_t", toml::Value::Float(1.0)).unwrap_err();
+        assert!(e.is_unknown_name(), "{e}");
+        assert!(matches!(
+            &e,
+            ConfigError::Overrides(OverridesError::Key {
+                error: OverrideKeyError::UnknownName { kind: "muscle", name },
+                ..
+            }) if name == "biceps"
+        ));
+        assert_eq!(
+            e.to_string(),
+            "overrides: override \"muscle.biceps.k_t\": no muscle named \"biceps\""
+        );
+        let e = over("joint.elbow.nothing.x", toml::Value::Float(1.0)).unwrap_err();
+        assert!(!e.is_unknown_name(), "{e}");
+        let e = over("muscle.flexor.k_t", toml::Value::Float(-1.0)).unwrap_err();
+        assert!(
+            matches!(e, ConfigError::Overrides(OverridesError::Invalid(_))),
+            "{e}"
+        );
     }
 
     /// Every refusal is one line that starts with `overrides: ` (never "configuration file"),

@@ -3,7 +3,7 @@
 //! pulling towards positive angles, or one, which replaces the default muscle of its name.
 
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_RADIUS};
-use super::{rule, ConfigError};
+use super::{rule, ConfigError, ParseError};
 use crate::physics::moment_arm::MomentArm;
 use crate::physics::params::JointParams;
 use crate::text::excerpt;
@@ -35,19 +35,23 @@ impl PairJoint {
         }
     }
 
-    pub(super) fn from_table(mut t: toml::Table) -> Result<Self, String> {
-        let mut number = |key: &str| -> Result<Option<f64>, String> {
+    pub(super) fn from_table(mut t: toml::Table) -> Result<Self, ParseError> {
+        let mut number = |key: &'static str| {
             t.remove(key)
                 .map(|v| {
-                    f64::deserialize(v)
-                        .map_err(|e| format!("joint.{key}: {}", e.to_string().trim()))
+                    f64::deserialize(v).map_err(|e| ParseError::PairValue {
+                        key,
+                        reason: e.to_string().trim().to_string(),
+                    })
                 })
                 .transpose()
         };
         let radius = number("radius")?;
         let path_length = number("path_length")?;
-        let joint = JointParams::deserialize(toml::Value::Table(t))
-            .map_err(|e| format!("joint: {}", e.to_string().trim()))?;
+        let joint =
+            JointParams::deserialize(toml::Value::Table(t)).map_err(|e| ParseError::PairJoint {
+                reason: e.to_string().trim().to_string(),
+            })?;
         Ok(Self {
             joint,
             radius,
@@ -110,14 +114,11 @@ pub(super) fn pair_config(
 /// The joints of a configuration whose muscles have spans and whose `joint` is a single table
 /// (or absent): that joint (or the default one). A pulley `radius` or common `path_length` there
 /// is refused: they belong to the pair form.
-pub(super) fn single_joint(pair: Option<PairJoint>) -> Result<Vec<JointParams>, String> {
+pub(super) fn single_joint(pair: Option<PairJoint>) -> Result<Vec<JointParams>, ParseError> {
     match pair {
-        Some(p) if p.radius.is_some() || p.path_length.is_some() => Err(
-            "joint.radius and joint.path_length belong to the antagonistic pair \
-             (muscles without spans); with [[muscle.span]] give each muscle its \
-             moment arms and path_length"
-                .into(),
-        ),
+        Some(p) if p.radius.is_some() || p.path_length.is_some() => {
+            Err(ParseError::PairKeysWithSpans)
+        }
         Some(p) => Ok(vec![p.joint]),
         None => Ok(vec![JointParams::default()]),
     }

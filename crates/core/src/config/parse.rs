@@ -3,10 +3,10 @@
 
 use super::pair::{pair_config, single_joint, PairJoint};
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig};
-use super::ConfigError;
+use super::{ConfigError, ParseError};
 use crate::files::{read_regular_file, MAX_FILE_BYTES};
 use crate::physics::params::{JointParams, MuscleParams};
-use crate::text::{excerpt, one_line, toml_error};
+use crate::text::toml_error;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -21,9 +21,9 @@ impl ActuatorConfig {
     pub fn resolve(name_or_path: &str) -> Result<Self, ConfigError> {
         match BUILT_IN.iter().find(|(n, _)| *n == name_or_path) {
             Some((name, text)) => Self::from_toml_str(text).map_err(|e| match e {
-                ConfigError::Parse { message, .. } => ConfigError::Parse {
+                ConfigError::Parse { error, .. } => ConfigError::Parse {
                     path: format!("<built-in {name}>"),
-                    message,
+                    error,
                 },
                 other => other,
             }),
@@ -48,22 +48,25 @@ impl ActuatorConfig {
             .chars()
             .take(200)
             .collect::<String>();
-        let io = |reason: String| ConfigError::Io {
+        let io = |reason: String, kind| ConfigError::Io {
             path: shown.clone(),
             reason,
+            kind,
         };
         let bytes = read_regular_file(path, MAX_FILE_BYTES).map_err(|e| {
-            io(if e.kind() == std::io::ErrorKind::NotFound {
+            let reason = if e.kind() == std::io::ErrorKind::NotFound {
                 format!("{e} (built-in configurations: {})", Self::built_in_names())
             } else {
                 e.to_string()
-            })
+            };
+            io(reason, e.kind())
         })?;
-        let text = String::from_utf8(bytes).map_err(|e| io(e.to_string()))?;
+        let text = String::from_utf8(bytes)
+            .map_err(|e| io(e.to_string(), std::io::ErrorKind::InvalidData))?;
         Self::from_toml_str(&text).map_err(|e| match e {
-            ConfigError::Parse { message, .. } => ConfigError::Parse {
+            ConfigError::Parse { error, .. } => ConfigError::Parse {
                 path: shown.clone(),
-                message,
+                error,
             },
             other => other,
         })
@@ -71,17 +74,14 @@ impl ActuatorConfig {
 
     /// Parses and validates TOML text.
     pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
-        let parse_err = |message: String| ConfigError::Parse {
+        let parse_err = |error: ParseError| ConfigError::Parse {
             path: "<text>".into(),
-            message: one_line(&message),
+            error,
         };
         let mut raw: toml::Table =
-            toml::from_str(text).map_err(|e| parse_err(toml_error(&e, text)))?;
+            toml::from_str(text).map_err(|e| parse_err(ParseError::Toml(toml_error(&e, text))))?;
         if let Some(k) = raw.keys().find(|k| *k != "joint" && *k != "muscle") {
-            return Err(parse_err(format!(
-                "unknown key {:?}: expected `joint` and `muscle`",
-                excerpt(k)
-            )));
+            return Err(parse_err(ParseError::UnknownKey(k.clone())));
         }
         let muscles = muscles_from(raw.remove("muscle")).map_err(parse_err)?;
         let joints = match raw.remove("joint") {
@@ -89,8 +89,12 @@ impl ActuatorConfig {
                 .into_iter()
                 .enumerate()
                 .map(|(i, v)| {
-                    JointParams::deserialize(v)
-                        .map_err(|e| parse_err(format!("joint[{i}]: {}", e.to_string().trim())))
+                    JointParams::deserialize(v).map_err(|e| {
+                        parse_err(ParseError::Joint {
+                            index: i,
+                            reason: e.to_string().trim().to_string(),
+                        })
+                    })
                 })
                 .collect::<Result<Vec<_>, _>>()?,
             pair => {
@@ -101,11 +105,7 @@ impl ActuatorConfig {
                     Some(toml::Value::Table(t)) => {
                         Some(PairJoint::from_table(t).map_err(parse_err)?)
                     }
-                    Some(_) => {
-                        return Err(parse_err(
-                            "`joint` must be a table or an array of tables".into(),
-                        ))
-                    }
+                    Some(_) => return Err(parse_err(ParseError::JointNotATable)),
                 };
                 if muscles.is_empty() || muscles.iter().all(|m| m.spans.is_empty()) {
                     return pair_config(pair, muscles);
@@ -120,7 +120,7 @@ impl ActuatorConfig {
 }
 
 /// The `[[muscle]]` tables, in order (none when the key is absent).
-fn muscles_from(value: Option<toml::Value>) -> Result<Vec<MuscleConfig>, String> {
+fn muscles_from(value: Option<toml::Value>) -> Result<Vec<MuscleConfig>, ParseError> {
     let tables = match value {
         None => return Ok(Vec::new()),
         Some(toml::Value::Array(a)) => a
@@ -128,10 +128,10 @@ fn muscles_from(value: Option<toml::Value>) -> Result<Vec<MuscleConfig>, String>
             .enumerate()
             .map(|(i, v)| match v {
                 toml::Value::Table(t) => Ok(t),
-                _ => Err(format!("muscle[{i}] must be a table")),
+                _ => Err(ParseError::MuscleNotATable { index: i }),
             })
             .collect::<Result<Vec<_>, _>>()?,
-        Some(_) => return Err("`muscle` must be an array of tables ([[muscle]])".into()),
+        Some(_) => return Err(ParseError::MusclesNotAnArray),
     };
     tables
         .into_iter()
@@ -140,32 +140,32 @@ fn muscles_from(value: Option<toml::Value>) -> Result<Vec<MuscleConfig>, String>
         .collect()
 }
 
-fn muscle_from_table(i: usize, mut table: toml::Table) -> Result<MuscleConfig, String> {
+fn muscle_from_table(i: usize, mut table: toml::Table) -> Result<MuscleConfig, ParseError> {
     let name = match table.remove("name") {
         Some(toml::Value::String(s)) => s,
         Some(other) => {
-            return Err(format!(
-                "muscle[{i}].name must be a string, found {}",
-                excerpt(&other.to_string())
-            ))
+            return Err(ParseError::MuscleNameNotAString {
+                index: i,
+                found: other.to_string(),
+            })
         }
-        None => return Err(format!("muscle[{i}] has no name")),
+        None => return Err(ParseError::MuscleWithoutName { index: i }),
     };
-    let shown = excerpt(&name);
+    let value = |key, e: toml::de::Error| ParseError::MuscleValue {
+        muscle: name.clone(),
+        key,
+        reason: e.to_string().trim().to_string(),
+    };
     let path_length = match table.remove("path_length") {
         None => None,
-        Some(v) => Some(
-            f64::deserialize(v)
-                .map_err(|e| format!("muscle {shown:?}: path_length: {}", e.to_string().trim()))?,
-        ),
+        Some(v) => Some(f64::deserialize(v).map_err(|e| value(Some("path_length"), e))?),
     };
     let spans = match table.remove("span") {
         None => Vec::new(),
-        Some(v) => Vec::<SpanConfig>::deserialize(v)
-            .map_err(|e| format!("muscle {shown:?}: span: {}", e.to_string().trim()))?,
+        Some(v) => Vec::<SpanConfig>::deserialize(v).map_err(|e| value(Some("span"), e))?,
     };
-    let params = MuscleParams::deserialize(toml::Value::Table(table))
-        .map_err(|e| format!("muscle {shown:?}: {}", e.to_string().trim()))?;
+    let params =
+        MuscleParams::deserialize(toml::Value::Table(table)).map_err(|e| value(None, e))?;
     Ok(MuscleConfig {
         name,
         params,

@@ -8,8 +8,8 @@ use crate::physics::energetics::metabolic::{
     mechanism_rates, MetabolicRates, MetabolicSample, MuscleProbe,
 };
 use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
-use crate::physics::models::ModelKind;
 use crate::physics::models::{CeInputs, ContractileModel};
+use crate::physics::models::{ModelBuildError, ModelKind};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::parallel_element::{damper_force, parallel_spring};
 use crate::physics::params::MuscleParams;
@@ -35,7 +35,7 @@ pub struct Mtu {
 
 impl Mtu {
     /// Derives the constants and calibrates the contractile model.
-    pub fn new(params: &MuscleParams, model: ModelKind) -> Result<Self, String> {
+    pub fn new(params: &MuscleParams, model: ModelKind) -> Result<Self, ModelBuildError> {
         Ok(Self {
             params: params.clone(),
             tendon: tendon(params),

@@ -17,7 +17,7 @@
 //! [`crate::integrator::arrowhead`] exploits.
 
 use crate::physics::joint;
-use crate::physics::models::ModelKind;
+use crate::physics::models::{ModelBuildError, ModelKind};
 use crate::physics::mtu::Mtu;
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::params::JointParams;
@@ -92,6 +92,34 @@ impl SavedState for Inputs {
     }
 }
 
+/// Why a plant cannot be built from a topology.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlantError {
+    /// A topology without muscles.
+    #[error("the plant needs at least one muscle")]
+    NoMuscle,
+    /// A span over a joint the topology does not have.
+    #[error("muscle {muscle:?} spans joint index {joint} of {joints}")]
+    SpanOutOfRange {
+        /// The muscle's name.
+        muscle: String,
+        /// The joint index it spans.
+        joint: usize,
+        /// The number of joints.
+        joints: usize,
+    },
+    /// A muscle's contractile model cannot be built.
+    #[error(transparent)]
+    Model(#[from] ModelBuildError),
+}
+
+/// For callers whose errors are still one-line text.
+impl From<PlantError> for String {
+    fn from(e: PlantError) -> String {
+        e.to_string()
+    }
+}
+
 /// The muscles, their anchors and the joints they drive.
 #[derive(Debug, Clone)]
 pub struct Plant {
@@ -109,18 +137,19 @@ pub struct Plant {
 
 impl Plant {
     /// Builds the plant of a topology (checked: spans name existing joints).
-    pub fn new(topology: &Topology, model: ModelKind) -> Result<Self, String> {
+    pub fn new(topology: &Topology, model: ModelKind) -> Result<Self, PlantError> {
         if topology.muscles.is_empty() {
-            return Err("the plant needs at least one muscle".into());
+            return Err(PlantError::NoMuscle);
         }
         let n_joints = topology.joints.len();
         for m in &topology.muscles {
             if let Anchor::Path { spans, .. } = &m.anchor {
                 if let Some(s) = spans.iter().find(|s| s.joint >= n_joints) {
-                    return Err(format!(
-                        "muscle {:?} spans joint index {} of {n_joints}",
-                        m.name, s.joint
-                    ));
+                    return Err(PlantError::SpanOutOfRange {
+                        muscle: m.name.clone(),
+                        joint: s.joint,
+                        joints: n_joints,
+                    });
                 }
             }
         }

@@ -7,6 +7,32 @@ pub const DEFAULT_MAX_SUBSTEPS: usize = 64;
 /// Most sub-steps per tick, fixed or adaptive (a sanity bound).
 pub const MAX_SUBSTEPS: usize = 10_000;
 
+/// A stepping that breaks its rules ([`Stepping::check`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SteppingError {
+    /// An adaptive tolerance that is not a finite number > 0.
+    #[error("invalid tolerance = {0}: must be a finite number > 0")]
+    Tolerance(
+        /// The tolerance.
+        f64,
+    ),
+    /// A number of sub-steps outside 1 to [`MAX_SUBSTEPS`].
+    #[error("invalid {name} = {count}: must be between 1 and {MAX_SUBSTEPS}")]
+    Substeps {
+        /// `substeps` (fixed) or `max_substeps` (adaptive).
+        name: &'static str,
+        /// The number given.
+        count: usize,
+    },
+}
+
+/// For callers whose errors are still one-line text.
+impl From<SteppingError> for String {
+    fn from(e: SteppingError) -> String {
+        e.to_string()
+    }
+}
+
 /// How a tick is divided into implicit sub-steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Stepping {
@@ -24,7 +50,7 @@ pub enum Stepping {
 
 impl Stepping {
     /// Its rules: 1 to [`MAX_SUBSTEPS`] sub-steps, an adaptive tolerance finite and > 0.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), SteppingError> {
         let (what, n) = match *self {
             Stepping::Fixed(n) => ("substeps", n),
             Stepping::Adaptive {
@@ -32,9 +58,7 @@ impl Stepping {
                 max_substeps,
             } => {
                 if !(tolerance.is_finite() && tolerance > 0.0) {
-                    return Err(format!(
-                        "invalid tolerance = {tolerance}: must be a finite number > 0"
-                    ));
+                    return Err(SteppingError::Tolerance(tolerance));
                 }
                 ("max_substeps", max_substeps)
             }
@@ -42,9 +66,10 @@ impl Stepping {
         if (1..=MAX_SUBSTEPS).contains(&n) {
             Ok(())
         } else {
-            Err(format!(
-                "invalid {what} = {n}: must be between 1 and {MAX_SUBSTEPS}"
-            ))
+            Err(SteppingError::Substeps {
+                name: what,
+                count: n,
+            })
         }
     }
 

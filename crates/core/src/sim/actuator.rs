@@ -12,7 +12,7 @@
 use crate::config::ActuatorConfig;
 use crate::physics::models::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
-use crate::sim::simulation::{default_stepping, Simulation, StepError, Stepping};
+use crate::sim::simulation::{default_stepping, SetupError, Simulation, StepError, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 
 /// A simulated limb: the joints and muscles of a configuration.
@@ -29,7 +29,11 @@ pub struct Actuator {
 impl Actuator {
     /// Builds the actuator in its initial state (joints at their initial angles, at rest, a = 0).
     /// `rate_hz` is the tick rate (> 0, finite).
-    pub fn new(config: &ActuatorConfig, model: ModelKind, rate_hz: f64) -> Result<Self, String> {
+    pub fn new(
+        config: &ActuatorConfig,
+        model: ModelKind,
+        rate_hz: f64,
+    ) -> Result<Self, SetupError> {
         Self::with_stepping(config, model, rate_hz, default_stepping(model))
     }
 
@@ -39,8 +43,8 @@ impl Actuator {
         model: ModelKind,
         rate_hz: f64,
         stepping: Stepping,
-    ) -> Result<Self, String> {
-        config.validate().map_err(|e| e.to_string())?;
+    ) -> Result<Self, SetupError> {
+        config.validate()?;
         let plant = Plant::new(&config.topology(), model)?;
         let mut inputs = Inputs::zeros(plant.muscle_count(), plant.joint_count());
         initial_joint_motion(config, &mut inputs);
@@ -140,7 +144,7 @@ impl Actuator {
     }
     /// Steps its independent parts on `threads` threads ([`Simulation::set_threads`]: the same
     /// results to the bit; 1, the default, steps them on the caller's thread).
-    pub fn set_threads(&mut self, threads: usize) -> Result<(), String> {
+    pub fn set_threads(&mut self, threads: usize) -> Result<(), SetupError> {
         self.sim.set_threads(threads)
     }
     /// Back to the initial state (inputs zeroed, driven joints at their initial angles and at

@@ -30,6 +30,40 @@ pub struct Outputs {
 /// The prefix of a joint field's output name.
 pub const JOINT_PREFIX: &str = "joint.";
 
+/// Why a list of outputs is refused ([`Outputs::named`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum OutputsError {
+    /// A name that is no output (quoted as a short excerpt, with the list of names).
+    #[error("unknown output {:?}: expected one of {}", crate::text::excerpt(.0), output_names())]
+    Unknown(
+        /// The name.
+        String,
+    ),
+    /// A name given twice.
+    #[error("output {0:?} named twice")]
+    Repeated(
+        /// The name.
+        String,
+    ),
+}
+
+/// For callers whose errors are still one-line text.
+impl From<OutputsError> for String {
+    fn from(e: OutputsError) -> String {
+        e.to_string()
+    }
+}
+
+/// Every output's name, comma-separated.
+fn output_names() -> String {
+    Outputs::all()
+        .keys
+        .iter()
+        .map(|(k, _)| k.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 impl Outputs {
     /// Every output: the muscle fields, the joint fields, the stiffness matrix.
     pub fn all() -> Self {
@@ -48,24 +82,16 @@ impl Outputs {
 
     /// The outputs named, in that order (None: all); an unknown name (quoted as a short
     /// excerpt, with the list of names) or a name given twice is refused.
-    pub fn named(names: Option<Vec<String>>) -> Result<Self, String> {
+    pub fn named(names: Option<Vec<String>>) -> Result<Self, OutputsError> {
         let all = Self::all();
         let Some(names) = names else { return Ok(all) };
         let mut keys = Vec::with_capacity(names.len());
         for n in names {
             let Some(k) = all.keys.iter().find(|(k, _)| *k == n) else {
-                return Err(format!(
-                    "unknown output {:?}: expected one of {}",
-                    crate::text::excerpt(&n),
-                    all.keys
-                        .iter()
-                        .map(|(k, _)| k.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ));
+                return Err(OutputsError::Unknown(n));
             };
             if keys.iter().any(|(k, _): &(String, Source)| *k == n) {
-                return Err(format!("output {n:?} named twice"));
+                return Err(OutputsError::Repeated(n));
             }
             keys.push(k.clone());
         }
@@ -185,4 +211,23 @@ pub fn rollout(
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An unknown output and a repeated one are told apart, with the same text.
+    #[test]
+    fn unknown_and_repeated_outputs_are_refused() {
+        let e = Outputs::named(Some(vec!["pull".into()])).unwrap_err();
+        assert_eq!(e, OutputsError::Unknown("pull".into()));
+        assert!(e
+            .to_string()
+            .starts_with("unknown output \"pull\": expected one of "));
+        assert!(e.to_string().ends_with(", stiffness_matrix"), "{e}");
+        let e = Outputs::named(Some(vec!["force".into(), "force".into()])).unwrap_err();
+        assert_eq!(e, OutputsError::Repeated("force".into()));
+        assert_eq!(e.to_string(), "output \"force\" named twice");
+    }
 }

@@ -41,6 +41,33 @@ impl<'a> Record<'a> {
     }
 }
 
+/// A record whose muscles, joints or stiffness matrix do not match the run's names
+/// ([`Run::push`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "a state of {muscles} muscles, {joints} joints and {stiffness_entries} stiffness entries in \
+     a run of {run_muscles} muscles and {run_joints} joints"
+)]
+pub struct RecordMismatch {
+    /// Muscles of the record.
+    pub muscles: usize,
+    /// Joints of the record.
+    pub joints: usize,
+    /// Entries of the record's stiffness matrix.
+    pub stiffness_entries: usize,
+    /// Muscles of the run.
+    pub run_muscles: usize,
+    /// Joints of the run.
+    pub run_joints: usize,
+}
+
+/// For callers whose errors are still one-line text.
+impl From<RecordMismatch> for String {
+    fn from(e: RecordMismatch) -> String {
+        e.to_string()
+    }
+}
+
 /// The result of running a scenario (or of reading a recording back): its names and rate, and
 /// its records.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,7 +122,7 @@ impl Run {
 
     /// Appends the record of `state` at `time`; a state whose muscles, joints or matrix do not
     /// match the run's names is refused (and nothing is appended).
-    pub fn push(&mut self, time: f64, state: &StateSnapshot) -> Result<(), String> {
+    pub fn push(&mut self, time: f64, state: &StateSnapshot) -> Result<(), RecordMismatch> {
         self.push_parts(time, &state.muscles, &state.joints, &state.stiffness_matrix)
     }
 
@@ -106,16 +133,16 @@ impl Run {
         muscles: &[MuscleSnapshot],
         joints: &[JointSnapshot],
         stiffness_matrix: &[f64],
-    ) -> Result<(), String> {
+    ) -> Result<(), RecordMismatch> {
         let (m, n) = (self.muscle_names.len(), self.joint_names.len());
         if muscles.len() != m || joints.len() != n || stiffness_matrix.len() != n * n {
-            return Err(format!(
-                "a state of {} muscles, {} joints and {} stiffness entries in a run of {m} \
-                 muscles and {n} joints",
-                muscles.len(),
-                joints.len(),
-                stiffness_matrix.len()
-            ));
+            return Err(RecordMismatch {
+                muscles: muscles.len(),
+                joints: joints.len(),
+                stiffness_entries: stiffness_matrix.len(),
+                run_muscles: m,
+                run_joints: n,
+            });
         }
         self.times.push(time);
         self.muscles.extend_from_slice(muscles);

@@ -126,7 +126,7 @@ fn restore(body: &[u8]) -> Result<Actuator, SavedStateError> {
     let mut actuator = Actuator::with_stepping(&config, model, rate_hz, stepping).map_err(|e| {
         refused(format!(
             "cannot rebuild the actuator: {}",
-            crate::text::one_line(&e)
+            crate::text::one_line(&e.to_string())
         ))
     })?;
     let (sim, state) = actuator.restore_target();
@@ -165,7 +165,7 @@ fn restore_stepping(input: &mut StateReader) -> Result<Stepping, StateError> {
     stepping
         .check()
         .map(|()| stepping)
-        .map_err(StateError::Invalid)
+        .map_err(|e| StateError::Invalid(e.to_string()))
 }
 
 fn save_snapshot(out: &mut StateWriter, s: &StateSnapshot) {

@@ -8,12 +8,15 @@ use crate::physics::params::MuscleParams;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;
 use crate::sim::schedule::Schedule;
-use crate::sim::simulation::{Simulation, Stepping};
+use crate::sim::setup_error::SetupError;
+use crate::sim::simulation::{Simulation, StepError, Stepping};
 use crate::sim::snapshot::StateSnapshot;
 use serde::Deserialize;
 use std::path::Path;
 
-pub use crate::sim::run::{Record, Run};
+pub use crate::sim::run::{Record, RecordMismatch, Run};
+pub use crate::sim::scenario_error::{BadScenario, ScenarioError, ScenarioRunError};
+pub use crate::sim::scenario_kinds::{SetupKind, Signal};
 
 /// The built-in scenarios' names.
 pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
@@ -24,35 +27,6 @@ pub const MAX_RUN_BYTES: f64 = (1u64 << 30) as f64;
 
 /// Longest scenario name, characters (it names the run in reports and recordings).
 pub const MAX_NAME_CHARS: usize = 200;
-
-/// How the muscles are attached in a scenario.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum SetupKind {
-    /// The limb of the configuration: all its joints and muscles.
-    Joint,
-    /// The first muscle, clamped at a total length.
-    Clamped,
-    /// The first muscle, its tendon pulled by a scheduled force.
-    Force,
-    /// The limb of the configuration with some joints driven: each joint named by a
-    /// `joint_angle` input (and each the configuration marks `driven`) follows its schedule.
-    Driven,
-}
-
-/// Which input a schedule drives.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Signal {
-    /// A muscle's excitation (clamped to [0, 1] when applied).
-    Excitation,
-    /// The pull on a force-driven tendon, N.
-    TendonForce,
-    /// The external torque on a joint, N m.
-    ExternalTorque,
-    /// A driven joint's angle, rad; its velocity is the schedule's derivative.
-    JointAngle,
-}
 
 /// One scheduled input; schedules on the same input add up.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -98,7 +72,7 @@ fn default_name() -> String {
 
 impl Scenario {
     /// A built-in scenario by name (docs/model.md §9).
-    pub fn built_in(name: &str, params: &MuscleParams) -> Result<Self, String> {
+    pub fn built_in(name: &str, params: &MuscleParams) -> Result<Self, ScenarioError> {
         let excitation = |schedule| ScheduledInput {
             signal: Signal::Excitation,
             muscle: None,
@@ -139,38 +113,44 @@ impl Scenario {
             }),
             "energy-10hz" => Ok(energy(10.0)),
             "energy-100hz" => Ok(energy(100.0)),
-            _ => Err(format!(
-                "unknown scenario {name:?}: expected one of {} or a scenario file (.toml)",
-                BUILT_IN.join(", ")
-            )),
+            _ => Err(ScenarioError::Unknown {
+                name: name.into(),
+                built_in: &BUILT_IN,
+            }),
         }
     }
 
     /// A scenario from a TOML file (a regular file of at most 1 MiB).
-    pub fn from_file(path: &Path) -> Result<Self, String> {
-        let cannot = |e: &dyn std::fmt::Display| {
-            format!("cannot read scenario file {}: {e}", path.display())
-        };
-        let bytes = crate::files::read_regular_file(path, crate::files::MAX_FILE_BYTES)
-            .map_err(|e| cannot(&e))?;
-        let text = String::from_utf8(bytes).map_err(|e| cannot(&e))?;
-        let s: Scenario = toml::from_str(&text).map_err(|e| {
-            format!(
-                "scenario file {}: {}",
-                path.display(),
-                crate::text::toml_error(&e, &text)
-            )
+    pub fn from_file(path: &Path) -> Result<Self, ScenarioError> {
+        let path_buf = || path.to_path_buf();
+        let bytes = crate::files::read_regular_file(path, crate::files::MAX_FILE_BYTES).map_err(
+            |source| ScenarioError::Read {
+                path: path_buf(),
+                source,
+            },
+        )?;
+        let text = String::from_utf8(bytes).map_err(|source| ScenarioError::NotUtf8 {
+            path: path_buf(),
+            source,
         })?;
-        s.check()
-            .map_err(|e| format!("scenario file {}: {e}", path.display()))?;
+        let s: Scenario = toml::from_str(&text).map_err(|e| ScenarioError::Parse {
+            path: path_buf(),
+            message: crate::text::toml_error(&e, &text),
+        })?;
+        s.check().map_err(|error| ScenarioError::Invalid {
+            path: path_buf(),
+            error,
+        })?;
         Ok(s)
     }
 
     /// A built-in name, or else a path to a scenario file.
-    pub fn resolve(name_or_path: &str, params: &MuscleParams) -> Result<Self, String> {
+    pub fn resolve(name_or_path: &str, params: &MuscleParams) -> Result<Self, ScenarioError> {
         if BUILT_IN.contains(&name_or_path) || !Path::new(name_or_path).exists() {
             if !BUILT_IN.contains(&name_or_path) && name_or_path.ends_with(".toml") {
-                return Err(format!("scenario file {name_or_path} does not exist"));
+                return Err(ScenarioError::FileMissing {
+                    path: name_or_path.into(),
+                });
             }
             Self::built_in(name_or_path, params)
         } else {
@@ -178,35 +158,29 @@ impl Scenario {
         }
     }
 
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<(), BadScenario> {
         if self.name.chars().count() > MAX_NAME_CHARS {
-            return Err(format!(
-                "name {:?} is longer than {MAX_NAME_CHARS} characters",
-                crate::text::excerpt(&self.name)
-            ));
+            return Err(BadScenario::NameTooLong {
+                name: self.name.clone(),
+                max_chars: MAX_NAME_CHARS,
+            });
         }
         if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= 3600.0) {
-            return Err(format!(
-                "duration = {} must be in (0, 3600] s",
-                self.duration
-            ));
+            return Err(BadScenario::Duration(self.duration));
         }
         if let Some(l) = self.length {
             if !(l.is_finite() && l > 0.0) {
-                return Err(format!("length = {l} must be a finite number > 0"));
+                return Err(BadScenario::Length(l));
             }
         }
         if !self.initial_force.is_finite() || self.initial_force < 0.0 {
-            return Err(format!(
-                "initial_force = {} must be a finite number >= 0",
-                self.initial_force
-            ));
+            return Err(BadScenario::InitialForce(self.initial_force));
         }
         for (i, input) in self.inputs.iter().enumerate() {
             input
                 .schedule
                 .check()
-                .map_err(|e| format!("input[{i}]: {e}"))?;
+                .map_err(|error| BadScenario::Schedule { index: i, error })?;
             let allowed = match self.attachment {
                 SetupKind::Joint => {
                     !matches!(input.signal, Signal::TendonForce | Signal::JointAngle)
@@ -218,10 +192,11 @@ impl Scenario {
                 }
             };
             if !allowed {
-                return Err(format!(
-                    "input[{i}]: signal {:?} does not apply to attachment {:?}",
-                    input.signal, self.attachment
-                ));
+                return Err(BadScenario::SignalNotForAttachment {
+                    index: i,
+                    signal: input.signal,
+                    attachment: self.attachment.clone(),
+                });
             }
         }
         Ok(())
@@ -234,7 +209,7 @@ impl Scenario {
         model: ModelKind,
         rate_hz: f64,
         stepping: Stepping,
-    ) -> Result<Run, String> {
+    ) -> Result<Run, ScenarioRunError> {
         let mut runner = self.runner(config, model, rate_hz, stepping)?;
         let ticks = (self.duration * rate_hz).round() as usize;
         let mut run = runner.empty_run(ticks + 1);
@@ -253,32 +228,30 @@ impl Scenario {
         model: ModelKind,
         rate_hz: f64,
         stepping: Stepping,
-    ) -> Result<ScenarioRunner, String> {
-        config.validate().map_err(|e| e.to_string())?;
+    ) -> Result<ScenarioRunner, ScenarioRunError> {
+        config.validate().map_err(SetupError::from)?;
         let topology = self.topology(config);
         let names = topology.muscle_names();
         let joint_names = topology.joint_names();
         self.check_size(rate_hz, names.len(), joint_names.len())?;
         let mut muscle_index = Vec::with_capacity(self.inputs.len());
         for (i, input) in self.inputs.iter().enumerate() {
-            let lookup = |want: &Option<String>, names: &[String], what: &str| match want {
-                None => Ok(0),
-                Some(m) => names.iter().position(|n| n == m).ok_or_else(|| {
-                    format!(
-                        "input[{i}]: unknown {what} {:?} (this scenario has {})",
-                        crate::text::excerpt(m),
-                        if names.is_empty() {
-                            "none".to_string()
-                        } else {
-                            crate::text::one_line(&names.join(", "))
+            let lookup =
+                |want: &Option<String>, names: &[String], what: &'static str| match want {
+                    None => Ok(0),
+                    Some(m) => names.iter().position(|n| n == m).ok_or_else(|| {
+                        ScenarioRunError::UnknownName {
+                            index: i,
+                            what,
+                            name: m.clone(),
+                            names: names.to_vec(),
                         }
-                    )
-                }),
-            };
+                    }),
+                };
             let idx = match input.signal {
                 Signal::ExternalTorque | Signal::JointAngle => {
                     if joint_names.is_empty() {
-                        return Err(format!("input[{i}]: this scenario has no joint"));
+                        return Err(ScenarioRunError::NoJoint { index: i });
                     }
                     lookup(&input.joint, &joint_names, "joint")?
                 }
@@ -287,7 +260,7 @@ impl Scenario {
             muscle_index.push(idx);
         }
         self.check_driven(&topology, &muscle_index)?;
-        let plant = Plant::new(&topology, model)?;
+        let plant = Plant::new(&topology, model).map_err(SetupError::from)?;
         let mut initial = Inputs::zeros(plant.muscle_count(), plant.joint_count());
         initial.tendon_force.fill(self.initial_force);
         // Driven joints start at rest where their schedules start.
@@ -313,44 +286,47 @@ impl Scenario {
     /// The memory its records take at `rate_hz` with this many muscles and joints, within
     /// [`MAX_RUN_BYTES`]. (A rate that is not a finite number > 0 is left to the simulation to
     /// refuse.)
-    fn check_size(&self, rate_hz: f64, muscles: usize, joints: usize) -> Result<(), String> {
+    fn check_size(
+        &self,
+        rate_hz: f64,
+        muscles: usize,
+        joints: usize,
+    ) -> Result<(), ScenarioRunError> {
         if !(rate_hz.is_finite() && rate_hz > 0.0) {
             return Ok(());
         }
         let ticks = (self.duration * rate_hz).round();
         let bytes = (ticks + 1.0) * Run::record_bytes(muscles, joints);
         if !bytes.is_finite() || bytes > MAX_RUN_BYTES {
-            return Err(format!(
-                "a run of {} s at {rate_hz} Hz is {ticks} ticks, whose records ({muscles} \
-                 muscles, {joints} joints) take about {:.0} MiB, more than the {} MiB a run may \
-                 hold: shorten the duration or lower the rate",
-                self.duration,
-                bytes / (1u64 << 20) as f64,
-                MAX_RUN_BYTES / (1u64 << 20) as f64
-            ));
+            return Err(ScenarioRunError::TooLarge {
+                duration: self.duration,
+                rate_hz,
+                ticks,
+                muscles,
+                joints,
+                bytes,
+                max_bytes: MAX_RUN_BYTES,
+            });
         }
         Ok(())
     }
 
     /// Every driven joint has a `joint_angle` schedule and no external torque (the attachment
     /// `joint` has no driven joint); `index` is each input's muscle or joint.
-    fn check_driven(&self, topology: &Topology, index: &[usize]) -> Result<(), String> {
+    fn check_driven(&self, topology: &Topology, index: &[usize]) -> Result<(), ScenarioRunError> {
         for (j, joint) in topology.joints.iter().enumerate() {
             let scheduled = |signal| {
                 (self.inputs.iter().zip(index)).any(|(i, &k)| i.signal == signal && k == j)
             };
             if joint.driven && !scheduled(Signal::JointAngle) {
-                return Err(format!(
-                    "joint {:?} is driven: the scenario needs attachment = \"driven\" and a \
-                     joint_angle input for it",
-                    crate::text::excerpt(&joint.name)
-                ));
+                return Err(ScenarioRunError::DrivenWithoutSchedule {
+                    joint: joint.name.clone(),
+                });
             }
             if joint.driven && scheduled(Signal::ExternalTorque) {
-                return Err(format!(
-                    "joint {:?} is driven: an external torque on it has no effect",
-                    crate::text::excerpt(&joint.name)
-                ));
+                return Err(ScenarioRunError::DrivenWithTorque {
+                    joint: joint.name.clone(),
+                });
             }
         }
         Ok(())
@@ -454,9 +430,9 @@ impl ScenarioRunner {
     }
 
     /// Advances one tick (inputs sampled at its start).
-    pub fn step(&mut self) -> Result<(), String> {
+    pub fn step(&mut self) -> Result<(), StepError> {
         self.apply_inputs();
-        self.sim.step().map_err(|e| e.to_string())
+        self.sim.step()
     }
 
     /// The current state as a record.
@@ -486,7 +462,7 @@ impl ScenarioRunner {
 
     /// Appends the current state's record to `run` (which has this runner's muscles and
     /// joints).
-    pub fn keep_record(&mut self, run: &mut Run) -> Result<(), String> {
+    pub fn keep_record(&mut self, run: &mut Run) -> Result<(), RecordMismatch> {
         self.sim.fill_snapshot(&mut self.snapshot);
         run.push(self.sim.time(), &self.snapshot)
     }

@@ -64,6 +64,33 @@ pub enum Schedule {
     },
 }
 
+/// A schedule whose numbers break its rules ([`Schedule::check`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ScheduleError {
+    /// A value that is not a finite number.
+    #[error("{name} = {value} must be a finite number")]
+    NotFinite {
+        /// The value's name (`start`, `point time`, ...).
+        name: &'static str,
+        /// The value.
+        value: f64,
+    },
+    /// An interval that ends at or before its start.
+    #[error("end = {end} must be > start = {start}")]
+    EndNotAfterStart {
+        /// Its start, s.
+        start: f64,
+        /// Its end, s.
+        end: f64,
+    },
+    /// A piecewise schedule without points.
+    #[error("points must not be empty")]
+    NoPoints,
+    /// A piecewise schedule whose times do not rise.
+    #[error("point times must be strictly ascending")]
+    PointsNotAscending,
+}
+
 impl Schedule {
     /// The value at time t.
     pub fn value(&self, t: f64) -> f64 {
@@ -161,12 +188,12 @@ impl Schedule {
     }
 
     /// The first problem with the schedule's numbers, if any.
-    pub fn check(&self) -> Result<(), String> {
-        let finite = |name: &str, v: f64| {
-            if v.is_finite() {
+    pub fn check(&self) -> Result<(), ScheduleError> {
+        let finite = |name: &'static str, value: f64| {
+            if value.is_finite() {
                 Ok(())
             } else {
-                Err(format!("{name} = {v} must be a finite number"))
+                Err(ScheduleError::NotFinite { name, value })
             }
         };
         match self {
@@ -187,7 +214,10 @@ impl Schedule {
                 finite("value", *value)?;
                 finite("base", *base)?;
                 if end <= start {
-                    return Err(format!("end = {end} must be > start = {start}"));
+                    return Err(ScheduleError::EndNotAfterStart {
+                        start: *start,
+                        end: *end,
+                    });
                 }
                 Ok(())
             }
@@ -202,7 +232,10 @@ impl Schedule {
                 finite("from", *from)?;
                 finite("to", *to)?;
                 if end <= start {
-                    return Err(format!("end = {end} must be > start = {start}"));
+                    return Err(ScheduleError::EndNotAfterStart {
+                        start: *start,
+                        end: *end,
+                    });
                 }
                 Ok(())
             }
@@ -219,14 +252,14 @@ impl Schedule {
             }
             Schedule::Piecewise { points } => {
                 if points.is_empty() {
-                    return Err("points must not be empty".into());
+                    return Err(ScheduleError::NoPoints);
                 }
                 for p in points {
                     finite("point time", p[0])?;
                     finite("point value", p[1])?;
                 }
                 if points.windows(2).any(|w| w[1][0] <= w[0][0]) {
-                    return Err("point times must be strictly ascending".into());
+                    return Err(ScheduleError::PointsNotAscending);
                 }
                 Ok(())
             }

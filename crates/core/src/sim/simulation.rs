@@ -10,6 +10,7 @@ use crate::physics::observables::EnergeticsOutputs;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
 use crate::sim::part::Part;
+pub use crate::sim::setup_error::SetupError;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use rayon::prelude::*;
@@ -38,6 +39,13 @@ pub struct StepError {
     pub reason: &'static str,
 }
 
+/// For callers whose errors are still one-line text.
+impl From<StepError> for String {
+    fn from(e: StepError) -> String {
+        e.to_string()
+    }
+}
+
 /// A plant with its state, stepped tick by tick.
 #[derive(Debug, Clone)]
 pub struct Simulation {
@@ -63,18 +71,13 @@ impl Simulation {
         rate_hz: f64,
         stepping: Stepping,
         inputs: Inputs,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, SetupError> {
         if !(rate_hz.is_finite() && rate_hz > 0.0) {
-            return Err(format!(
-                "invalid rate_hz = {rate_hz}: must be a finite number > 0"
-            ));
+            return Err(SetupError::Rate(rate_hz));
         }
         stepping.check()?;
         if stepping.is_adaptive() && !plant.model.is_ode() {
-            return Err(format!(
-                "the {} model needs a fixed number of sub-steps",
-                plant.model
-            ));
+            return Err(SetupError::NeedsFixedSubsteps(plant.model));
         }
         let (n, m, j) = (plant.dim(), plant.muscle_count(), plant.joint_count());
         if inputs.excitation.len() != m
@@ -83,11 +86,12 @@ impl Simulation {
             || inputs.joint_angle.len() != j
             || inputs.joint_velocity.len() != j
         {
-            return Err(format!(
-                "inputs for {} muscles and {} joints given to a plant of {m} muscles and {j} joints",
-                inputs.excitation.len(),
-                inputs.external_torque.len()
-            ));
+            return Err(SetupError::InputSizes {
+                muscles: inputs.excitation.len(),
+                joints: inputs.external_torque.len(),
+                plant_muscles: m,
+                plant_joints: j,
+            });
         }
         let parts = plant
             .components()
@@ -177,11 +181,12 @@ impl Simulation {
     /// Steps the parts on `threads` threads (1: on the caller's thread, the default). The parts
     /// are independent and each is stepped by the same code wherever it runs, so the results
     /// are the same to the bit for any number of threads; a limb of one part gains nothing.
-    pub fn set_threads(&mut self, threads: usize) -> Result<(), String> {
+    pub fn set_threads(&mut self, threads: usize) -> Result<(), SetupError> {
         if !(1..=MAX_THREADS).contains(&threads) {
-            return Err(format!(
-                "invalid threads = {threads}: must be 1 to {MAX_THREADS}"
-            ));
+            return Err(SetupError::Threads {
+                threads,
+                max: MAX_THREADS,
+            });
         }
         self.pool = match threads {
             1 => None,
@@ -190,7 +195,7 @@ impl Simulation {
                     .num_threads(n)
                     .thread_name(|i| format!("parts-{i}"))
                     .build()
-                    .map_err(|e| format!("cannot start {n} threads: {e}"))?,
+                    .map_err(|source| SetupError::ThreadPool { threads: n, source })?,
             )),
         };
         Ok(())

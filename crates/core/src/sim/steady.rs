@@ -8,12 +8,13 @@
 //! and every phenomenological model (§11.4) for every contractile model, given that force.
 
 use crate::physics::contractile::calibration::{calibrate_distribution_moment, calibrate_exact};
+use crate::physics::contractile::distribution_moment::SteadyStateError;
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
 use crate::physics::energetics::steady::{
     dm_curve, exact_point, hill_steady_force, probe_point, SteadyPoint,
 };
 use crate::physics::models::ModelKind;
-use crate::physics::params::{EnergyModel, MuscleParams};
+use crate::physics::params::{EnergyModel, MuscleParams, ParamError};
 
 /// Velocities when none is given: every 0.05 vmax.
 pub const DEFAULT_POINTS: usize = 41;
@@ -21,6 +22,70 @@ pub const DEFAULT_POINTS: usize = 41;
 pub const MIN_POINTS: usize = 3;
 /// Most velocities (a step of 0.0002 vmax).
 pub const MAX_POINTS: usize = 10_001;
+
+/// Why the steady states cannot be computed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SteadyError {
+    /// A number of velocities outside [`MIN_POINTS`]..=[`MAX_POINTS`].
+    #[error("--points {0}: must be between {MIN_POINTS} and {MAX_POINTS}")]
+    PointsOutOfRange(
+        /// The number given.
+        usize,
+    ),
+    /// An even number of velocities (the grid would miss v_s = 0).
+    #[error(
+        "--points {0}: must be odd, so that the velocities hold 0 as well as -vmax and vmax \
+         (e.g. {next})",
+        next = .0 + 1
+    )]
+    EvenPoints(
+        /// The number given.
+        usize,
+    ),
+    /// Muscle parameters breaking their rules, joined by `; `.
+    #[error("{}", .0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("; "))]
+    Params(
+        /// The broken rules.
+        Vec<ParamError>,
+    ),
+    /// The full model with detachment beyond ξ = 1 (g3 ≠ 0), where Huxley's closed form does not
+    /// hold.
+    #[error(
+        "the full model's steady states are Huxley's closed form, which holds for \
+         crossbridge.g3 = 0 only (this muscle has g3 = {0})"
+    )]
+    NonZeroG3(
+        /// The muscle's g3.
+        f64,
+    ),
+    /// The Distribution-Moment model's calibration failed.
+    #[error("calibrating the Distribution-Moment model: {0}")]
+    Calibration(#[source] SteadyStateError),
+    /// The continuation of the Distribution-Moment steady states over the velocities failed.
+    #[error("{error}{}", failing_velocity(*.at, *.v_max))]
+    Continuation {
+        /// Why.
+        error: SteadyStateError,
+        /// The first velocity at which it fails, m/s, if found.
+        at: Option<f64>,
+        /// The muscle's vmax, m/s.
+        v_max: f64,
+    },
+}
+
+/// For callers whose errors are still one-line text.
+impl From<SteadyError> for String {
+    fn from(e: SteadyError) -> String {
+        e.to_string()
+    }
+}
+
+/// ` at v_s = … m/s (… vmax)`, or nothing.
+fn failing_velocity(at: Option<f64>, v_max: f64) -> String {
+    at.map_or_else(String::new, |v| {
+        format!(" at v_s = {v:.6} m/s ({:.4} vmax)", v / v_max)
+    })
+}
 
 /// Where a row's energy rates come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -93,18 +158,12 @@ impl SteadyRow {
 
 /// `points` must be in [`MIN_POINTS`]..=[`MAX_POINTS`] and odd, so that the even grid holds
 /// v_s = 0 as well as ±vmax.
-pub fn check_points(points: usize) -> Result<(), String> {
+pub fn check_points(points: usize) -> Result<(), SteadyError> {
     if !(MIN_POINTS..=MAX_POINTS).contains(&points) {
-        return Err(format!(
-            "--points {points}: must be between {MIN_POINTS} and {MAX_POINTS}"
-        ));
+        return Err(SteadyError::PointsOutOfRange(points));
     }
     if points.is_multiple_of(2) {
-        return Err(format!(
-            "--points {points}: must be odd, so that the velocities hold 0 as well as -vmax \
-             and vmax (e.g. {})",
-            points + 1
-        ));
+        return Err(SteadyError::EvenPoints(points));
     }
     Ok(())
 }
@@ -123,7 +182,7 @@ pub fn steady_table(
     params: &MuscleParams,
     model: ModelKind,
     points: usize,
-) -> Result<Vec<SteadyRow>, String> {
+) -> Result<Vec<SteadyRow>, SteadyError> {
     check_points(points)?;
     check_params(params)?;
     let fractions = velocity_fractions(points);
@@ -164,17 +223,13 @@ pub fn steady_table(
 }
 
 /// The parameters' own rules (a configuration has checked them already; a caller may not have).
-fn check_params(params: &MuscleParams) -> Result<(), String> {
+fn check_params(params: &MuscleParams) -> Result<(), SteadyError> {
     let mut errors = Vec::new();
     params.validate("", &mut errors);
     if errors.is_empty() {
         Ok(())
     } else {
-        Err(errors
-            .iter()
-            .map(|e| e.to_string())
-            .collect::<Vec<_>>()
-            .join("; "))
+        Err(SteadyError::Params(errors))
     }
 }
 
@@ -184,17 +239,14 @@ fn bridge_points(
     params: &MuscleParams,
     model: ModelKind,
     v_s: &[f64],
-) -> Result<Option<Vec<SteadyPoint>>, String> {
+) -> Result<Option<Vec<SteadyPoint>>, SteadyError> {
     let bridge = params.energetics.bridge();
     if model == ModelKind::HUXLEY_PDE {
         // Huxley's closed form (huxley_steady, huxley_exact) has no bonds detaching at the extra
         // rate g3 beyond ξ = 1, which lengthening reaches (docs/model.md §11.3).
         let g3 = params.crossbridge.g3;
         if g3 != 0.0 {
-            return Err(format!(
-                "the full model's steady states are Huxley's closed form, which holds for \
-                 crossbridge.g3 = 0 only (this muscle has g3 = {g3})"
-            ));
+            return Err(SteadyError::NonZeroG3(g3));
         }
         let scale = calibrate_exact(params);
         let e = BridgeEnergyScale::new(&scale, params, &bridge);
@@ -205,15 +257,15 @@ fn bridge_points(
     if model != ModelKind::HUXLEY {
         return Ok(None);
     }
-    let scale = calibrate_distribution_moment(params)
-        .map_err(|e| format!("calibrating the Distribution-Moment model: {e}"))?;
+    let scale = calibrate_distribution_moment(params).map_err(SteadyError::Calibration)?;
     let e = BridgeEnergyScale::new(&scale, params, &bridge);
-    dm_curve(&scale, &e, v_s).map(Some).map_err(|err| {
-        match first_failure(v_s, |side| dm_curve(&scale, &e, side).is_err()) {
-            Some(v) => format!("{err} at v_s = {v:.6} m/s ({:.4} vmax)", v / params.v_max),
-            None => err.to_string(),
-        }
-    })
+    dm_curve(&scale, &e, v_s)
+        .map(Some)
+        .map_err(|error| SteadyError::Continuation {
+            error,
+            at: first_failure(v_s, |side| dm_curve(&scale, &e, side).is_err()),
+            v_max: params.v_max,
+        })
 }
 
 /// The velocity at which a continuation from v_s = 0 first fails, in the order the DM steady

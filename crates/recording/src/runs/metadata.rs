@@ -323,7 +323,7 @@ impl RunMeta {
             initial.joint_angle[j] = angle;
             initial.joint_velocity[j] = velocity;
         }
-        Simulation::new(plant, self.rate_hz, stepping, initial)
+        Simulation::new(plant, self.rate_hz, stepping, initial).map_err(|e| e.to_string())
     }
 }
 

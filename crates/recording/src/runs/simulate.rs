@@ -31,7 +31,9 @@ pub fn run_scenario(
         .unwrap_or(default_stepping(model));
     match out {
         Some(path) => simulate_to_mcap(&sc, cfg, model, rate_hz, stepping, path),
-        None => sc.run(cfg, model, rate_hz, stepping),
+        None => sc
+            .run(cfg, model, rate_hz, stepping)
+            .map_err(|e| e.to_string()),
     }
 }
 

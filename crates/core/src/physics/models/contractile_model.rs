@@ -13,6 +13,7 @@
 //! The mechanics around it (fibre mass, springs, tendon, joints) are written once, in
 //! `physics::mtu` and `physics::plant`.
 
+use crate::physics::contractile::distribution_moment::SteadyStateError;
 use crate::physics::energetics::bridge_flux::EnergyFluxes;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::params::MuscleParams;
@@ -101,6 +102,14 @@ impl Clone for Box<dyn ContractileModel> {
     }
 }
 
+/// Why a model cannot be built for a muscle's parameters.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelBuildError {
+    /// Its calibration from its own steady states failed.
+    #[error(transparent)]
+    Calibration(#[from] SteadyStateError),
+}
+
 /// A model as the program names it: its name, what it is, how it is built and stepped.
 #[derive(Debug)]
 pub struct ModelSpec {
@@ -121,7 +130,7 @@ pub struct ModelSpec {
     /// "Methods"; the work per tick is printed by `cargo bench --bench limb`).
     pub fourth_order_transients: bool,
     /// Its calibration: the model for one muscle with these parameters.
-    pub build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, String>,
+    pub build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError>,
 }
 
 /// A model: a reference to its entry in [`crate::physics::models::MODELS`]. Compared by name.
@@ -146,7 +155,10 @@ impl ModelKind {
         self.0.stepping.is_adaptive()
     }
     /// Builds the contractile element of one muscle.
-    pub fn build(self, params: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
+    pub fn build(
+        self,
+        params: &MuscleParams,
+    ) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
         (self.0.build)(params)
     }
 }

@@ -9,7 +9,9 @@ use crate::physics::energetics::bridge_flux::{gaussian_fluxes_near, EnergyFluxes
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::energetics::steady::dm_isometric_bridge_w;
-use crate::physics::models::contractile_model::{CeInputs, ContractileModel, ModelSpec};
+use crate::physics::models::contractile_model::{
+    CeInputs, ContractileModel, ModelBuildError, ModelSpec,
+};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
@@ -43,8 +45,8 @@ pub struct DistributionMoment {
     limits: ClosureLimits,
 }
 
-fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
-    let scale = calibration::calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
+fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
+    let scale = calibration::calibrate_distribution_moment(p)?;
     let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
     let energetics = BridgeEnergetics::new(e, dm_isometric_bridge_w(&scale, &e));
     Ok(Box::new(DistributionMoment {

@@ -5,7 +5,9 @@
 
 use crate::physics::contractile::calibration;
 use crate::physics::contractile::hill_equation::{force_velocity, hill_force};
-use crate::physics::models::contractile_model::{CeInputs, ContractileModel, ModelSpec};
+use crate::physics::models::contractile_model::{
+    CeInputs, ContractileModel, ModelBuildError, ModelSpec,
+};
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
@@ -38,8 +40,8 @@ pub struct Hill {
     k_iso: f64,
 }
 
-fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
-    let dm = calibration::calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
+fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
+    let dm = calibration::calibrate_distribution_moment(p)?;
     Ok(Box::new(Hill {
         f_max: p.f_max,
         v_max: p.v_max,

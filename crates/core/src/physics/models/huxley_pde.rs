@@ -12,7 +12,7 @@ use crate::physics::energetics::bridge_power::BridgeEnergyScale;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
 use crate::physics::energetics::steady::exact_isometric_bridge_w;
 use crate::physics::models::contractile_model::{
-    CeInputs, ContractileModel, ModelSpec, SubstepMotion,
+    CeInputs, ContractileModel, ModelBuildError, ModelSpec, SubstepMotion,
 };
 use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
@@ -68,7 +68,7 @@ pub struct HuxleyPde {
     previous: Option<[f64; 3]>,
 }
 
-fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
+fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
     let scale = calibration::calibrate_exact(p);
     let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
     let energetics = BridgeEnergetics::new(e, exact_isometric_bridge_w(&scale, &e));

@@ -10,7 +10,9 @@ pub mod distribution_moment;
 pub mod hill;
 pub mod huxley_pde;
 
-pub use contractile_model::{CeInputs, ContractileModel, ModelKind, ModelSpec, SubstepMotion};
+pub use contractile_model::{
+    CeInputs, ContractileModel, ModelBuildError, ModelKind, ModelSpec, SubstepMotion,
+};
 use std::str::FromStr;
 
 /// Every model, from the simplest to the reference (the full Huxley model, docs/model.md §7).
@@ -84,7 +86,7 @@ impl FromStr for ModelKind {
 #[cfg(any(test, feature = "test-model"))]
 pub mod test_model {
     use crate::physics::models::hill;
-    use crate::physics::models::{CeInputs, ContractileModel, ModelSpec};
+    use crate::physics::models::{CeInputs, ContractileModel, ModelBuildError, ModelSpec};
     use crate::physics::params::MuscleParams;
     use crate::physics::stepping::Stepping;
 
@@ -106,7 +108,7 @@ pub mod test_model {
     #[derive(Debug, Clone)]
     struct HillCopy(Box<dyn ContractileModel>);
 
-    fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, String> {
+    fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
         Ok(Box::new(HillCopy((hill::SPEC.build)(p)?)))
     }
 

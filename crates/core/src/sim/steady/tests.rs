@@ -55,6 +55,11 @@ fn velocities_span_minus_to_plus_vmax_through_zero() {
 fn points_out_of_range_or_even_are_refused() {
     for n in [0, 1, 2, 4, 40, 10_002, 10_003, 100_000, usize::MAX] {
         let e = steady_table(&MuscleParams::default(), ModelKind::HILL, n).unwrap_err();
+        assert!(matches!(
+            e,
+            SteadyError::PointsOutOfRange(k) | SteadyError::EvenPoints(k) if k == n
+        ));
+        let e = e.to_string();
         assert!(e.contains(&format!("--points {n}")), "{e}");
     }
     assert!(check_points(3).is_ok() && check_points(MAX_POINTS).is_ok());
@@ -242,7 +247,8 @@ fn invalid_parameters_are_refused_not_computed() {
     };
     for m in ModelKind::all() {
         let e = steady_table(&p, m, 41).unwrap_err();
-        assert!(e.contains("v_max"), "{e}");
+        assert!(matches!(e, SteadyError::Params(_)), "{e}");
+        assert!(e.to_string().contains("v_max"), "{e}");
     }
 }
 
@@ -253,7 +259,8 @@ fn the_full_model_with_g3_is_refused() {
     let mut p = MuscleParams::default();
     p.crossbridge.g3 = 5.0;
     let e = steady_table(&p, ModelKind::HUXLEY_PDE, 41).unwrap_err();
-    assert!(e.contains("g3 = 5"), "{e}");
+    assert_eq!(e, SteadyError::NonZeroG3(5.0));
+    assert!(e.to_string().contains("g3 = 5"), "{e}");
     assert!(steady_table(&p, ModelKind::HUXLEY, 41).is_ok());
 }
 
