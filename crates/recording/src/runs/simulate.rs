@@ -1,5 +1,6 @@
 //! `simulate --out`: a scenario run recorded as it is simulated.
 
+use super::error::RunError;
 use super::limits;
 use super::metadata::{driven_motion, AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
@@ -20,18 +21,18 @@ pub fn run_scenario(
     rate_hz: f64,
     substeps: Option<usize>,
     out: Option<&Path>,
-) -> Result<Run, String> {
+) -> Result<Run, RunError> {
     limits::check_rate_hz("--rate-hz", rate_hz)?;
     if let Some(n) = substeps {
         limits::check_substeps("--substeps", n)?;
     }
-    let sc = Scenario::resolve(scenario, &cfg.muscles[0].params)?;
+    let sc = Scenario::resolve(scenario, &cfg.muscles[0].params).map_err(RunError::Scenario)?;
     let stepping = substeps
         .map(Stepping::Fixed)
         .unwrap_or(default_stepping(model));
     match out {
         Some(path) => simulate_to_mcap(&sc, cfg, model, rate_hz, stepping, path),
-        None => sc.run(cfg, model, rate_hz, stepping),
+        None => (sc.run(cfg, model, rate_hz, stepping)).map_err(RunError::Scenario),
     }
 }
 
@@ -43,8 +44,8 @@ pub fn simulate_to_mcap(
     rate_hz: f64,
     stepping: Stepping,
     out: &Path,
-) -> Result<Run, String> {
-    let mut runner = sc.runner(cfg, model, rate_hz, stepping)?;
+) -> Result<Run, RunError> {
+    let mut runner = (sc.runner(cfg, model, rate_hz, stepping)).map_err(RunError::Scenario)?;
     let first = &cfg.muscles[0];
     let attachment = match sc.attachment {
         SetupKind::Joint => AttachmentMeta::Joint,
@@ -73,14 +74,14 @@ pub fn simulate_to_mcap(
     let mut w = RunWriter::start(out, &meta)?;
     let ticks = (sc.duration * rate_hz).round() as u64;
     let mut run = runner.empty_run(ticks as usize + 1);
-    runner.keep_record(&mut run)?;
+    runner.keep_record(&mut run).map_err(RunError::Scenario)?;
     w.state(0, runner.snapshot())?;
     for k in 0..ticks {
         // The inputs `step` applies: the schedules at the tick's start.
         let inputs = runner.inputs_at(runner.simulation().time());
         w.inputs(k, &inputs)?;
-        runner.step()?;
-        runner.keep_record(&mut run)?;
+        runner.step().map_err(RunError::Scenario)?;
+        runner.keep_record(&mut run).map_err(RunError::Scenario)?;
         w.state(k + 1, runner.snapshot())?;
     }
     w.finish()?;
