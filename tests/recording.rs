@@ -138,7 +138,7 @@ fn recorder_round_trip_and_errors() {
     )
     .err()
     .unwrap();
-    assert!(e.contains("a_file"), "{e}");
+    assert!(e.to_string().contains("a_file"), "{e}");
     // A full device: the start fails or the recording stops with a report.
     if Path::new("/dev/full").exists() {
         match Recorder::start(
@@ -147,7 +147,7 @@ fn recorder_round_trip_and_errors() {
             vec![],
             RecorderOptions::default(),
         ) {
-            Err(e) => assert!(e.contains("/dev/full"), "{e}"),
+            Err(e) => assert!(e.to_string().contains("/dev/full"), "{e}"),
             Ok(r) => {
                 for i in 0..10_000u64 {
                     r.record(0, i, i, vec![0, 1, 0, 0, 0, 0, 0, 0]);

@@ -108,6 +108,7 @@ pub fn _simulate<'py>(
                 substeps,
                 out.as_deref(),
             )
+            .map_err(String::from)
         })
         .map_err(|e| {
             // The scenario resolved: a failed tick, a recording that could not be written, or a

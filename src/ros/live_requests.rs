@@ -132,7 +132,11 @@ fn reply<T: serde::Serialize>(answer: &Answer, service: Service, call_id: u32, r
             "cdr",
             &bytes,
         )),
-        Err(e) => answer.text(protocol::service_failure(service as u32, call_id, &e)),
+        Err(e) => answer.text(protocol::service_failure(
+            service as u32,
+            call_id,
+            &e.to_string(),
+        )),
     }
 }
 

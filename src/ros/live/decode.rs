@@ -52,7 +52,7 @@ impl InputMessage for Float64MultiArray {}
 
 fn decode<T: InputMessage>(json: bool, payload: &[u8]) -> Result<T, String> {
     if !json {
-        return decode_cdr(payload);
+        return decode_cdr(payload).map_err(String::from);
     }
     let given: Value = serde_json::from_slice(payload)
         .map_err(|e| format!("not JSON: {}", crate::text::excerpt(&e.to_string())))?;

@@ -7,6 +7,41 @@ use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+/// Why a type description could not be built from the `.msg` definitions.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum TypeHashError {
+    /// The definitions do not know a type the description needs.
+    #[error("no definition of {name}")]
+    NoDefinition {
+        /// The type, `pkg/msg/Type`.
+        name: String,
+    },
+    /// A field's array type (`T[...`) lacks its closing bracket.
+    #[error("no closing ] in the .msg type {ty:?}")]
+    NoClosingBracket {
+        /// The field's type as written.
+        ty: String,
+    },
+    /// A bounded sequence's bound (`T[<=n]`) is not a number.
+    #[error("a bound in the .msg type {ty:?}")]
+    BadBound {
+        /// The field's type as written.
+        ty: String,
+    },
+    /// A fixed array's size (`T[n]`) is not a number.
+    #[error("a size in the .msg type {ty:?}")]
+    BadSize {
+        /// The field's type as written.
+        ty: String,
+    },
+    /// A bounded string's bound (`string<=n`) is not a number.
+    #[error("a string bound in the .msg type {ty:?}")]
+    BadStringBound {
+        /// The field's type as written.
+        ty: String,
+    },
+}
+
 /// `FieldType` ids (`type_description_interfaces/msg/FieldType.msg`) of the primitive `.msg`
 /// types, as `rosidl_adapter` maps them to IDL (`byte` is `octet`, `char` is `uint8`).
 fn primitive_id(ty: &str) -> Option<u8> {
@@ -47,7 +82,7 @@ struct FieldType {
 }
 
 /// The fields of the `.msg` text of `pkg/msg/Name`: (name, type), constants left out.
-fn fields(pkg: &str, text: &str) -> Result<Vec<(String, FieldType)>, String> {
+fn fields(pkg: &str, text: &str) -> Result<Vec<(String, FieldType)>, TypeHashError> {
     let mut out = Vec::new();
     for line in text.lines() {
         let line = line.split('#').next().unwrap_or("").trim();
@@ -72,25 +107,38 @@ fn fields(pkg: &str, text: &str) -> Result<Vec<(String, FieldType)>, String> {
 
 /// A `.msg` type (`float64`, `string<=8`, `Header`, `pkg/Type`, `T[]`, `T[3]`, `T[<=3]`) as a
 /// description field type; nested names are `pkg/msg/Type`, a bare `Header` is std_msgs'.
-fn field_type(pkg: &str, ty: &str) -> Result<FieldType, String> {
-    let bad = |what: &str| format!("{what} in the .msg type {ty:?}");
+fn field_type(pkg: &str, ty: &str) -> Result<FieldType, TypeHashError> {
+    let ty_owned = || ty.to_string();
     let (elem, offset, capacity) = match ty.split_once('[') {
         None => (ty, 0, 0),
         Some((elem, rest)) => {
-            let inner = rest.strip_suffix(']').ok_or_else(|| bad("no closing ]"))?;
+            let inner = rest
+                .strip_suffix(']')
+                .ok_or_else(|| TypeHashError::NoClosingBracket { ty: ty_owned() })?;
             match inner.strip_prefix("<=") {
                 _ if inner.is_empty() => (elem, UNBOUNDED_SEQUENCE, 0),
                 Some(n) => (
                     elem,
                     BOUNDED_SEQUENCE,
-                    n.parse().map_err(|_| bad("a bound"))?,
+                    n.parse()
+                        .map_err(|_| TypeHashError::BadBound { ty: ty_owned() })?,
                 ),
-                None => (elem, ARRAY, inner.parse().map_err(|_| bad("a size"))?),
+                None => (
+                    elem,
+                    ARRAY,
+                    inner
+                        .parse()
+                        .map_err(|_| TypeHashError::BadSize { ty: ty_owned() })?,
+                ),
             }
         }
     };
     let (base, string_capacity) = match elem.split_once("<=") {
-        Some((b, n)) => (b, n.parse().map_err(|_| bad("a string bound"))?),
+        Some((b, n)) => (
+            b,
+            n.parse()
+                .map_err(|_| TypeHashError::BadStringBound { ty: ty_owned() })?,
+        ),
         None => (elem, 0),
     };
     let (id, nested_type_name) = match (primitive_id(base), string_capacity) {
@@ -161,14 +209,15 @@ fn json_string(s: &str) -> String {
 pub fn type_description_json(
     type_name: &str,
     definition: impl Fn(&str) -> Option<&'static str>,
-) -> Result<String, String> {
+) -> Result<String, TypeHashError> {
     let mut described: BTreeMap<String, String> = BTreeMap::new();
     let mut pending = vec![type_name.to_string()];
     while let Some(name) = pending.pop() {
         if described.contains_key(&name) {
             continue;
         }
-        let text = definition(&name).ok_or_else(|| format!("no definition of {name}"))?;
+        let text =
+            definition(&name).ok_or_else(|| TypeHashError::NoDefinition { name: name.clone() })?;
         let pkg = name.split('/').next().unwrap_or_default();
         let fields = fields(pkg, text)?;
         pending.extend(
@@ -191,7 +240,7 @@ pub fn type_description_json(
 pub fn rihs01(
     type_name: &str,
     definition: impl Fn(&str) -> Option<&'static str>,
-) -> Result<String, String> {
+) -> Result<String, TypeHashError> {
     let digest = Sha256::digest(type_description_json(type_name, definition)?.as_bytes());
     let mut out = String::from("RIHS01_");
     for b in digest {

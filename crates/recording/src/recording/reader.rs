@@ -14,6 +14,7 @@
 
 mod lengths;
 
+use super::error::{Damage, ReadError, RecordingError};
 use mcap::read::ChannelAccumulator;
 use mcap::records::{Metadata, Record};
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
@@ -111,60 +112,63 @@ impl Recording {
 /// magic (a complete file, whose damage is an error); otherwise (a file cut by a crash) every
 /// message up to the cut, with [`Recording::stopped_early`] set. A cut file with no message is
 /// an error.
-pub fn read_run_file(path: &Path) -> Result<Recording, String> {
-    let buf = muscle_actuator_core::files::read_regular_file(path, MAX_RECORDING_BYTES)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+pub fn read_run_file(path: &Path) -> Result<Recording, RecordingError> {
+    let buf = read_file(path)?;
     let complete = buf.ends_with(MAGIC) && buf.len() >= 2 * MAGIC.len();
-    let rec = read_bytes(&buf, !complete).map_err(|e| format!("{}: {e}", path.display()))?;
-    match &rec.stopped_early {
-        Some(why) if rec.messages.is_empty() => Err(format!(
-            "{}: not a complete MCAP file (truncated or corrupted), and no message in it is \
-             readable: {why}",
-            path.display()
-        )),
+    let rec = read_bytes(&buf, !complete).map_err(|source| RecordingError::Invalid {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match rec.stopped_early {
+        Some(reason) if rec.messages.is_empty() => Err(RecordingError::NothingReadable {
+            path: path.to_path_buf(),
+            reason,
+        }),
         _ => Ok(rec),
     }
 }
 
-/// Why reading stopped.
-enum Stop {
-    /// The file is damaged here (in recovery mode: the end of what is readable).
-    Damaged(String),
-    /// The file asks for more than a recording may hold.
-    TooLarge(String),
+/// The bytes of `path`, a regular file of at most [`MAX_RECORDING_BYTES`].
+fn read_file(path: &Path) -> Result<Vec<u8>, RecordingError> {
+    muscle_actuator_core::files::read_regular_file(path, MAX_RECORDING_BYTES).map_err(|source| {
+        RecordingError::Unreadable {
+            path: path.to_path_buf(),
+            source,
+        }
+    })
 }
 
 /// Reads `path`. Strict (`recover` false): a truncated or corrupted file is an error naming the
 /// file. Recovering: returns everything readable up to the damage (a file cut by a crash holds
 /// every chunk flushed before it).
-pub fn read_recording(path: &Path, recover: bool) -> Result<Recording, String> {
-    let buf = muscle_actuator_core::files::read_regular_file(path, MAX_RECORDING_BYTES)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    read_bytes(&buf, recover).map_err(|e| format!("{}: {e}", path.display()))
+pub fn read_recording(path: &Path, recover: bool) -> Result<Recording, RecordingError> {
+    let buf = read_file(path)?;
+    read_bytes(&buf, recover).map_err(|source| RecordingError::Invalid {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// As [`read_recording`], from memory.
-pub fn read_bytes(buf: &[u8], recover: bool) -> Result<Recording, String> {
+pub fn read_bytes(buf: &[u8], recover: bool) -> Result<Recording, ReadError> {
     let mut rec = Recording::default();
     match read_into(buf, recover, &mut rec) {
         Ok(()) => Ok(rec),
-        Err(Stop::Damaged(e)) if recover => {
-            rec.stopped_early = Some(e);
+        Err(ReadError::Damaged(e)) if recover => {
+            rec.stopped_early = Some(e.to_string());
             Ok(rec)
         }
-        Err(Stop::Damaged(e)) => Err(format!(
-            "not a complete MCAP file (truncated or corrupted): {e}"
-        )),
-        Err(Stop::TooLarge(e)) => Err(e),
+        Err(e) => Err(e),
     }
 }
 
-fn damaged(e: impl std::fmt::Display) -> Stop {
-    Stop::Damaged(e.to_string())
+/// Damage stops reading (in recovery mode: where what is readable ends).
+fn damaged(e: impl Into<Damage>) -> ReadError {
+    ReadError::Damaged(e.into())
 }
 
 /// Reads the records of `buf` in file order (chunks decompressed, CRCs checked) into `rec`.
-fn read_into(buf: &[u8], recover: bool, rec: &mut Recording) -> Result<(), Stop> {
+fn read_into(buf: &[u8], recover: bool, rec: &mut Recording) -> Result<(), ReadError> {
     // Recovering: only whole records (a chunk cut by a crash is not read in part), and each
     // chunk checked against its CRC before any of its records is taken.
     let (buf, cut) = if recover {
@@ -195,7 +199,7 @@ fn read_into(buf: &[u8], recover: bool, rec: &mut Recording) -> Result<(), Stop>
                 rest = &rest[n..];
             }
             LinearReadEvent::Record { opcode, data } => {
-                lengths::check(opcode, data).map_err(Stop::Damaged)?;
+                lengths::check(opcode, data).map_err(damaged)?;
                 let record = mcap::parse_record(opcode, data).map_err(damaged)?;
                 footer |= matches!(record, Record::Footer(_));
                 take(record, &mut channels, rec, &mut held)?;
@@ -203,11 +207,9 @@ fn read_into(buf: &[u8], recover: bool, rec: &mut Recording) -> Result<(), Stop>
         }
     }
     match cut {
-        Some(at) => Err(damaged(format!(
-            "the file ends in a record begun at byte {at}"
-        ))),
-        None if !footer => Err(damaged("the file ends before its footer")),
-        None if recover => Err(damaged("the file does not end in the MCAP magic")),
+        Some(at) => Err(damaged(Damage::CutRecord { at })),
+        None if !footer => Err(damaged(Damage::NoFooter)),
+        None if recover => Err(damaged(Damage::NoEndMagic)),
         None => Ok(()),
     }
 }
@@ -246,7 +248,7 @@ fn take(
     channels: &mut ChannelAccumulator<'static>,
     rec: &mut Recording,
     held: &mut usize,
-) -> Result<(), Stop> {
+) -> Result<(), ReadError> {
     match record {
         Record::Header(h) => {
             rec.profile = h.profile;
@@ -268,18 +270,15 @@ fn take(
         }
         Record::Message { header, data } => {
             let ch = channels.get(header.channel_id).ok_or_else(|| {
-                damaged(format!(
-                    "a message on channel {} that no channel record defines",
-                    header.channel_id
-                ))
+                damaged(Damage::UnknownChannel {
+                    channel: header.channel_id,
+                })
             })?;
             *held = held.saturating_add(data.len());
             if *held > MAX_MESSAGE_BYTES {
-                return Err(Stop::TooLarge(format!(
-                    "its messages hold more than {} MiB (decompressed), more than a recording \
-                     may hold in memory",
-                    MAX_MESSAGE_BYTES >> 20
-                )));
+                return Err(ReadError::TooLarge {
+                    limit_mib: MAX_MESSAGE_BYTES >> 20,
+                });
             }
             let schema = ch.schema.as_ref();
             rec.messages.push(RawMessage {

@@ -8,6 +8,7 @@
 //! under a temporary name and renamed into place once complete ([`muscle_actuator_core::files::AtomicFile`]),
 //! so a failure leaves no partial file; `OUT` may not be `IN`.
 
+use super::error::{RecordingError, RewriteError};
 use super::reader::{read_run_file, Recording};
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -48,25 +49,29 @@ impl Recovered {
 
 /// Reads `input` (complete, or cut by a crash) and writes everything readable to `out` as a
 /// complete MCAP file.
-pub fn recover(input: &Path, out: &Path) -> Result<Recovered, String> {
+pub fn recover(input: &Path, out: &Path) -> Result<Recovered, RecordingError> {
     if muscle_actuator_core::files::same_file(input, out) {
-        return Err(format!(
-            "{}: the output would overwrite the input; give another path",
-            out.display()
-        ));
+        return Err(RecordingError::OverwritesInput {
+            out: out.to_path_buf(),
+        });
     }
     let rec = read_run_file(input)?;
     if rec.messages.is_empty() {
-        return Err(format!(
-            "{}: no message in it is readable; nothing to recover",
-            input.display()
-        ));
+        return Err(RecordingError::NoMessages {
+            input: input.to_path_buf(),
+        });
     }
-    let into = |e: &dyn std::fmt::Display| format!("recovering into {}: {e}", out.display());
-    let mut file = muscle_actuator_core::files::AtomicFile::create(out).map_err(|e| into(&e))?;
-    write(&rec, file.file()).map_err(|e| into(&e))?;
-    file.commit()
-        .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let into = |e: RewriteError| RecordingError::Rewrite {
+        out: out.to_path_buf(),
+        source: e,
+    };
+    let mut file = muscle_actuator_core::files::AtomicFile::create(out)
+        .map_err(|e| into(RewriteError::Io(e)))?;
+    write(&rec, file.file()).map_err(into)?;
+    file.commit().map_err(|source| RecordingError::Commit {
+        out: out.to_path_buf(),
+        source,
+    })?;
     Ok(Recovered {
         messages: rec.messages.len(),
         channels: rec.channels.len(),
@@ -77,7 +82,7 @@ pub fn recover(input: &Path, out: &Path) -> Result<Recovered, String> {
 }
 
 /// Writes `rec` into `file` as the recorder does (zstd chunks, indexed summary).
-fn write(rec: &Recording, file: &mut File) -> Result<(), String> {
+fn write(rec: &Recording, file: &mut File) -> Result<(), RewriteError> {
     let options = super::writer::RecorderOptions::default();
     let mut w = mcap::WriteOptions::new()
         .profile(rec.profile.clone())
@@ -85,37 +90,31 @@ fn write(rec: &Recording, file: &mut File) -> Result<(), String> {
         .compression(Some(mcap::Compression::Zstd))
         .compression_level(options.compression_level)
         .chunk_size(Some(options.chunk_size))
-        .create(BufWriter::with_capacity(1 << 16, file))
-        .map_err(|e| e.to_string())?;
-    let err = |e: mcap::McapError| e.to_string();
+        .create(BufWriter::with_capacity(1 << 16, file))?;
     // Schemas and channels keep their ids (the message records are then the same).
     let mut ids: BTreeMap<u16, u16> = BTreeMap::new();
     for (&old, ch) in &rec.channels {
         let schema_id = match &ch.schema {
-            Some(s) => w
-                .add_schema_with_id(s.id, &s.name, &s.encoding, &s.data)
-                .map_err(err)?,
+            Some(s) => w.add_schema_with_id(s.id, &s.name, &s.encoding, &s.data)?,
             None => 0,
         };
-        let id = w
-            .add_channel_with_id(
-                old,
-                schema_id,
-                &ch.topic,
-                &ch.message_encoding,
-                &ch.metadata,
-            )
-            .map_err(err)?;
+        let id = w.add_channel_with_id(
+            old,
+            schema_id,
+            &ch.topic,
+            &ch.message_encoding,
+            &ch.metadata,
+        )?;
         ids.insert(old, id);
     }
     let mut metadata = rec.metadata_records.iter().peekable();
     for (i, m) in rec.messages.iter().enumerate() {
         while let Some((_, md)) = metadata.next_if(|(before, _)| *before <= i) {
-            w.write_metadata(md).map_err(err)?;
+            w.write_metadata(md)?;
         }
-        let channel_id = *ids
-            .get(&m.channel_id)
-            .ok_or_else(|| format!("message on unknown channel {}", m.channel_id))?;
+        let channel_id = *ids.get(&m.channel_id).ok_or(RewriteError::UnknownChannel {
+            channel: m.channel_id,
+        })?;
         w.write_to_known_channel(
             &mcap::records::MessageHeader {
                 channel_id,
@@ -124,15 +123,12 @@ fn write(rec: &Recording, file: &mut File) -> Result<(), String> {
                 publish_time: m.publish_time,
             },
             &m.data,
-        )
-        .map_err(err)?;
+        )?;
     }
     for (_, md) in metadata {
-        w.write_metadata(md).map_err(err)?;
+        w.write_metadata(md)?;
     }
-    w.finish().map_err(err)?;
-    w.into_inner()
-        .into_inner()
-        .map_err(|e| e.error().to_string())?;
+    w.finish()?;
+    w.into_inner().into_inner().map_err(|e| e.into_error())?;
     Ok(())
 }

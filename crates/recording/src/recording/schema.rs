@@ -4,6 +4,43 @@
 
 use std::collections::BTreeSet;
 
+/// Why the `ros2msg` schema of a type could not be assembled.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SchemaError {
+    /// The type asked for is not named `pkg/msg/Type` (or `pkg/Type`).
+    #[error("{name:?} is not a pkg/msg/Type name")]
+    NotATypeName {
+        /// The name asked for.
+        name: String,
+    },
+    /// The lookup knows no definition of the type asked for.
+    #[error("no definition for {name}")]
+    NoDefinition {
+        /// The type asked for.
+        name: String,
+    },
+    /// A definition names a field type that is not `pkg/Type`.
+    #[error("bad type name {name:?}")]
+    BadDependencyName {
+        /// The dependency's name as derived from the field.
+        name: String,
+    },
+    /// The lookup knows no definition of a type some definition depends on.
+    #[error("no definition for {dependency} (needed by {name})")]
+    NoDependencyDefinition {
+        /// The missing type, `pkg/Type`.
+        dependency: String,
+        /// The type whose schema was asked for.
+        name: String,
+    },
+}
+
+impl From<SchemaError> for String {
+    fn from(e: SchemaError) -> Self {
+        e.to_string()
+    }
+}
+
 /// The separator line rosbag2 puts between definitions.
 pub const SEPARATOR: &str =
     "================================================================================";
@@ -63,11 +100,13 @@ fn dependencies(pkg: &str, text: &str) -> Vec<String> {
 pub fn ros2msg_schema<'a>(
     type_name: &str,
     lookup: &dyn Fn(&str) -> Option<&'a str>,
-) -> Result<String, String> {
-    let (pkg, ty) =
-        split(type_name).ok_or_else(|| format!("{type_name:?} is not a pkg/msg/Type name"))?;
-    let root = lookup(&format!("{pkg}/msg/{ty}"))
-        .ok_or_else(|| format!("no definition for {type_name}"))?;
+) -> Result<String, SchemaError> {
+    let (pkg, ty) = split(type_name).ok_or_else(|| SchemaError::NotATypeName {
+        name: type_name.into(),
+    })?;
+    let root = lookup(&format!("{pkg}/msg/{ty}")).ok_or_else(|| SchemaError::NoDefinition {
+        name: type_name.into(),
+    })?;
     let mut out = root.trim_end().to_string();
     out.push('\n');
     let mut seen = BTreeSet::new();
@@ -77,9 +116,13 @@ pub fn ros2msg_schema<'a>(
         if !seen.insert(dep.clone()) {
             continue;
         }
-        let (p, t) = split(&dep).ok_or_else(|| format!("bad type name {dep:?}"))?;
-        let text = lookup(&format!("{p}/msg/{t}"))
-            .ok_or_else(|| format!("no definition for {dep} (needed by {type_name})"))?;
+        let (p, t) =
+            split(&dep).ok_or_else(|| SchemaError::BadDependencyName { name: dep.clone() })?;
+        let text =
+            lookup(&format!("{p}/msg/{t}")).ok_or_else(|| SchemaError::NoDependencyDefinition {
+                dependency: dep.clone(),
+                name: type_name.into(),
+            })?;
         out.push_str(SEPARATOR);
         out.push_str("\nMSG: ");
         out.push_str(&dep);

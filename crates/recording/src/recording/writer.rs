@@ -9,6 +9,7 @@
 //! A write error (full disk, file gone) stops the recording: the thread records the reason in
 //! [`RecorderStats`] and exits; producers see their messages counted as dropped, nothing more.
 
+use super::error::RecordingError;
 use super::rosbag2::{metadata_yaml, Topic, ROS_DISTRO};
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -133,12 +134,19 @@ fn open_writer(
     channels: &[ChannelSpec],
     metadata: &[(String, BTreeMap<String, String>)],
     options: &RecorderOptions,
-) -> Result<(McapWriter, Vec<u16>), String> {
-    let what = |e: &dyn std::fmt::Display| format!("recording {}: {e}", path.display());
+) -> Result<(McapWriter, Vec<u16>), RecordingError> {
+    let create = |source| RecordingError::Create {
+        path: path.to_path_buf(),
+        source,
+    };
+    let what = |source| RecordingError::Write {
+        path: path.to_path_buf(),
+        source,
+    };
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| what(&e))?;
+        std::fs::create_dir_all(dir).map_err(create)?;
     }
-    let file = File::create(path).map_err(|e| what(&e))?;
+    let file = File::create(path).map_err(create)?;
     let mut writer = mcap::WriteOptions::new()
         .profile("ros2")
         .library(format!("muscle_actuator {}", env!("CARGO_PKG_VERSION")))
@@ -146,12 +154,12 @@ fn open_writer(
         .compression_level(options.compression_level)
         .chunk_size(Some(options.chunk_size))
         .create(BufWriter::with_capacity(1 << 16, file))
-        .map_err(|e| what(&e))?;
+        .map_err(what)?;
     let mut ids = Vec::with_capacity(channels.len());
     for c in channels {
         let schema_id = writer
             .add_schema(&c.type_name, "ros2msg", c.schema.as_bytes())
-            .map_err(|e| what(&e))?;
+            .map_err(what)?;
         let mut meta = BTreeMap::new();
         meta.insert("offered_qos_profiles".to_string(), c.qos_yaml.clone());
         if let Some(h) = &c.type_hash {
@@ -159,7 +167,7 @@ fn open_writer(
         }
         let id = writer
             .add_channel(schema_id, &c.topic, "cdr", &meta)
-            .map_err(|e| what(&e))?;
+            .map_err(what)?;
         ids.push(id);
     }
     for (name, map) in metadata {
@@ -168,9 +176,9 @@ fn open_writer(
                 name: name.clone(),
                 metadata: map.clone(),
             })
-            .map_err(|e| what(&e))?;
+            .map_err(what)?;
     }
-    writer.flush().map_err(|e| what(&e))?;
+    writer.flush().map_err(what)?;
     Ok((writer, ids))
 }
 
@@ -183,7 +191,7 @@ impl Recorder {
         channels: Vec<ChannelSpec>,
         metadata: Vec<(String, BTreeMap<String, String>)>,
         options: RecorderOptions,
-    ) -> Result<Recorder, String> {
+    ) -> Result<Recorder, RecordingError> {
         let (writer, ids) = open_writer(path, &channels, &metadata, &options)?;
         let stats = Arc::new(RecorderStats {
             path: path.to_path_buf(),
@@ -211,7 +219,7 @@ impl Recorder {
                 }
                 .run(rx, options.flush_interval)
             })
-            .map_err(|e| format!("cannot start the recorder thread: {e}"))?;
+            .map_err(RecordingError::Thread)?;
         Ok(Recorder {
             tx: Some(tx),
             stats,

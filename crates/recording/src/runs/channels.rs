@@ -3,10 +3,11 @@
 //! [`Layout`] for the id of a [`Channel`] instead of counting positions.
 
 use crate::msgs::{definition, type_hash};
-use crate::recording::{qos_yaml, schema::ros2msg_schema, ChannelSpec};
+use crate::recording::schema::{ros2msg_schema, SchemaError};
+use crate::recording::{qos_yaml, ChannelSpec};
 
 /// The channel of `topic` with type `type_name` (reliable, volatile, depth 10, as the node).
-pub fn channel(topic: &str, type_name: &str) -> Result<ChannelSpec, String> {
+pub fn channel(topic: &str, type_name: &str) -> Result<ChannelSpec, SchemaError> {
     Ok(ChannelSpec {
         topic: topic.into(),
         type_name: type_name.into(),
@@ -86,7 +87,7 @@ impl Layout {
     }
 
     /// Adds `kind` on `topic` with type `type_name` (reliable, volatile, depth 10).
-    pub fn add(&mut self, kind: Channel, topic: &str, type_name: &str) -> Result<(), String> {
+    pub fn add(&mut self, kind: Channel, topic: &str, type_name: &str) -> Result<(), SchemaError> {
         self.specs.push(channel(topic, type_name)?);
         self.kinds.push(kind);
         Ok(())

@@ -17,91 +17,249 @@ use muscle_actuator_core::text::excerpt;
 const SPAN_SLACK_FACTOR: f64 = 1.25;
 const SPAN_SLACK_S: f64 = 1.0;
 
+/// What makes a recorded run unfit for replay, compare or export.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CheckError {
+    /// A state's tick does not follow the one before it (a reset, a rebuild, a shuffle).
+    #[error(
+        "the run was reset or rebuilt, or its ticks are out of order (tick {before} followed by \
+         {after}); replay and compare cover runs without resets or parameter changes"
+    )]
+    TicksOutOfOrder {
+        /// The earlier state's tick.
+        before: u64,
+        /// The tick of the state after it.
+        after: u64,
+    },
+    /// A state's muscles are not the run's (names and order).
+    #[error(
+        "state at tick {tick}: muscles [{}] are not the run's [{}]",
+        excerpt(&.found.join(",")),
+        excerpt(&.expected.join(","))
+    )]
+    StateMuscles {
+        /// The state's tick.
+        tick: u64,
+        /// The muscles the state names.
+        found: Vec<String>,
+        /// The run's muscles.
+        expected: Vec<String>,
+    },
+    /// A state's joints are not the run's (names and order).
+    #[error(
+        "state at tick {tick}: joints [{}] are not the run's [{}]",
+        excerpt(&.found.join(",")),
+        excerpt(&.expected.join(","))
+    )]
+    StateJoints {
+        /// The state's tick.
+        tick: u64,
+        /// The joints the state names.
+        found: Vec<String>,
+        /// The run's joints.
+        expected: Vec<String>,
+    },
+    /// A muscle's or joint's field in a state is not a finite number.
+    #[error(
+        "state at tick {tick}: {}.{field} = {value} (not a finite number)",
+        excerpt(.name)
+    )]
+    StateNotFinite {
+        /// The state's tick.
+        tick: u64,
+        /// The muscle or joint.
+        name: String,
+        /// The field.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A state's stiffness matrix holds a value that is not a finite number.
+    #[error("state at tick {tick}: stiffness_matrix holds {value} (not a finite number)")]
+    StiffnessNotFinite {
+        /// The state's tick.
+        tick: u64,
+        /// The value.
+        value: f64,
+    },
+    /// Inputs recorded out of tick order.
+    #[error("{what} inputs out of tick order (tick {tick} after {before})")]
+    InputsOutOfOrder {
+        /// `activation` or `external load`.
+        what: &'static str,
+        /// The later input's tick.
+        tick: u64,
+        /// The tick of the input before it.
+        before: u64,
+    },
+    /// An input with not as many values as names.
+    #[error("{what} input at tick {tick}: {names} names for {values} values")]
+    InputLengths {
+        /// `activation` or `external load`.
+        what: &'static str,
+        /// The input's tick.
+        tick: u64,
+        /// Names given.
+        names: usize,
+        /// Values given.
+        values: usize,
+    },
+    /// An input value that is not a finite number.
+    #[error(
+        "{what} input at tick {tick}: {} = {value} (not a finite number)",
+        excerpt(.name)
+    )]
+    InputNotFinite {
+        /// `activation` or `external load`.
+        what: &'static str,
+        /// The input's tick.
+        tick: u64,
+        /// The muscle or joint named.
+        name: String,
+        /// The value.
+        value: f64,
+    },
+    /// The last state lies beyond [`MAX_RECORDED_TICKS`].
+    #[error("its last state is at tick {last}: a run may span at most {MAX_RECORDED_TICKS} ticks")]
+    TooManyTicks {
+        /// The last state's tick.
+        last: u64,
+    },
+    /// The last state's simulated time exceeds the time the messages span (with slack).
+    #[error(
+        "its last state is at tick {last} ({simulated_s:.6e} s at {rate_hz} Hz), but its \
+         messages span only {recorded_s:.6e} s"
+    )]
+    LongerThanRecorded {
+        /// The last state's tick.
+        last: u64,
+        /// Its simulated time from tick 0, s.
+        simulated_s: f64,
+        /// The run's rate, Hz.
+        rate_hz: f64,
+        /// The time the messages span, s.
+        recorded_s: f64,
+    },
+    /// The recorded `MuscleState` has other fields than this version's: a recording made by
+    /// another version of the program.
+    #[error(
+        "channel {}: its {MUSCLE_TYPE} has {have} fields where this version's has {want}{}; the \
+         recording was made by another version of muscle_actuator, and replay, compare and \
+         export read this version's recordings only",
+        excerpt(.topic),
+        lacking(.missing)
+    )]
+    OtherVersion {
+        /// The `~/state` channel's topic.
+        topic: String,
+        /// Fields the recorded `MuscleState` has.
+        have: usize,
+        /// Fields this version's has.
+        want: usize,
+        /// This version's fields the recorded one lacks.
+        missing: Vec<String>,
+    },
+}
+
+/// The recorded type whose fields [`check_state_schema`] compares.
+const MUSCLE_TYPE: &str = "muscle_actuator_msgs/MuscleState";
+
+/// ` (it lacks a, b)`, or nothing when no field is missing.
+fn lacking(missing: &[String]) -> String {
+    if missing.is_empty() {
+        String::new()
+    } else {
+        format!(" (it lacks {})", excerpt(&missing.join(", ")))
+    }
+}
+
 /// States whose ticks only grow, finite, naming the run's muscles and joints.
-pub(super) fn check_states(meta: &RunMeta, states: &[ActuatorState]) -> Result<(), String> {
+pub(super) fn check_states(meta: &RunMeta, states: &[ActuatorState]) -> Result<(), CheckError> {
     for w in states.windows(2) {
         if w[1].tick <= w[0].tick {
-            return Err(format!(
-                "the run was reset or rebuilt, or its ticks are out of order (tick {} followed \
-                 by {}); replay and compare cover runs without resets or parameter changes",
-                w[0].tick, w[1].tick
-            ));
+            return Err(CheckError::TicksOutOfOrder {
+                before: w[0].tick,
+                after: w[1].tick,
+            });
         }
     }
     for s in states {
-        let at = |what: String| format!("state at tick {}: {what}", s.tick);
+        let tick = s.tick;
         let muscles: Vec<&String> = s.muscles.iter().map(|m| &m.name).collect();
         if muscles.len() != meta.muscles.len()
             || muscles.iter().zip(&meta.muscles).any(|(a, b)| *a != b)
         {
-            return Err(at(format!(
-                "muscles [{}] are not the run's [{}]",
-                excerpt(
-                    &s.muscles
-                        .iter()
-                        .map(|m| m.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(",")
-                ),
-                excerpt(&meta.muscles.join(","))
-            )));
+            return Err(CheckError::StateMuscles {
+                tick,
+                found: s.muscles.iter().map(|m| m.name.clone()).collect(),
+                expected: meta.muscles.clone(),
+            });
         }
         if s.joint != meta.joints {
-            return Err(at(format!(
-                "joints [{}] are not the run's [{}]",
-                excerpt(&s.joint.join(",")),
-                excerpt(&meta.joints.join(","))
-            )));
+            return Err(CheckError::StateJoints {
+                tick,
+                found: s.joint.clone(),
+                expected: meta.joints.clone(),
+            });
         }
+        let not_finite =
+            |name: &String, field: &'static str, value: f64| CheckError::StateNotFinite {
+                tick,
+                name: name.clone(),
+                field,
+                value,
+            };
         for m in &s.muscles {
             for (f, v) in MuscleSnapshot::FIELDS.iter().zip(m.state.values()) {
-                finite(v).map_err(|v| at(format!("{}.{f} = {v}", excerpt(&m.name))))?;
+                if !v.is_finite() {
+                    return Err(not_finite(&m.name, f, v));
+                }
             }
         }
         for (name, j) in s.joint.iter().zip(&s.joints) {
             for (f, v) in JointSnapshot::FIELDS.iter().zip(j.values()) {
-                finite(v).map_err(|v| at(format!("{}.{f} = {v}", excerpt(name))))?;
+                if !v.is_finite() {
+                    return Err(not_finite(name, f, v));
+                }
             }
         }
-        for v in &s.stiffness_matrix {
-            finite(*v).map_err(|v| at(format!("stiffness_matrix holds {v}")))?;
+        if let Some(&value) = s.stiffness_matrix.iter().find(|v| !v.is_finite()) {
+            return Err(CheckError::StiffnessNotFinite { tick, value });
         }
     }
     Ok(())
 }
 
-/// `Err(v)` for a value that is not finite.
-fn finite(v: f64) -> Result<(), String> {
-    if v.is_finite() {
-        Ok(())
-    } else {
-        Err(format!("{v} (not a finite number)"))
-    }
-}
-
 /// Inputs in tick order with one value per name.
 pub(super) fn check_inputs(
-    what: &str,
+    what: &'static str,
     inputs: &[(u64, Vec<String>, Vec<f64>)],
-) -> Result<(), String> {
+) -> Result<(), CheckError> {
     for w in inputs.windows(2) {
         if w[1].0 < w[0].0 {
-            return Err(format!(
-                "{what} inputs out of tick order (tick {} after {})",
-                w[1].0, w[0].0
-            ));
+            return Err(CheckError::InputsOutOfOrder {
+                what,
+                tick: w[1].0,
+                before: w[0].0,
+            });
         }
     }
     for (tick, names, values) in inputs {
         if names.len() != values.len() {
-            return Err(format!(
-                "{what} input at tick {tick}: {} names for {} values",
-                names.len(),
-                values.len()
-            ));
+            return Err(CheckError::InputLengths {
+                what,
+                tick: *tick,
+                names: names.len(),
+                values: values.len(),
+            });
         }
-        for (n, v) in names.iter().zip(values) {
-            finite(*v).map_err(|v| format!("{what} input at tick {tick}: {} = {v}", excerpt(n)))?;
+        if let Some((n, v)) = names.iter().zip(values).find(|(_, v)| !v.is_finite()) {
+            return Err(CheckError::InputNotFinite {
+                what,
+                tick: *tick,
+                name: n.clone(),
+                value: *v,
+            });
         }
     }
     Ok(())
@@ -113,23 +271,22 @@ pub(super) fn check_length(
     meta: &RunMeta,
     states: &[ActuatorState],
     recorded_span_s: f64,
-) -> Result<(), String> {
+) -> Result<(), CheckError> {
     let Some(last) = states.last().map(|s| s.tick) else {
         return Ok(());
     };
     if last > MAX_RECORDED_TICKS {
-        return Err(format!(
-            "its last state is at tick {last}: a run may span at most {MAX_RECORDED_TICKS} ticks"
-        ));
+        return Err(CheckError::TooManyTicks { last });
     }
     let simulated = last as f64 / meta.rate_hz;
     let allowed = recorded_span_s * SPAN_SLACK_FACTOR + SPAN_SLACK_S;
     if simulated > allowed {
-        return Err(format!(
-            "its last state is at tick {last} ({simulated:.6e} s at {} Hz), but its messages \
-             span only {recorded_span_s:.6e} s",
-            meta.rate_hz
-        ));
+        return Err(CheckError::LongerThanRecorded {
+            last,
+            simulated_s: simulated,
+            rate_hz: meta.rate_hz,
+            recorded_s: recorded_span_s,
+        });
     }
     Ok(())
 }
@@ -137,8 +294,7 @@ pub(super) fn check_length(
 /// The `MuscleState` of every recorded `ActuatorState` schema has this version's fields: an
 /// older recording (one made before the energetics fields, say) is refused with the fields it
 /// lacks, not decoded into garbage.
-pub(super) fn check_state_schema(rec: &Recording) -> Result<(), String> {
-    const MUSCLE_TYPE: &str = "muscle_actuator_msgs/MuscleState";
+pub(super) fn check_state_schema(rec: &Recording) -> Result<(), CheckError> {
     let want: Vec<&str> = std::iter::once("name")
         .chain(MuscleSnapshot::FIELDS)
         .collect();
@@ -149,24 +305,16 @@ pub(super) fn check_state_schema(rec: &Recording) -> Result<(), String> {
         let text = String::from_utf8_lossy(&schema.data);
         let have = field_names(&text, MUSCLE_TYPE, false).unwrap_or_default();
         if have != want {
-            let missing: Vec<&str> = want
-                .iter()
-                .copied()
-                .filter(|f| !have.iter().any(|h| h == f))
+            let missing = (want.iter())
+                .filter(|f| !have.iter().any(|h| h == *f))
+                .map(|f| f.to_string())
                 .collect();
-            return Err(format!(
-                "channel {}: its {MUSCLE_TYPE} has {} fields where this version's has {}{}; \
-                 the recording was made by another version of muscle_actuator, and replay, \
-                 compare and export read this version's recordings only",
-                excerpt(&ch.topic),
-                have.len(),
-                want.len(),
-                if missing.is_empty() {
-                    String::new()
-                } else {
-                    format!(" (it lacks {})", excerpt(&missing.join(", ")))
-                }
-            ));
+            return Err(CheckError::OtherVersion {
+                topic: ch.topic.clone(),
+                have: have.len(),
+                want: want.len(),
+                missing,
+            });
         }
     }
     Ok(())
@@ -217,14 +365,18 @@ mod tests {
             .map(|l| format!("{l}\n"))
             .collect();
         assert!(older.contains("crossbridge_energy") && !older.contains("metabolic_power"));
-        let e = check_state_schema(&with_state_schema(&older)).unwrap_err();
+        let e = check_state_schema(&with_state_schema(&older))
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("lacks metabolic_power, activation_heat_rate"),
             "{e}"
         );
         assert!(e.contains("another version"), "{e}");
         // A schema without the MuscleState section at all.
-        let e = check_state_schema(&with_state_schema("float64 x\n")).unwrap_err();
+        let e = check_state_schema(&with_state_schema("float64 x\n"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("has 0 fields"), "{e}");
     }
 }

@@ -1,7 +1,7 @@
 //! `compare A B`: the differences between two recorded runs, per muscle and joint.
 
+use super::error::{CompareError, RunError};
 use super::{load_run, LoadedRun};
-use muscle_actuator_core::text::excerpt;
 use serde::Serialize;
 use std::path::Path;
 
@@ -153,20 +153,18 @@ fn sorted_names(run: &LoadedRun, joints: bool) -> Vec<String> {
 }
 
 /// Compares two runs. Refuses runs with different muscles or joints, or without common time.
-pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> {
+pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, CompareError> {
     if sorted_names(a, false) != sorted_names(b, false) {
-        return Err(format!(
-            "the runs cannot be compared: different muscles ({} vs {})",
-            excerpt(&a.meta.muscles.join(", ")),
-            excerpt(&b.meta.muscles.join(", "))
-        ));
+        return Err(CompareError::DifferentMuscles {
+            a: a.meta.muscles.clone(),
+            b: b.meta.muscles.clone(),
+        });
     }
     if sorted_names(a, true) != sorted_names(b, true) {
-        return Err(format!(
-            "the runs cannot be compared: different joints ([{}] vs [{}])",
-            excerpt(&a.meta.joints.join(", ")),
-            excerpt(&b.meta.joints.join(", "))
-        ));
+        return Err(CompareError::DifferentJoints {
+            a: a.meta.joints.clone(),
+            b: b.meta.joints.clone(),
+        });
     }
     let sa = series(a);
     let sb = series(b);
@@ -175,13 +173,14 @@ pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, String> 
             .and_then(|(_, v)| Some((v.first()?.0, v.last()?.0)))
     };
     let (Some((a0, a1)), Some((b0, b1))) = (span(&sa), span(&sb)) else {
-        return Err("the runs cannot be compared: a run holds no actuator state".into());
+        return Err(CompareError::NoStates);
     };
     let (start, end) = (a0.max(b0), a1.min(b1));
     if start >= end {
-        return Err(format!(
-            "the runs cannot be compared: no overlap in time (A {a0}..{a1} s, B {b0}..{b1} s)"
-        ));
+        return Err(CompareError::NoOverlap {
+            a: (a0, a1),
+            b: (b0, b1),
+        });
     }
     let mut signals = Vec::new();
     let mut samples = 0;
@@ -290,7 +289,7 @@ fn energy_figures(
 impl Comparison {
     /// Refuses a comparison with a figure that is not finite: values too large to difference,
     /// or a signal without a sample of A inside the common span.
-    fn check_finite(&self) -> Result<(), String> {
+    fn check_finite(&self) -> Result<(), CompareError> {
         for d in &self.signals {
             let figures = [
                 ("rms diff", Some(d.rms_diff)),
@@ -304,12 +303,12 @@ impl Comparison {
                 ("rise time B", d.rise_time_b),
             ];
             for (name, v) in figures {
-                if let Some(v) = v.filter(|v| !v.is_finite()) {
-                    return Err(format!(
-                        "the runs cannot be compared: {} has no finite {name} ({v}): values too \
-                         large to difference, or no sample inside the common span",
-                        excerpt(&d.signal)
-                    ));
+                if let Some(value) = v.filter(|v| !v.is_finite()) {
+                    return Err(CompareError::NotFinite {
+                        signal: d.signal.clone(),
+                        figure: name,
+                        value,
+                    });
                 }
             }
         }
@@ -387,6 +386,7 @@ impl Comparison {
 
 /// Draws the overlay of two runs' muscle forces as a file (the `muscle_actuator` crate's
 /// `figures::compare_plot::plot`; plots are not this crate's business).
+// A String error: the figures layer's own error text, carried as [`RunError::Plot`].
 pub type PlotFn = fn(&LoadedRun, &LoadedRun, &Path) -> Result<(), String>;
 
 /// `compare A B`: loads both (a file cut by a crash up to the cut, with a warning), compares,
@@ -395,7 +395,7 @@ pub fn compare_files(
     a: &Path,
     b: &Path,
     plot_out: Option<(&Path, PlotFn)>,
-) -> Result<Comparison, String> {
+) -> Result<Comparison, RunError> {
     if let Some((p, _)) = plot_out {
         for written in [p.with_extension("png"), p.with_extension("svg")] {
             muscle_actuator_core::files::check_not_an_input(&written, &[a, b])?;
@@ -405,10 +405,9 @@ pub fn compare_files(
     let rb = load_run(b)?;
     for (run, path) in [(&ra, a), (&rb, b)] {
         if run.states.is_empty() {
-            return Err(format!(
-                "{}: the recording holds no actuator state",
-                path.display()
-            ));
+            return Err(RunError::NoStates {
+                path: path.to_path_buf(),
+            });
         }
     }
     let mut c = compare_runs(&ra, &rb)?;
@@ -417,7 +416,7 @@ pub fn compare_files(
         .filter_map(|r| r.warning.clone())
         .collect();
     if let Some((p, plot)) = plot_out {
-        plot(&ra, &rb, p)?;
+        plot(&ra, &rb, p).map_err(RunError::Plot)?;
     }
     Ok(c)
 }

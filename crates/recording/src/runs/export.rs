@@ -7,16 +7,17 @@
 //! node recording gives one row per published state and muscle (every tick, or every tick of
 //! `publish_rate_hz`).
 
+use super::error::{ExportError, RunError};
 use super::{load_run, LoadedRun};
 use muscle_actuator_core::sim::scenario::Run;
 use std::path::Path;
 
 /// The run a recording holds: its states as records (time = tick / rate), with the muscles,
 /// joints and spans of its metadata. Fails on a recording without any state.
-pub fn run_of(loaded: &LoadedRun) -> Result<Run, String> {
+pub fn run_of(loaded: &LoadedRun) -> Result<Run, ExportError> {
     let meta = &loaded.meta;
     if loaded.states.is_empty() {
-        return Err("the recording holds no actuator state".into());
+        return Err(ExportError::NoStates);
     }
     let topology = meta.topology();
     let muscle_joints = (0..topology.muscles.len())
@@ -38,7 +39,10 @@ pub fn run_of(loaded: &LoadedRun) -> Result<Run, String> {
         // As `Simulation::time`, so that the numbers are simulate's to the bit.
         let time = s.tick as f64 / meta.rate_hz;
         run.push_parts(time, &muscles, &s.joints, &s.stiffness_matrix)
-            .map_err(|e| format!("tick {}: {e}", s.tick))?;
+            .map_err(|reason| ExportError::Record {
+                tick: s.tick,
+                reason,
+            })?;
     }
     Ok(run)
 }
@@ -52,14 +56,17 @@ pub struct ExportSummary {
 }
 
 /// Writes the states of the recording `input` as CSV to `csv` (`-`: standard output).
-pub fn export_csv(input: &Path, csv: &Path) -> Result<ExportSummary, String> {
+pub fn export_csv(input: &Path, csv: &Path) -> Result<ExportSummary, RunError> {
     muscle_actuator_core::files::check_not_an_input(csv, &[input])?;
     let loaded = load_run(input)?;
     // A recording cut by a crash is read up to the cut, and said so once (as replay does).
     if let Some(w) = &loaded.warning {
         eprintln!("warning: {w}");
     }
-    let run = run_of(&loaded).map_err(|e| format!("{}: {e}", input.display()))?;
+    let run = run_of(&loaded).map_err(|source| RunError::Export {
+        path: input.to_path_buf(),
+        source,
+    })?;
     muscle_actuator_core::csv::write_csv_to(&run, csv)?;
     Ok(ExportSummary {
         states: run.len(),

@@ -2,6 +2,7 @@
 //! metadata): the tick rate and sub-steps as the node's parameters and the simulation allow
 //! them, and the length of a recorded run that replay may simulate.
 
+use muscle_actuator_core::physics::stepping::SteppingError;
 use muscle_actuator_core::sim::simulation::{Stepping, MAX_RATE_HZ};
 
 /// Most sub-steps per tick, fixed or as the adaptive maximum (as `Simulation::new` allows).
@@ -11,17 +12,57 @@ pub use muscle_actuator_core::sim::simulation::MAX_SUBSTEPS;
 /// 1 kHz).
 pub const MAX_RECORDED_TICKS: u64 = 100_000_000;
 
+/// A number out of its limits, named as where it came from (`--rate-hz`,
+/// `metadata muscle_actuator.rate_hz`).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LimitError {
+    /// A tick rate that is not finite, not > 0 or above [`MAX_RATE_HZ`].
+    #[error(
+        "{name} = {} is invalid: must be a finite number > 0 and <= {MAX_RATE_HZ} (the node's \
+         limit for rate_hz)",
+        shown(*.value)
+    )]
+    RateHz {
+        /// Where the rate came from.
+        name: String,
+        /// The rate given, Hz.
+        value: f64,
+    },
+    /// A number of sub-steps per tick outside 1 to [`MAX_SUBSTEPS`].
+    #[error("{name} = {value} is invalid: must be between 1 and {MAX_SUBSTEPS}")]
+    Substeps {
+        /// Where the number came from.
+        name: String,
+        /// The number given.
+        value: usize,
+    },
+    /// A stepping that breaks its rules ([`Stepping::check`]).
+    #[error("{name}: {reason}")]
+    Stepping {
+        /// Where the stepping came from.
+        name: String,
+        /// The rule broken.
+        #[source]
+        reason: SteppingError,
+    },
+}
+
+impl From<LimitError> for String {
+    fn from(e: LimitError) -> Self {
+        e.to_string()
+    }
+}
+
 /// A tick rate, Hz: finite, > 0 and at most the node's [`MAX_RATE_HZ`]. `name` says where it
 /// came from (`--rate-hz`, `metadata muscle_actuator.rate_hz`).
-pub fn check_rate_hz(name: &str, r: f64) -> Result<(), String> {
+pub fn check_rate_hz(name: &str, r: f64) -> Result<(), LimitError> {
     if r.is_finite() && r > 0.0 && r <= MAX_RATE_HZ {
         Ok(())
     } else {
-        Err(format!(
-            "{name} = {} is invalid: must be a finite number > 0 and <= {MAX_RATE_HZ} (the \
-             node's limit for rate_hz)",
-            shown(r)
-        ))
+        Err(LimitError::RateHz {
+            name: name.into(),
+            value: r,
+        })
     }
 }
 
@@ -36,19 +77,23 @@ fn shown(v: f64) -> String {
 }
 
 /// A number of sub-steps per tick: 1 to [`MAX_SUBSTEPS`].
-pub fn check_substeps(name: &str, n: usize) -> Result<(), String> {
+pub fn check_substeps(name: &str, n: usize) -> Result<(), LimitError> {
     if (1..=MAX_SUBSTEPS).contains(&n) {
         Ok(())
     } else {
-        Err(format!(
-            "{name} = {n} is invalid: must be between 1 and {MAX_SUBSTEPS}"
-        ))
+        Err(LimitError::Substeps {
+            name: name.into(),
+            value: n,
+        })
     }
 }
 
 /// A stepping within its rules ([`Stepping::check`]), named in the error.
-pub fn check_stepping(name: &str, s: Stepping) -> Result<(), String> {
-    s.check().map_err(|e| format!("{name}: {e}"))
+pub fn check_stepping(name: &str, s: Stepping) -> Result<(), LimitError> {
+    s.check().map_err(|reason| LimitError::Stepping {
+        name: name.into(),
+        reason,
+    })
 }
 
 #[cfg(test)]
@@ -68,7 +113,7 @@ mod tests {
             1e9,
             MAX_RATE_HZ * 1.0001,
         ] {
-            let e = check_rate_hz("--rate-hz", bad).unwrap_err();
+            let e = check_rate_hz("--rate-hz", bad).unwrap_err().to_string();
             assert!(
                 e.starts_with("--rate-hz = ") && e.contains("<= 100000"),
                 "{e}"

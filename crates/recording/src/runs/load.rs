@@ -5,13 +5,120 @@ use super::channels::{
     ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX, APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX,
     JOINT_STATE_TYPE, LOAD_TYPE, STATE_TYPE,
 };
-use super::checks;
-use super::metadata::{RunMeta, METADATA_NAME};
+use super::checks::{self, CheckError};
+use super::metadata::{MetadataError, RunMeta, METADATA_NAME};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
 use crate::msgs::JointState;
-use crate::recording::{self, reader::read_run_file, RawMessage, Recording};
+use crate::recording::RecordingError;
+use crate::recording::{self, reader::read_run_file, CdrError, RawMessage, Recording};
 use muscle_actuator_core::text::excerpt;
-use std::path::Path;
+use muscle_actuator_core::time::StampError;
+use std::path::{Path, PathBuf};
+
+/// Why a run file could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    /// The file could not be read as a recording (missing, unreadable, damaged).
+    #[error(transparent)]
+    Recording(#[from] RecordingError),
+    /// The recording reads fine but is not a run of this program, or not a fit one.
+    #[error("{}: {source}", path.display())]
+    Invalid {
+        /// The recording.
+        path: PathBuf,
+        /// What is wrong with it.
+        #[source]
+        source: InvalidRun,
+    },
+}
+
+impl LoadError {
+    /// Whether the file does not exist.
+    pub fn is_not_found(&self) -> bool {
+        matches!(self, Self::Recording(e) if e.is_not_found())
+    }
+
+    /// Whether the file was read but refused: damaged, not MCAP, not a run of this program, or
+    /// not fit for replay, compare or export.
+    pub fn is_invalid_recording(&self) -> bool {
+        match self {
+            Self::Recording(e) => e.is_damaged(),
+            Self::Invalid { .. } => true,
+        }
+    }
+}
+
+impl From<LoadError> for String {
+    fn from(e: LoadError) -> Self {
+        e.to_string()
+    }
+}
+
+/// What makes a recording that reads fine not a run of this program to load (the file is named
+/// by [`LoadError::Invalid`]).
+#[derive(Debug, thiserror::Error)]
+pub enum InvalidRun {
+    /// The recording has no `muscle_actuator` metadata record: another program made it.
+    #[error("no {METADATA_NAME:?} metadata record: not a muscle_actuator recording")]
+    NotOurs,
+    /// The metadata record is incomplete or invalid.
+    #[error(transparent)]
+    Metadata(#[from] MetadataError),
+    /// The run recorded is not fit for replay, compare or export.
+    #[error(transparent)]
+    Check(#[from] CheckError),
+    /// A message of ours recorded in another encoding.
+    #[error(
+        "message on {}: encoding {:?} with a {:?} schema, where {type_name} is recorded as \
+         \"cdr\" with a \"ros2msg\" schema",
+        excerpt(.topic),
+        excerpt(.encoding),
+        excerpt(.schema_encoding)
+    )]
+    Encoding {
+        /// The message's topic.
+        topic: String,
+        /// Its channel's message encoding.
+        encoding: String,
+        /// Its schema's encoding.
+        schema_encoding: String,
+        /// Its type.
+        type_name: String,
+    },
+    /// A message of ours that does not decode.
+    #[error("message on {}: {source}", excerpt(.topic))]
+    Cdr {
+        /// The message's topic.
+        topic: String,
+        /// Why it does not decode.
+        #[source]
+        source: CdrError,
+    },
+    /// Driven joints' motion without one position and one velocity per name.
+    #[error(
+        "message on {}: {names} names with {positions} positions and {velocities} velocities",
+        excerpt(.topic)
+    )]
+    MotionLengths {
+        /// The message's topic.
+        topic: String,
+        /// Names given.
+        names: usize,
+        /// Positions given.
+        positions: usize,
+        /// Velocities given.
+        velocities: usize,
+    },
+    /// A message's stamp that is no tick of the run's time base.
+    #[error("message on {}: {reason}", excerpt(.topic))]
+    Stamp {
+        /// The message's topic.
+        topic: String,
+        /// Why it is no tick ([`muscle_actuator_core::time::TimeBase::tick_of`]).
+        #[source]
+        reason: StampError,
+    },
+}
 
 /// A driven joints' motion as applied: (tick, joint names, angles rad, velocities rad/s).
 pub type JointMotionAt = (u64, Vec<String>, Vec<f64>, Vec<f64>);
@@ -34,9 +141,12 @@ pub struct LoadedRun {
 
 /// Reads a run file: a complete one strictly (damage is an error), one cut by a crash up to the
 /// cut, with a warning ([`crate::recording::reader::read_run_file`]).
-pub fn load_run(path: &Path) -> Result<LoadedRun, String> {
+pub fn load_run(path: &Path) -> Result<LoadedRun, LoadError> {
     let rec = read_run_file(path)?;
-    let mut run = load_from(&rec).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut run = load_from(&rec).map_err(|source| LoadError::Invalid {
+        path: path.to_path_buf(),
+        source,
+    })?;
     run.warning = rec.truncation_warning(path);
     Ok(run)
 }
@@ -48,10 +158,8 @@ struct AppliedTopics {
     load: bool,
 }
 
-fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
-    let meta_map = rec.metadata.get(METADATA_NAME).ok_or_else(|| {
-        format!("no {METADATA_NAME:?} metadata record: not a muscle_actuator recording")
-    })?;
+fn load_from(rec: &Recording) -> Result<LoadedRun, InvalidRun> {
+    let meta_map = rec.metadata.get(METADATA_NAME).ok_or(InvalidRun::NotOurs)?;
     let meta = RunMeta::from_map(meta_map)?;
     checks::check_state_schema(rec)?;
     let ours = [STATE_TYPE, JOINT_STATE_TYPE, ACTIVATION_TYPE, LOAD_TYPE];
@@ -77,8 +185,7 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
         .iter()
         .filter(|m| ours.contains(&m.type_name.as_str()))
     {
-        let on = |e: String| format!("message on {}: {e}", excerpt(&m.topic));
-        run.take(m, &applied).map_err(on)?;
+        run.take(m, &applied)?;
     }
     run.check(recorded_span_s(rec))?;
     Ok(run)
@@ -87,7 +194,7 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, String> {
 impl LoadedRun {
     /// Every check of [`checks`], on a decoded run whose messages span `recorded_span_s` seconds
     /// of log time.
-    fn check(&self, recorded_span_s: f64) -> Result<(), String> {
+    fn check(&self, recorded_span_s: f64) -> Result<(), CheckError> {
         checks::check_states(&self.meta, &self.states)?;
         checks::check_inputs("activation", &self.activations)?;
         checks::check_inputs("external load", &self.loads)?;
@@ -95,50 +202,62 @@ impl LoadedRun {
     }
 
     /// Decodes one message of ours and keeps what replay uses of it.
-    fn take(&mut self, m: &RawMessage, applied: &AppliedTopics) -> Result<(), String> {
+    fn take(&mut self, m: &RawMessage, applied: &AppliedTopics) -> Result<(), InvalidRun> {
+        let topic = || m.topic.clone();
         if m.encoding != "cdr" || m.schema_encoding != "ros2msg" {
-            return Err(format!(
-                "encoding {:?} with a {:?} schema, where {} is recorded as \"cdr\" with a \
-                 \"ros2msg\" schema",
-                excerpt(&m.encoding),
-                excerpt(&m.schema_encoding),
-                m.type_name
-            ));
+            return Err(InvalidRun::Encoding {
+                topic: topic(),
+                encoding: m.encoding.clone(),
+                schema_encoding: m.schema_encoding.clone(),
+                type_name: m.type_name.clone(),
+            });
         }
+        let cdr = |source| InvalidRun::Cdr {
+            topic: topic(),
+            source,
+        };
+        let stamp = |reason| InvalidRun::Stamp {
+            topic: topic(),
+            reason,
+        };
         let (time_base, rate_hz) = (self.meta.time_base, self.meta.rate_hz);
         match m.type_name.as_str() {
             STATE_TYPE => self
                 .states
-                .push(recording::decode_cdr::<ActuatorState>(&m.data)?),
+                .push(recording::decode_cdr::<ActuatorState>(&m.data).map_err(cdr)?),
             // Only the driven joints' motion as applied is used, but a recording whose
             // messages do not decode is not accepted.
             JOINT_STATE_TYPE => {
-                let js: JointState = recording::decode_cdr(&m.data)?;
+                let js: JointState = recording::decode_cdr(&m.data).map_err(cdr)?;
                 if m.topic.ends_with(APPLIED_JOINT_MOTION_SUFFIX) {
                     let n = js.name.len();
                     if js.position.len() != n || js.velocity.len() != n {
-                        return Err(format!(
-                            "{n} names with {} positions and {} velocities",
-                            js.position.len(),
-                            js.velocity.len()
-                        ));
+                        return Err(InvalidRun::MotionLengths {
+                            topic: topic(),
+                            names: n,
+                            positions: js.position.len(),
+                            velocities: js.velocity.len(),
+                        });
                     }
-                    let tick = time_base.tick_of(js.header.stamp.to_nanos(), rate_hz)?;
+                    let tick =
+                        (time_base.tick_of(js.header.stamp.to_nanos(), rate_hz)).map_err(stamp)?;
                     self.joint_motions
                         .push((tick, js.name, js.position, js.velocity));
                 }
             }
             ACTIVATION_TYPE => {
-                let a: ActivationCommand = recording::decode_cdr(&m.data)?;
+                let a: ActivationCommand = recording::decode_cdr(&m.data).map_err(cdr)?;
                 if !applied.activation || m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX) {
-                    let tick = time_base.tick_of(a.header.stamp.to_nanos(), rate_hz)?;
+                    let tick =
+                        (time_base.tick_of(a.header.stamp.to_nanos(), rate_hz)).map_err(stamp)?;
                     self.activations.push((tick, a.muscle, a.excitation));
                 }
             }
             _ => {
-                let l: ExternalLoad = recording::decode_cdr(&m.data)?;
+                let l: ExternalLoad = recording::decode_cdr(&m.data).map_err(cdr)?;
                 if !applied.load || m.topic.ends_with(APPLIED_LOAD_SUFFIX) {
-                    let tick = time_base.tick_of(l.header.stamp.to_nanos(), rate_hz)?;
+                    let tick =
+                        (time_base.tick_of(l.header.stamp.to_nanos(), rate_hz)).map_err(stamp)?;
                     self.loads.push((tick, l.joint, l.torque));
                 }
             }
@@ -153,5 +272,58 @@ fn recorded_span_s(rec: &Recording) -> f64 {
     match (times.clone().min(), times.max()) {
         (Some(a), Some(b)) => (b - a) as f64 * 1e-9,
         _ => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recording::{Recorder, RecorderOptions, RecorderState};
+
+    /// A missing file, a file that is not MCAP and a recording of another program are each
+    /// their own error, with the same texts as ever.
+    #[test]
+    fn missing_damaged_and_foreign_files_are_told_apart() {
+        let dir = std::env::temp_dir().join(format!("load-errors-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+
+        let e = load_run(&dir.join("missing.mcap")).err().unwrap();
+        assert!(e.is_not_found() && !e.is_invalid_recording(), "{e}");
+        assert!(e.to_string().starts_with("cannot read "), "{e}");
+
+        let junk = dir.join("junk.mcap");
+        std::fs::write(&junk, b"not mcap").unwrap();
+        let e = load_run(&junk).err().unwrap();
+        assert!(!e.is_not_found() && e.is_invalid_recording(), "{e}");
+        assert!(
+            matches!(
+                &e,
+                LoadError::Recording(RecordingError::NothingReadable { .. })
+            ),
+            "{e}"
+        );
+
+        let foreign = dir.join("foreign.mcap");
+        let rec = Recorder::start(&foreign, vec![], vec![], RecorderOptions::default()).unwrap();
+        assert_eq!(rec.finish(), RecorderState::Finished);
+        let e = load_run(&foreign).err().unwrap();
+        assert!(
+            matches!(
+                &e,
+                LoadError::Invalid {
+                    source: InvalidRun::NotOurs,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "{}: no \"muscle_actuator\" metadata record: not a muscle_actuator recording",
+                foreign.display()
+            )
+        );
+        std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -2,18 +2,102 @@
 //! (model, rate, stepping, attachment, configuration, time base, the driven joints' initial
 //! motion), as text and back, checked.
 
-use super::limits;
-use muscle_actuator_core::config::ActuatorConfig;
+use super::limits::{self, LimitError};
+use muscle_actuator_core::config::{ActuatorConfig, ConfigError};
+use muscle_actuator_core::csv::SplitError;
 use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::plant::PlantError;
 use muscle_actuator_core::physics::plant::{Inputs, Plant};
 use muscle_actuator_core::physics::topology::Topology;
 use muscle_actuator_core::sim::simulation::{Simulation, Stepping};
+use muscle_actuator_core::sim::SetupError;
 use muscle_actuator_core::text::excerpt;
 use muscle_actuator_core::time::{iso8601, TimeBase};
 use std::collections::BTreeMap;
 
 /// Name of our metadata record.
 pub const METADATA_NAME: &str = "muscle_actuator";
+
+/// What is wrong with a `muscle_actuator` metadata record (or a run's metadata to write).
+#[derive(Debug, thiserror::Error)]
+pub enum MetadataError {
+    /// The record lacks a key it must have.
+    #[error("metadata record {METADATA_NAME:?} has no {key:?}")]
+    Missing {
+        /// The key.
+        key: &'static str,
+    },
+    /// A key's value does not parse (or is not one of the values it may take).
+    #[error("metadata {METADATA_NAME}.{key} = {:?} is invalid", excerpt(.value))]
+    Invalid {
+        /// The key.
+        key: &'static str,
+        /// Its value.
+        value: String,
+    },
+    /// A list key (`muscles`, `joints`) is not one CSV record.
+    #[error("metadata {METADATA_NAME}.{key} = {:?} is invalid: {reason}", excerpt(.value))]
+    BadList {
+        /// The key.
+        key: &'static str,
+        /// Its value.
+        value: String,
+        /// Why it does not parse.
+        #[source]
+        reason: SplitError,
+    },
+    /// The configuration recorded is not a valid one (its lines joined by `; `).
+    #[error(
+        "metadata {METADATA_NAME}.config_toml: {}",
+        .0.to_string().replace('\n', "; ")
+    )]
+    Config(#[source] ConfigError),
+    /// The configuration to record does not serialize as TOML.
+    #[error("configuration as TOML: {0}")]
+    ConfigToml(#[source] toml::ser::Error),
+    /// The rate or stepping recorded is out of its limits.
+    #[error(transparent)]
+    Limit(#[from] LimitError),
+    /// The clamped length recorded is not a finite number > 0.
+    #[error("metadata {METADATA_NAME}.length = {length} is invalid: must be a finite number > 0")]
+    Length {
+        /// The length recorded, m.
+        length: f64,
+    },
+    /// The initial tendon force recorded is not a finite number >= 0.
+    #[error(
+        "metadata {METADATA_NAME}.initial_force = {force} is invalid: must be a finite number >= 0"
+    )]
+    InitialForce {
+        /// The force recorded, N.
+        force: f64,
+    },
+    /// The driven joints' initial motion does not have one pair per driven joint.
+    #[error(
+        "metadata {METADATA_NAME}.initial_joint_motion has {pairs} (angle, velocity) pairs for \
+         {driven} driven joints"
+    )]
+    InitialMotionCount {
+        /// The pairs recorded.
+        pairs: usize,
+        /// The driven joints of the configuration.
+        driven: usize,
+    },
+    /// The muscle or joint list recorded is not that of the configuration's topology.
+    #[error(
+        "metadata {METADATA_NAME}.{key} = {:?} does not match its configuration ({})",
+        excerpt(&.listed.join(",")),
+        excerpt(&.actual.join(","))
+    )]
+    Names {
+        /// `muscles` or `joints`.
+        key: &'static str,
+        /// The names recorded.
+        listed: Vec<String>,
+        /// The configuration's names.
+        actual: Vec<String>,
+    },
+}
 
 /// How the muscles were attached in a run.
 #[derive(Debug, Clone, PartialEq)]
@@ -75,20 +159,42 @@ fn parse_stepping(s: &str) -> Option<Stepping> {
     }
 }
 
+/// Why the simulation a run describes could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum BuildError {
+    /// The run's configuration is not valid.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// The plant refuses the run's topology or model.
+    #[error(transparent)]
+    Plant(#[from] PlantError),
+    /// The simulation could not be set up.
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+}
+
+impl From<MetadataError> for String {
+    fn from(e: MetadataError) -> Self {
+        e.to_string()
+    }
+}
+
 /// The record's value of `k`, or the error naming the missing key.
-fn get<'a>(m: &'a BTreeMap<String, String>, k: &str) -> Result<&'a String, String> {
-    m.get(k)
-        .ok_or_else(|| format!("metadata record {METADATA_NAME:?} has no {k:?}"))
+fn get<'a>(m: &'a BTreeMap<String, String>, k: &'static str) -> Result<&'a String, MetadataError> {
+    m.get(k).ok_or(MetadataError::Missing { key: k })
 }
 
 /// The error of key `k` holding the invalid `v`.
-fn bad(k: &str, v: &str) -> String {
-    format!("metadata {METADATA_NAME}.{k} = {:?} is invalid", excerpt(v))
+fn bad(k: &'static str, v: &str) -> MetadataError {
+    MetadataError::Invalid {
+        key: k,
+        value: v.into(),
+    }
 }
 
 /// The time base the record names; a record without the key is simulated time (offline runs
 /// stamp inputs from zero).
-fn time_base_from(m: &BTreeMap<String, String>) -> Result<TimeBase, String> {
+fn time_base_from(m: &BTreeMap<String, String>) -> Result<TimeBase, MetadataError> {
     Ok(match m.get("time_base").map(String::as_str) {
         None | Some("simulated") => TimeBase::Simulated,
         Some("wall") => {
@@ -108,7 +214,7 @@ fn time_base_from(m: &BTreeMap<String, String>) -> Result<TimeBase, String> {
 }
 
 /// The driven joints' initial motion: finite (angle, velocity) pairs, none without the key.
-fn initial_motion_from(m: &BTreeMap<String, String>) -> Result<Vec<(f64, f64)>, String> {
+fn initial_motion_from(m: &BTreeMap<String, String>) -> Result<Vec<(f64, f64)>, MetadataError> {
     let Some(v) = m.get("initial_joint_motion") else {
         return Ok(vec![]);
     };
@@ -124,7 +230,7 @@ fn initial_motion_from(m: &BTreeMap<String, String>) -> Result<Vec<(f64, f64)>, 
 
 impl RunMeta {
     /// The metadata record's map.
-    pub fn to_map(&self) -> Result<BTreeMap<String, String>, String> {
+    pub fn to_map(&self) -> Result<BTreeMap<String, String>, MetadataError> {
         let mut m = BTreeMap::new();
         let mut put = |k: &str, v: String| {
             m.insert(k.to_string(), v);
@@ -147,7 +253,7 @@ impl RunMeta {
         }
         put(
             "config_toml",
-            toml::to_string(&self.config).map_err(|e| format!("configuration as TOML: {e}"))?,
+            toml::to_string(&self.config).map_err(MetadataError::ConfigToml)?,
         );
         if let Some(p) = &self.parameters_json {
             put("parameters_json", p.clone());
@@ -189,8 +295,8 @@ impl RunMeta {
     }
 
     /// Back from the record (fails with the missing or bad key).
-    pub fn from_map(m: &BTreeMap<String, String>) -> Result<Self, String> {
-        let f64_of = |k: &str| -> Result<f64, String> {
+    pub fn from_map(m: &BTreeMap<String, String>) -> Result<Self, MetadataError> {
+        let f64_of = |k: &'static str| -> Result<f64, MetadataError> {
             let v = get(m, k)?;
             v.parse::<f64>().map_err(|_| bad(k, v))
         };
@@ -210,17 +316,17 @@ impl RunMeta {
             },
             other => return Err(bad("attachment", other)),
         };
-        let config = ActuatorConfig::from_toml_str(get(m, "config_toml")?).map_err(|e| {
-            format!(
-                "metadata {METADATA_NAME}.config_toml: {}",
-                e.to_string().replace('\n', "; ")
-            )
-        })?;
-        let list = |k: &str| -> Result<Vec<String>, String> {
+        let config =
+            ActuatorConfig::from_toml_str(get(m, "config_toml")?).map_err(MetadataError::Config)?;
+        let list = |k: &'static str| -> Result<Vec<String>, MetadataError> {
             m.get(k).map_or(Ok(Vec::new()), |s| {
                 muscle_actuator_core::csv::split_record(s)
                     .map(|v| v.into_iter().filter(|x| !x.is_empty()).collect())
-                    .map_err(|e| format!("{}: {e}", bad(k, s)))
+                    .map_err(|reason| MetadataError::BadList {
+                        key: k,
+                        value: s.clone(),
+                        reason,
+                    })
             })
         };
         let time_base = time_base_from(m)?;
@@ -248,34 +354,29 @@ impl RunMeta {
     /// The numbers within their limits (a rate the node would accept, sub-steps the simulation
     /// would), the attachment's numbers finite, the muscle and joint lists those of the
     /// configuration's topology.
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<(), MetadataError> {
         let key = |k: &str| format!("metadata {METADATA_NAME}.{k}");
         limits::check_rate_hz(&key("rate_hz"), self.rate_hz)?;
         limits::check_stepping(&key("stepping"), self.stepping)?;
         match self.attachment {
             AttachmentMeta::Clamped { length } if !(length.is_finite() && length > 0.0) => {
-                return Err(format!(
-                    "{} = {length} is invalid: must be a finite number > 0",
-                    key("length")
-                ));
+                return Err(MetadataError::Length { length });
             }
             AttachmentMeta::Force { initial_force }
                 if !(initial_force.is_finite() && initial_force >= 0.0) =>
             {
-                return Err(format!(
-                    "{} = {initial_force} is invalid: must be a finite number >= 0",
-                    key("initial_force")
-                ));
+                return Err(MetadataError::InitialForce {
+                    force: initial_force,
+                });
             }
             _ => {}
         }
         let driven = self.config.joints.iter().filter(|j| j.driven).count();
         if !self.initial_joint_motion.is_empty() && self.initial_joint_motion.len() != driven {
-            return Err(format!(
-                "{} has {} (angle, velocity) pairs for {driven} driven joints",
-                key("initial_joint_motion"),
-                self.initial_joint_motion.len()
-            ));
+            return Err(MetadataError::InitialMotionCount {
+                pairs: self.initial_joint_motion.len(),
+                driven,
+            });
         }
         let topology = self.topology();
         for (k, listed, actual) in [
@@ -283,12 +384,11 @@ impl RunMeta {
             ("joints", &self.joints, topology.joint_names()),
         ] {
             if *listed != actual {
-                return Err(format!(
-                    "{} = {:?} does not match its configuration ({})",
-                    key(k),
-                    excerpt(&listed.join(",")),
-                    excerpt(&actual.join(","))
-                ));
+                return Err(MetadataError::Names {
+                    key: k,
+                    listed: listed.clone(),
+                    actual,
+                });
             }
         }
         Ok(())
@@ -309,8 +409,8 @@ impl RunMeta {
     }
 
     /// The simulation this run describes, in its initial state (with model `model`).
-    pub fn build(&self, model: ModelKind, stepping: Stepping) -> Result<Simulation, String> {
-        self.config.validate().map_err(|e| e.to_string())?;
+    pub fn build(&self, model: ModelKind, stepping: Stepping) -> Result<Simulation, BuildError> {
+        self.config.validate()?;
         let plant = Plant::new(&self.topology(), model)?;
         let mut initial = Inputs::zeros(plant.muscle_count(), plant.joint_count());
         if let AttachmentMeta::Force { initial_force } = self.attachment {
@@ -323,7 +423,7 @@ impl RunMeta {
             initial.joint_angle[j] = angle;
             initial.joint_velocity[j] = velocity;
         }
-        Simulation::new(plant, self.rate_hz, stepping, initial).map_err(|e| e.to_string())
+        Ok(Simulation::new(plant, self.rate_hz, stepping, initial)?)
     }
 }
 
@@ -372,11 +472,20 @@ mod tests {
         meta.time_base = TimeBase::Simulated;
         assert_eq!(RunMeta::from_map(&map).unwrap(), meta);
         map.insert("time_base".into(), "sundial".into());
-        assert!(RunMeta::from_map(&map).unwrap_err().contains("time_base"));
+        assert!(matches!(
+            RunMeta::from_map(&map),
+            Err(MetadataError::Invalid {
+                key: "time_base",
+                ..
+            })
+        ));
         map.insert("time_base".into(), "wall".into());
-        assert!(RunMeta::from_map(&map)
-            .unwrap_err()
-            .contains("tick_origin_ns"));
+        assert!(matches!(
+            RunMeta::from_map(&map),
+            Err(MetadataError::Missing {
+                key: "tick_origin_ns"
+            })
+        ));
         // Following /clock: no origin until the first clock message, then the one it gave.
         for origin in [None, Some(5_000_000_000_000)] {
             meta.time_base = TimeBase::RosClock {
@@ -391,8 +500,14 @@ mod tests {
         meta.initial_joint_motion = vec![(0.1 + 0.2, std::f64::consts::PI / 3.0)];
         assert_eq!(RunMeta::from_map(&meta.to_map().unwrap()).unwrap(), meta);
         meta.initial_joint_motion.push((0.0, 0.0));
-        assert!(RunMeta::from_map(&meta.to_map().unwrap())
-            .unwrap_err()
-            .contains("initial_joint_motion"));
+        let e = RunMeta::from_map(&meta.to_map().unwrap()).unwrap_err();
+        assert!(e.to_string().contains("initial_joint_motion"), "{e}");
+        assert!(matches!(
+            e,
+            MetadataError::InitialMotionCount {
+                pairs: 2,
+                driven: 1
+            }
+        ));
     }
 }

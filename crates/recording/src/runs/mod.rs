@@ -1,7 +1,7 @@
 //! Runs as recordings: the channels of a run file ([`channels`]), its `muscle_actuator` metadata
 //! record ([`metadata`]), `simulate --out` ([`simulate`], written by [`writer`]), reading a run
 //! back ([`load`], checked by [`checks`] within [`limits`]), [`replay`](mod@replay), [`compare`] and
-//! [`export`].
+//! [`export`]; what they report ([`error`]).
 //!
 //! One time base per recording, named in the metadata ([`muscle_actuator_core::time`]). Offline runs carry
 //! their inputs on the input topics themselves, stamped with the tick at which they take effect;
@@ -11,6 +11,7 @@
 pub mod channels;
 pub mod checks;
 pub mod compare;
+pub mod error;
 pub mod export;
 pub mod limits;
 pub mod load;
@@ -27,8 +28,11 @@ pub use channels::{
     DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATES_TOPIC,
     JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC, STATE_TOPIC, STATE_TYPE,
 };
-pub use load::{load_run, InputsAt, JointMotionAt, LoadedRun};
-pub use metadata::{driven_motion, AttachmentMeta, RunMeta, METADATA_NAME};
+pub use error::{CompareError, ExportError, RunError};
+pub use load::{load_run, InputsAt, InvalidRun, JointMotionAt, LoadError, LoadedRun};
+pub use metadata::{
+    driven_motion, AttachmentMeta, BuildError, MetadataError, RunMeta, METADATA_NAME,
+};
 pub use replay::{replay, ReplaySummary};
 pub use simulate::{run_scenario, simulate_to_mcap};
 pub use writer::joint_motion_msg;

@@ -1,6 +1,7 @@
 //! `replay`: a recorded run's inputs fed back, at their ticks, through a model (the recorded one
 //! by default, which gives every recorded state back bit for bit), and recorded again.
 
+use super::error::RunError;
 use super::load::{load_run, InputsAt, JointMotionAt, LoadedRun};
 use super::metadata::{AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
@@ -120,21 +121,22 @@ fn replay_meta(input: &Path, meta: &RunMeta, model: ModelKind, stepping: Steppin
 /// Feeds the recorded inputs of `input` at their ticks through `model` (default: the recorded
 /// one) and records the result to `out`. With the recorded model every recorded state comes back
 /// bit for bit (the summary says how many were compared and matched).
-pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<ReplaySummary, String> {
+pub fn replay(
+    input: &Path,
+    model: Option<ModelKind>,
+    out: &Path,
+) -> Result<ReplaySummary, RunError> {
     muscle_actuator_core::files::check_not_an_input(out, &[input])?;
     let run = load_run(input)?;
     let meta = &run.meta;
     if let AttachmentMeta::Force { .. } = meta.attachment {
-        return Err(format!(
-            "{}: a force-driven run (its tendon-force input is not a recorded topic) cannot be replayed",
-            input.display()
-        ));
+        return Err(RunError::ForceDriven {
+            path: input.to_path_buf(),
+        });
     }
-    let last_tick = run
-        .states
-        .last()
-        .map(|s| s.tick)
-        .ok_or_else(|| format!("{}: the recording holds no actuator state", input.display()))?;
+    let last_tick = (run.states.last().map(|s| s.tick)).ok_or_else(|| RunError::NoStates {
+        path: input.to_path_buf(),
+    })?;
     let model = model.unwrap_or(meta.model);
     let stepping = if model == meta.model {
         meta.stepping
@@ -181,8 +183,11 @@ pub fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<Repl
     for k in 0..last_tick {
         inputs.apply(k, meta, &mut sim);
         w.inputs(k, sim.inputs())?;
-        sim.step()
-            .map_err(|e| format!("replay with {model} failed at tick {k}: {e}"))?;
+        sim.step().map_err(|source| RunError::Step {
+            model,
+            tick: k,
+            source,
+        })?;
         sim.fill_snapshot(&mut state);
         w.state(k + 1, &state)?;
         check(k + 1, &state);

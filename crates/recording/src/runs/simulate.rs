@@ -1,5 +1,6 @@
 //! `simulate --out`: a scenario run recorded as it is simulated.
 
+use super::error::RunError;
 use super::limits;
 use super::metadata::{driven_motion, AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
@@ -20,7 +21,7 @@ pub fn run_scenario(
     rate_hz: f64,
     substeps: Option<usize>,
     out: Option<&Path>,
-) -> Result<Run, String> {
+) -> Result<Run, RunError> {
     limits::check_rate_hz("--rate-hz", rate_hz)?;
     if let Some(n) = substeps {
         limits::check_substeps("--substeps", n)?;
@@ -31,9 +32,7 @@ pub fn run_scenario(
         .unwrap_or(default_stepping(model));
     match out {
         Some(path) => simulate_to_mcap(&sc, cfg, model, rate_hz, stepping, path),
-        None => sc
-            .run(cfg, model, rate_hz, stepping)
-            .map_err(|e| e.to_string()),
+        None => Ok(sc.run(cfg, model, rate_hz, stepping)?),
     }
 }
 
@@ -45,7 +44,7 @@ pub fn simulate_to_mcap(
     rate_hz: f64,
     stepping: Stepping,
     out: &Path,
-) -> Result<Run, String> {
+) -> Result<Run, RunError> {
     let mut runner = sc.runner(cfg, model, rate_hz, stepping)?;
     let first = &cfg.muscles[0];
     let attachment = match sc.attachment {
@@ -81,7 +80,7 @@ pub fn simulate_to_mcap(
         // The inputs `step` applies: the schedules at the tick's start.
         let inputs = runner.inputs_at(runner.simulation().time());
         w.inputs(k, &inputs)?;
-        runner.step()?;
+        runner.step().map_err(RunError::ScenarioStep)?;
         runner.keep_record(&mut run)?;
         w.state(k + 1, runner.snapshot())?;
     }

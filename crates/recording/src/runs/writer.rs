@@ -6,6 +6,7 @@ use super::channels::{
     Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_JOINT_MOTION_TOPIC,
     JOINT_STATES_TOPIC, JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, STATE_TOPIC, STATE_TYPE,
 };
+use super::error::RunError;
 use super::metadata::{RunMeta, METADATA_NAME};
 use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
 use crate::msgs::Time;
@@ -68,7 +69,7 @@ pub(super) struct RunWriter {
 }
 
 impl RunWriter {
-    pub(super) fn start(path: &Path, meta: &RunMeta) -> Result<Self, String> {
+    pub(super) fn start(path: &Path, meta: &RunMeta) -> Result<Self, RunError> {
         let has_joint = !meta.joints.is_empty();
         let mut layout = Layout::new();
         layout.add(Channel::State, STATE_TOPIC, STATE_TYPE)?;
@@ -88,18 +89,21 @@ impl RunWriter {
                 JOINT_STATE_TYPE,
             )?;
         }
-        let what = |e: &dyn std::fmt::Display| format!("recording {}: {e}", path.display());
+        let what = |source| RunError::Output {
+            path: path.to_path_buf(),
+            source,
+        };
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| what(&e))?;
+            std::fs::create_dir_all(dir).map_err(what)?;
         }
-        let out = AtomicFile::create(path).map_err(|e| what(&e))?;
+        let out = AtomicFile::create(path).map_err(what)?;
         let rec = Recorder::start(
             out.path(),
             layout.specs(),
             vec![(METADATA_NAME.into(), meta.to_map()?)],
             RecorderOptions::default(),
         )
-        .map_err(|e| named(&out, e))?;
+        .map_err(|e| e.renamed(out.path(), out.target()))?;
         Ok(Self {
             rec,
             layout,
@@ -118,24 +122,21 @@ impl RunWriter {
         })
     }
 
-    fn put<T: serde::Serialize>(&self, ch: Channel, ns: u64, msg: &T) -> Result<(), String> {
-        let id = self
-            .layout
-            .id(ch)
-            .ok_or_else(|| format!("internal error: no {ch:?} channel in this recording"))?;
+    fn put<T: serde::Serialize>(&self, ch: Channel, ns: u64, msg: &T) -> Result<(), RunError> {
+        let id = self.layout.id(ch).ok_or(RunError::NoChannel(ch))?;
         let data = recording::encode_cdr(msg)?;
         if self.rec.record_blocking(id, ns, ns, data) {
             Ok(())
         } else {
             Err(match self.rec.stats().state() {
-                RecorderState::Failed(e) => named(&self.out, e),
-                _ => "the recording stopped".into(),
+                RecorderState::Failed(e) => RunError::RecorderFailed(named(&self.out, e)),
+                _ => RunError::RecorderStopped,
             })
         }
     }
 
     /// Inputs that take effect at `tick` (written when they change).
-    pub(super) fn inputs(&mut self, tick: u64, inputs: &Inputs) -> Result<(), String> {
+    pub(super) fn inputs(&mut self, tick: u64, inputs: &Inputs) -> Result<(), RunError> {
         let ns = tick_ns(tick, self.rate_hz);
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         let prev = self.last.take();
@@ -189,7 +190,7 @@ impl RunWriter {
     }
 
     /// The state after `tick` ticks (and the joint states, with a joint).
-    pub(super) fn state(&self, tick: u64, state: &StateSnapshot) -> Result<(), String> {
+    pub(super) fn state(&self, tick: u64, state: &StateSnapshot) -> Result<(), RunError> {
         let ns = tick_ns(tick, self.rate_hz);
         let (msg, js) = state_messages(
             ns as i64,
@@ -207,18 +208,16 @@ impl RunWriter {
     }
 
     /// Finishes the recording and renames it into place.
-    pub(super) fn finish(self) -> Result<(), String> {
+    pub(super) fn finish(self) -> Result<(), RunError> {
         if let RecorderState::Failed(e) = self.rec.finish() {
-            return Err(named(&self.out, e));
+            return Err(RunError::RecorderFailed(named(&self.out, e)));
         }
-        let path = self.out.target().display().to_string();
-        self.out
-            .commit()
-            .map_err(|e| format!("recording {path}: {e}"))
+        let path = self.out.target().to_path_buf();
+        (self.out.commit()).map_err(|source| RunError::Output { path, source })
     }
 }
 
-/// The recorder's message `e` about the temporary, naming the output instead.
+/// The recorder's report `e` about the temporary, naming the output instead.
 fn named(out: &AtomicFile, e: String) -> String {
     e.replace(
         &out.path().display().to_string(),

@@ -5,43 +5,52 @@
 //! (<https://mcap.dev/spec>), for every record whose parser reads a string. Chunk headers are
 //! bounded by the crate's own reader (against the record's length) and need no check here.
 
+use crate::recording::error::LengthError;
 use mcap::records::op;
 
-/// The unread rest of a record's body.
-struct Body<'a>(&'a [u8]);
+/// The unread rest of a record's body, and the record's opcode (named in errors).
+struct Body<'a> {
+    rest: &'a [u8],
+    opcode: u8,
+}
 
 impl<'a> Body<'a> {
-    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], String> {
-        if n > self.0.len() {
-            return Err(format!(
-                "a {what} of {n} bytes where only {} remain in its record",
-                self.0.len()
-            ));
+    fn take(&mut self, n: usize, field: &'static str) -> Result<&'a [u8], LengthError> {
+        if n > self.rest.len() {
+            return Err(LengthError {
+                opcode: self.opcode,
+                field,
+                declared: n,
+                remaining: self.rest.len(),
+            });
         }
-        let (head, rest) = self.0.split_at(n);
-        self.0 = rest;
+        let (head, rest) = self.rest.split_at(n);
+        self.rest = rest;
         Ok(head)
     }
 
-    fn u32(&mut self, what: &str) -> Result<usize, String> {
-        let b = self.take(4, what)?;
+    fn u32(&mut self, field: &'static str) -> Result<usize, LengthError> {
+        let b = self.take(4, field)?;
         Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
     }
 
-    fn skip(&mut self, n: usize) -> Result<(), String> {
+    fn skip(&mut self, n: usize) -> Result<(), LengthError> {
         self.take(n, "field").map(|_| ())
     }
 
-    fn string(&mut self) -> Result<(), String> {
+    fn string(&mut self) -> Result<(), LengthError> {
         let n = self.u32("string length")?;
         self.take(n, "string").map(|_| ())
     }
 
     /// A map of strings to strings: its length in bytes, then key and value strings.
-    fn string_map(&mut self) -> Result<(), String> {
+    fn string_map(&mut self) -> Result<(), LengthError> {
         let n = self.u32("map length")?;
-        let mut map = Body(self.take(n, "map")?);
-        while !map.0.is_empty() {
+        let mut map = Body {
+            rest: self.take(n, "map")?,
+            opcode: self.opcode,
+        };
+        while !map.rest.is_empty() {
             map.string()?;
             map.string()?;
         }
@@ -49,16 +58,16 @@ impl<'a> Body<'a> {
     }
 
     /// A map or array of fixed-size entries: only its length in bytes needs to fit.
-    fn block(&mut self) -> Result<(), String> {
+    fn block(&mut self) -> Result<(), LengthError> {
         let n = self.u32("map length")?;
         self.take(n, "map").map(|_| ())
     }
 }
 
 /// Whether every string, map and block that record `opcode`'s parser reads fits in `body`.
-pub fn check(opcode: u8, body: &[u8]) -> Result<(), String> {
-    let mut b = Body(body);
-    let r = match opcode {
+pub fn check(opcode: u8, body: &[u8]) -> Result<(), LengthError> {
+    let mut b = Body { rest: body, opcode };
+    match opcode {
         // profile, library
         op::HEADER => b.string().and_then(|_| b.string()),
         // id u16, name, encoding (the data's own length the crate checks)
@@ -85,8 +94,7 @@ pub fn check(opcode: u8, body: &[u8]) -> Result<(), String> {
         // offset, length (2 × u64), name
         op::METADATA_INDEX => b.skip(16).and_then(|_| b.string()),
         _ => Ok(()),
-    };
-    r.map_err(|e| format!("record 0x{opcode:02x}: {e}"))
+    }
 }
 
 #[cfg(test)]
@@ -106,9 +114,12 @@ mod tests {
         assert_eq!(check(op::METADATA, &md), Ok(()));
         let mut huge = md.clone();
         huge[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
-        assert!(check(op::METADATA, &huge)
-            .unwrap_err()
-            .contains("4294967295"));
+        let e = check(op::METADATA, &huge).unwrap_err();
+        assert_eq!(
+            (e.field, e.declared, e.remaining),
+            ("string", u32::MAX as usize, 8)
+        );
+        assert!(e.to_string().contains("4294967295"), "{e}");
         assert!(check(op::METADATA, &md[..md.len() - 1]).is_err());
         assert!(check(op::HEADER, &[0xff, 0xff, 0xff, 0xff]).is_err());
         assert_eq!(check(op::MESSAGE, &[1, 2, 3]), Ok(()));
