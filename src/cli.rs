@@ -2,11 +2,13 @@
 //! export, figures, models, [`steady`](mod@steady)) and the node. Model names, the default model
 //! and the default sub-stepping in its help come from [`MODELS`](crate::physics::models::MODELS).
 
+mod error;
 pub mod steady;
 
+pub use error::CliError;
+
 use crate::config::ActuatorConfig;
-use crate::physics::energetics::params::UnknownEnergyModel;
-use crate::physics::models::{join, ModelKind, UnknownModel};
+use crate::physics::models::{join, ModelKind};
 use crate::physics::params::EnergyModel;
 use crate::physics::stepping::Stepping;
 use crate::sim::steady::{DEFAULT_POINTS, MAX_POINTS, MIN_POINTS};
@@ -176,13 +178,13 @@ pub fn models_listing() -> String {
     out
 }
 
-fn parse_model(name: &str) -> Result<ModelKind, String> {
-    name.parse().map_err(|e: UnknownModel| e.to_string())
+fn parse_model(name: &str) -> Result<ModelKind, CliError> {
+    Ok(name.parse()?)
 }
 
-fn load_config(path: &Option<PathBuf>) -> Result<ActuatorConfig, String> {
+fn load_config(path: &Option<PathBuf>) -> Result<ActuatorConfig, CliError> {
     let cfg = match path {
-        Some(p) => ActuatorConfig::resolve(&p.to_string_lossy()).map_err(|e| e.to_string())?,
+        Some(p) => ActuatorConfig::resolve(&p.to_string_lossy())?,
         None => ActuatorConfig::default(),
     };
     for w in cfg.warnings() {
@@ -201,17 +203,20 @@ fn energy_model_help() -> String {
 }
 
 /// `cfg` with every muscle's energy model set to `name`, if one is given.
-fn with_energy_model(cfg: ActuatorConfig, name: Option<&str>) -> Result<ActuatorConfig, String> {
+fn with_energy_model(cfg: ActuatorConfig, name: Option<&str>) -> Result<ActuatorConfig, CliError> {
     match name {
-        Some(n) => {
-            Ok(cfg.with_energy_model(n.parse().map_err(|e: UnknownEnergyModel| e.to_string())?))
-        }
+        Some(n) => Ok(cfg.with_energy_model(n.parse()?)),
         None => Ok(cfg),
     }
 }
 
+/// Refuses an output that would overwrite one of `inputs` ([`crate::files::check_not_an_input`]).
+fn check_not_an_input(out: &Path, inputs: &[&Path]) -> Result<(), CliError> {
+    crate::files::check_not_an_input(out, inputs).map_err(CliError::from)
+}
+
 /// Runs one parsed command.
-pub fn run(cli: Cli) -> Result<(), String> {
+pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Simulate {
             scenario,
@@ -225,7 +230,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         } => {
             let mut inputs = read_files(&[Some(Path::new(&scenario)), config.as_deref()]);
             for o in [&csv, &out].into_iter().flatten() {
-                crate::files::check_not_an_input(o, &inputs)?;
+                check_not_an_input(o, &inputs)?;
                 inputs.push(o);
             }
             simulate(
@@ -244,7 +249,8 @@ pub fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Compare { a, b, plot, json } => compare(&a, &b, plot.as_deref(), json),
         Command::Recover { input, output } => {
-            let r = crate::recording::recover::recover(&input, &output)?;
+            let r =
+                crate::recording::recover::recover(&input, &output)?;
             if let Some(w) = &r.stopped_early {
                 eprintln!(
                     "warning: {} is truncated (no summary); reading stopped: {}",
@@ -265,12 +271,12 @@ pub fn run(cli: Cli) -> Result<(), String> {
             );
             Ok(())
         }
-        Command::Figures { out } => crate::figures::write_all(&out),
+        Command::Figures { out } => Ok(crate::figures::write_all(&out)?),
         Command::Models => {
             print!("{}", models_listing());
             Ok(())
         }
-        Command::Node { args } => crate::ros::run_node(args),
+        Command::Node { args } => Ok(crate::ros::run_node(args)?),
         Command::Steady {
             model,
             config,
@@ -280,11 +286,17 @@ pub fn run(cli: Cli) -> Result<(), String> {
         } => {
             crate::sim::steady::check_points(points)?;
             if let Some(c) = &csv {
-                crate::files::check_not_an_input(c, &read_files(&[config.as_deref()]))?;
+                check_not_an_input(c, &read_files(&[config.as_deref()]))?;
             }
             let model = parse_model(&model)?;
             let cfg = load_config(&config)?;
-            steady::steady(model, &cfg, muscle.as_deref(), points, csv.as_deref())
+            Ok(steady::steady(
+                model,
+                &cfg,
+                muscle.as_deref(),
+                points,
+                csv.as_deref(),
+            )?)
         }
     }
 }
@@ -309,13 +321,14 @@ fn simulate(
     substeps: Option<usize>,
     csv: Option<&Path>,
     out: Option<&Path>,
-) -> Result<(), String> {
+) -> Result<(), CliError> {
     let model = parse_model(model)?;
-    let run = crate::runs::run_scenario(scenario, cfg, model, rate_hz, substeps, out)?;
+    let run = crate::runs::run_scenario(scenario, cfg, model, rate_hz, substeps, out)
+        ?;
     if let Some(path) = csv {
         crate::csv::write_csv_to(&run, path)?;
     }
-    let last = run.last().ok_or("the scenario produced no ticks")?;
+    let last = run.last().ok_or(CliError::NoTicks)?;
     eprintln!(
         "{}: {} ticks of {} at {} Hz; final tendon force {:.3} N, fibre length {:.6} m",
         run.scenario,
@@ -329,7 +342,7 @@ fn simulate(
 }
 
 /// `replay`: the recorded inputs through a model (the recorded one unless named).
-fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<(), String> {
+fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<(), CliError> {
     let s = crate::runs::replay(input, model, out)?;
     if let Some(w) = &s.warning {
         eprintln!("warning: {w}");
@@ -354,13 +367,13 @@ fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<(), Stri
         );
     }
     if s.identical < s.compared {
-        return Err("the replay did not reproduce the recorded states".into());
+        return Err(CliError::ReplayDiffers);
     }
     Ok(())
 }
 
 /// `compare`: two recordings as a table or JSON, with an optional overlay plot.
-fn compare(a: &Path, b: &Path, plot: Option<&Path>, json: bool) -> Result<(), String> {
+fn compare(a: &Path, b: &Path, plot: Option<&Path>, json: bool) -> Result<(), CliError> {
     let plot_to = plot.map(|p| {
         (
             p,
@@ -372,10 +385,7 @@ fn compare(a: &Path, b: &Path, plot: Option<&Path>, json: bool) -> Result<(), St
         eprintln!("warning: {w}");
     }
     if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&c).map_err(|e| e.to_string())?
-        );
+        println!("{}", serde_json::to_string_pretty(&c)?);
     } else {
         print!("{}", c.table());
     }

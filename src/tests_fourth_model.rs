@@ -23,10 +23,11 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
+/// The command's error as `main` prints it (clap's usage errors too): the tests match texts.
 fn run_cli(args: &[&str]) -> Result<(), String> {
     let cli =
         Cli::try_parse_from(["muscle_actuator"].iter().chain(args)).map_err(|e| e.to_string())?;
-    cli::run(cli)
+    cli::run(cli).map_err(|e| e.to_string())
 }
 
 fn path(p: &Path) -> &str {
@@ -144,7 +145,8 @@ fn the_node_takes_it_as_its_model_parameter() {
     );
     let e = p
         .set("model", &ParameterValue::String("hill-cop".into()), false)
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("hill-copy"), "{e}");
     let usage = crate::ros::args::usage();
     let words = usage.split_whitespace().collect::<Vec<_>>().join(" ");

@@ -16,6 +16,34 @@ const SHOWN_FRACTIONS: [f64; 9] = [-1.0, -0.5, -0.25, 0.0, 0.1, 0.25, 0.5, 0.75,
 /// Grids of at most this many velocities are shown whole.
 const SHOW_ALL: usize = 11;
 
+/// Why `steady` failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SteadyError {
+    /// The configuration has no muscle to take by default.
+    #[error("the configuration has no muscle")]
+    NoMuscle,
+    /// `--muscle` names no muscle of the configuration.
+    #[error("{}", one_line(&format!("unknown muscle {name:?}: the configuration has {known}")))]
+    UnknownMuscle {
+        /// The name given, as an excerpt.
+        name: String,
+        /// The configuration's muscles, as excerpts, joined.
+        known: String,
+    },
+    /// The steady states cannot be computed.
+    #[error("muscle {muscle}: {reason}")]
+    Table {
+        /// The muscle, as an excerpt.
+        muscle: String,
+        /// Why.
+        #[source]
+        reason: crate::sim::steady::SteadyError,
+    },
+    /// The CSV cannot be written.
+    #[error(transparent)]
+    Csv(#[from] crate::csv::CsvWriteError),
+}
+
 /// Runs `steady` for the muscle named `muscle` (default: the first) of `cfg`: computes the rows,
 /// writes the CSV and the table (no table when the CSV goes to standard output).
 pub fn steady(
@@ -24,10 +52,12 @@ pub fn steady(
     muscle: Option<&str>,
     points: usize,
     csv: Option<&Path>,
-) -> Result<(), String> {
+) -> Result<(), SteadyError> {
     let m = select_muscle(cfg, muscle)?;
-    let rows = steady_table(&m.params, model, points)
-        .map_err(|e| format!("muscle {}: {e}", excerpt(&m.name)))?;
+    let rows = steady_table(&m.params, model, points).map_err(|reason| SteadyError::Table {
+        muscle: excerpt(&m.name),
+        reason,
+    })?;
     let to_stdout = csv.is_some_and(|p| p.as_os_str() == "-");
     if let Some(path) = csv {
         write_csv_to(&rows, path)?;
@@ -45,20 +75,16 @@ pub fn steady(
 fn select_muscle<'a>(
     cfg: &'a ActuatorConfig,
     name: Option<&str>,
-) -> Result<&'a MuscleConfig, String> {
+) -> Result<&'a MuscleConfig, SteadyError> {
     let Some(name) = name else {
-        return cfg
-            .muscles
-            .first()
-            .ok_or_else(|| "the configuration has no muscle".to_string());
+        return cfg.muscles.first().ok_or(SteadyError::NoMuscle);
     };
     cfg.muscles.iter().find(|m| m.name == name).ok_or_else(|| {
         let names: Vec<String> = cfg.muscles.iter().map(|m| excerpt(&m.name)).collect();
-        one_line(&format!(
-            "unknown muscle {:?}: the configuration has {}",
-            excerpt(name),
-            names.join(", ")
-        ))
+        SteadyError::UnknownMuscle {
+            name: excerpt(name),
+            known: names.join(", "),
+        }
     })
 }
 
@@ -176,8 +202,8 @@ pub fn csv_number(x: f64) -> String {
 }
 
 /// The CSV to the file `path` (`-`: standard output).
-fn write_csv_to(rows: &[SteadyRow], path: &Path) -> Result<(), String> {
-    crate::csv::write_text_to(path, |out| write_csv(rows, out)).map_err(|e| e.to_string())
+fn write_csv_to(rows: &[SteadyRow], path: &Path) -> Result<(), SteadyError> {
+    crate::csv::write_text_to(path, |out| write_csv(rows, out)).map_err(SteadyError::from)
 }
 
 #[cfg(test)]

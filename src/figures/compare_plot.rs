@@ -1,13 +1,20 @@
 //! `compare --plot`: the overlay of two recorded runs' muscle forces (A solid, B dashed).
 
+use super::error::FigureError;
 use super::plot::{write_chart, Chart, Series};
 use muscle_actuator_recording::runs::compare::series;
 use muscle_actuator_recording::runs::LoadedRun;
 use plotters::style::RGBColor;
 use std::path::Path;
 
-/// Overlay plot of the muscles' forces (A solid, B dashed) as `out` (PNG; an SVG beside it).
+/// [`draw`] as the recording crate's `compare_files` takes it: its `PlotFn` signature wants the
+/// error as text.
 pub fn plot(a: &LoadedRun, b: &LoadedRun, out: &Path) -> Result<(), String> {
+    draw(a, b, out).map_err(|e| e.to_string())
+}
+
+/// Overlay plot of the muscles' forces (A solid, B dashed) as `out` (PNG; an SVG beside it).
+pub fn draw(a: &LoadedRun, b: &LoadedRun, out: &Path) -> Result<(), FigureError> {
     let colors = [
         RGBColor(31, 119, 180),
         RGBColor(214, 39, 40),
@@ -41,10 +48,12 @@ pub fn plot(a: &LoadedRun, b: &LoadedRun, out: &Path) -> Result<(), String> {
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let stem = out
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .ok_or_else(|| format!("bad plot file name {}", out.display()))?;
+    let stem =
+        out.file_stem()
+            .and_then(|s| s.to_str())
+            .ok_or_else(|| FigureError::PlotFileName {
+                path: out.to_path_buf(),
+            })?;
     let title = format!(
         "Tendon force: {} (solid) vs {} (dashed)",
         a.meta.model.name(),

@@ -2,6 +2,7 @@
 //! beside its force, and the cost of stiffness, joint stiffness against metabolic power for
 //! isometric co-contraction of the elbow from rest to full excitation, per model.
 
+use super::error::FigureError;
 use super::palette::color;
 use super::plot::{write_chart, write_chart_with_legend, Chart, Series};
 use super::samples::{at, run, series};
@@ -41,7 +42,7 @@ pub fn cocontraction(
     cfg: &ActuatorConfig,
     model: ModelKind,
     level: f64,
-) -> Result<CocontractionPoint, String> {
+) -> Result<CocontractionPoint, FigureError> {
     let inputs = cfg
         .muscles
         .iter()
@@ -60,8 +61,10 @@ pub fn cocontraction(
         initial_force: 0.0,
         inputs,
     };
-    let r = sc.run(cfg, model, 1000.0, default_stepping(model))?;
-    let last = r.last().ok_or("no ticks")?;
+    let r = sc
+        .run(cfg, model, 1000.0, default_stepping(model))
+        ?;
+    let last = r.last().ok_or(FigureError::NoTicks)?;
     let sum = |f: fn(&MuscleSnapshot) -> f64| last.muscles.iter().map(f).sum::<f64>();
     Ok(CocontractionPoint {
         level,
@@ -78,7 +81,7 @@ pub(super) fn pulse_power_figure(
     cfg: &ActuatorConfig,
     pulse: &[(ModelKind, Run)],
     summary: &mut String,
-) -> Result<(), String> {
+) -> Result<(), FigureError> {
     let bhargava = run(
         "pulse",
         ModelKind::HILL,
@@ -118,7 +121,7 @@ pub(super) fn pulse_power_figure(
     let _ = writeln!(summary, "|---|---|---|---|");
     let rows = pulse.iter().map(|(m, r)| (m.name().to_string(), r));
     for (name, r) in rows.chain(std::iter::once(("hill + bhargava".to_string(), &bhargava))) {
-        let end = &r.last().ok_or("no ticks")?.muscles[0];
+        let end = &r.last().ok_or(FigureError::NoTicks)?.muscles[0];
         let _ = writeln!(
             summary,
             "| {name} | {:.1} | {:.2} | {:.2} |",
@@ -137,10 +140,11 @@ pub(super) fn stiffness_cost_figure(
     dir: &Path,
     cfg: &ActuatorConfig,
     summary: &mut String,
-) -> Result<(), String> {
-    let curve = |cfg: &ActuatorConfig, m: ModelKind| -> Result<Vec<CocontractionPoint>, String> {
-        LEVELS.iter().map(|&c| cocontraction(cfg, m, c)).collect()
-    };
+) -> Result<(), FigureError> {
+    let curve =
+        |cfg: &ActuatorConfig, m: ModelKind| -> Result<Vec<CocontractionPoint>, FigureError> {
+            LEVELS.iter().map(|&c| cocontraction(cfg, m, c)).collect()
+        };
     let mut curves = Vec::new();
     for m in ModelKind::all() {
         curves.push((m.label().to_string(), color(m), false, curve(cfg, m)?));

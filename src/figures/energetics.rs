@@ -6,6 +6,7 @@
 //! rate, and Huxley's (1957) closed form `Ė/Ė0 = 1 + (f1/g1)(1 - e^{-φ})/φ` at 1/4, 1/2 and
 //! 1 vmax. Its key numbers go to the summary.
 
+use super::error::FigureError;
 use super::palette::{color, BLACK, ORANGE};
 use super::plot::{write_panels, Chart, Markers, Panel, Series};
 use crate::physics::contractile::calibration::calibrate_exact;
@@ -53,21 +54,22 @@ impl Curve {
 }
 
 /// The four curves: Hill + Umberger, Hill + Bhargava, DM and the full model by cross-bridges.
-fn curves(p: &MuscleParams) -> Result<Vec<Curve>, String> {
-    let curve = |model: ModelKind, source: EnergySource, color, dashed| -> Result<Curve, String> {
-        let label = match source {
-            EnergySource::CrossBridge => format!("{}, cross-bridges", model.spec().short_label),
-            EnergySource::Phenomenological(m) => format!("{} + {}", model.label(), m.label()),
+fn curves(p: &MuscleParams) -> Result<Vec<Curve>, FigureError> {
+    let curve =
+        |model: ModelKind, source: EnergySource, color, dashed| -> Result<Curve, FigureError> {
+            let label = match source {
+                EnergySource::CrossBridge => format!("{}, cross-bridges", model.spec().short_label),
+                EnergySource::Phenomenological(m) => format!("{} + {}", model.label(), m.label()),
+            };
+            let table = steady_table(p, model, GRID_POINTS)?;
+            let rows = table.into_iter().filter(|r| r.source == source).collect();
+            Ok(Curve {
+                label,
+                color,
+                dashed,
+                rows,
+            })
         };
-        let table = steady_table(p, model, GRID_POINTS)?;
-        let rows = table.into_iter().filter(|r| r.source == source).collect();
-        Ok(Curve {
-            label,
-            color,
-            dashed,
-            rows,
-        })
-    };
     let phen = EnergySource::Phenomenological;
     Ok(vec![
         curve(
@@ -146,7 +148,7 @@ pub fn steady_energetics_figure(
     dir: &Path,
     p: &MuscleParams,
     summary: &mut String,
-) -> Result<(), String> {
+) -> Result<(), FigureError> {
     let curves = curves(p)?;
     let force_axis = ("Steady force", "F / Fmax");
     let force = panel(&curves, force_axis, true, |r| r.point.force_n / p.f_max);

@@ -7,6 +7,7 @@
 pub mod compare_plot;
 pub mod cost;
 pub mod energetics;
+pub mod error;
 pub mod palette;
 pub mod plot;
 pub mod samples;
@@ -20,6 +21,7 @@ use crate::physics::models::ModelKind;
 use crate::physics::params::MuscleParams;
 use crate::sim::scenario::Run;
 use crate::sim::MuscleSnapshot;
+pub use error::{FigureError, PlotError};
 use palette::{color, BLUE, RED};
 use plot::{write_chart, Chart, Series};
 use samples::{at, run, series};
@@ -57,8 +59,11 @@ fn swing(run: &Run, t0: f64, t1: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64
 
 /// Writes every figure and `summary.md` into `dir`, each file whole or not at all
 /// ([`crate::files::AtomicFile`]).
-pub fn write_all(dir: &Path) -> Result<(), String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+pub fn write_all(dir: &Path) -> Result<(), FigureError> {
+    std::fs::create_dir_all(dir).map_err(|source| FigureError::CreateDir {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     let cfg = ActuatorConfig::default();
     let mut summary = String::from("# Figures: the numbers they show\n\n");
     pulse_figures(dir, &cfg, &mut summary)?;
@@ -66,15 +71,20 @@ pub fn write_all(dir: &Path) -> Result<(), String> {
     force_velocity_figure(dir, &cfg, &mut summary)?;
     energetics::steady_energetics_figure(dir, &cfg.muscles[0].params, &mut summary)?;
     cost::stiffness_cost_figure(dir, &cfg, &mut summary)?;
-    crate::files::write_atomically(&dir.join("summary.md"), summary.as_bytes())
-        .map_err(|e| format!("cannot write {}: {e}", dir.join("summary.md").display()))?;
+    let path = dir.join("summary.md");
+    crate::files::write_atomically(&path, summary.as_bytes())
+        .map_err(|source| FigureError::Write { path, source })?;
     print!("{summary}");
     Ok(())
 }
 
 /// Figs. 4 and 5 and the stiffness under the pulse, every model; their table and the
 /// differences between neighbours in the model list.
-fn pulse_figures(dir: &Path, cfg: &ActuatorConfig, summary: &mut String) -> Result<(), String> {
+fn pulse_figures(
+    dir: &Path,
+    cfg: &ActuatorConfig,
+    summary: &mut String,
+) -> Result<(), FigureError> {
     let pulse: Vec<(ModelKind, Run)> = ModelKind::all()
         .map(|m| run("pulse", m, cfg).map(|r| (m, r)))
         .collect::<Result<_, _>>()?;
@@ -176,7 +186,11 @@ fn pulse_differences(pulse: &[(ModelKind, Run)], summary: &mut String) {
 
 /// Fig. 6: the energies under a sinusoidal pull at 10 Hz and 100 Hz (the Hill model: the
 /// passive muscle is the same in every model).
-fn energy_figures(dir: &Path, cfg: &ActuatorConfig, summary: &mut String) -> Result<(), String> {
+fn energy_figures(
+    dir: &Path,
+    cfg: &ActuatorConfig,
+    summary: &mut String,
+) -> Result<(), FigureError> {
     let _ = writeln!(
         summary,
         "## Energy (Fig. 6): passive muscle, tendon pulled by 150 + 150 sin(2πft) N\n"
@@ -224,14 +238,14 @@ fn energy_figures(dir: &Path, cfg: &ActuatorConfig, summary: &mut String) -> Res
 /// The steady force–velocity curves at full activation and optimal length, F / Fmax against
 /// v_s / vmax from -1 to 1: Hill's g(v) (docs/model.md §3), the Distribution-Moment steady states
 /// (§6) and the exact Huxley ones (§7), on one grid.
-fn steady_curves(p: &MuscleParams) -> Result<[Vec<(f64, f64)>; 3], String> {
-    let dm = calibrate_distribution_moment(p).map_err(|e| e.to_string())?;
+fn steady_curves(p: &MuscleParams) -> Result<[Vec<(f64, f64)>; 3], FigureError> {
+    let dm = calibrate_distribution_moment(p)?;
     let ex = calibrate_exact(p);
     let shortening: Vec<f64> = (0..=50).map(|i| i as f64 / 50.0).collect();
     let lengthening: Vec<f64> = (1..=50).map(|i| -(i as f64) / 50.0).collect();
-    let dm_curve = |vs: &[f64]| -> Result<Vec<(f64, f64)>, String> {
+    let dm_curve = |vs: &[f64]| -> Result<Vec<(f64, f64)>, FigureError> {
         let us: Vec<f64> = vs.iter().map(|v| v * p.v_max / dm.l_h).collect();
-        let q = steady_curve(&dm.rates, &us).map_err(|e| e.to_string())?;
+        let q = steady_curve(&dm.rates, &us)?;
         Ok(vs
             .iter()
             .zip(q)
@@ -269,7 +283,7 @@ fn force_velocity_figure(
     dir: &Path,
     cfg: &ActuatorConfig,
     summary: &mut String,
-) -> Result<(), String> {
+) -> Result<(), FigureError> {
     let [hill_points, dm_points, exact_points] = steady_curves(&cfg.muscles[0].params)?;
     write_chart(
         dir,

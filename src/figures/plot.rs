@@ -1,6 +1,7 @@
 //! A line chart written as PNG and SVG (plotters), with axes, units and a legend; several side
 //! by side as the panels of one figure, with markers over their curves.
 
+use super::error::{FigureError, PlotError};
 use crate::files::AtomicFile;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -89,15 +90,19 @@ fn bounds<'a>(points: impl Iterator<Item = &'a [(f64, f64)]>) -> ((f64, f64), (f
     ((x0, x1.max(x0 + 1e-12)), (y0 - pad, y1 + pad))
 }
 
+/// The backend's error as [`PlotError`].
+fn err<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>) -> PlotError {
+    PlotError(e.to_string())
+}
+
 fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     chart: &Chart,
     legend: SeriesLabelPosition,
-) -> Result<(), String>
+) -> Result<(), PlotError>
 where
     DB::ErrorType: 'static,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
     root.fill(&WHITE).map_err(err)?;
     draw_panel(&root, chart, &[], legend)?;
     root.present().map_err(err)?;
@@ -110,11 +115,10 @@ fn draw_panel<DB: DrawingBackend>(
     chart: &Chart,
     markers: &[Markers],
     legend: SeriesLabelPosition,
-) -> Result<(), String>
+) -> Result<(), PlotError>
 where
     DB::ErrorType: 'static,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
     let curves = chart.series.iter().map(|s| &s.points[..]);
     let ((x0, x1), (y0, y1)) = bounds(curves.chain(markers.iter().map(|m| &m.points[..])));
     let mut c = ChartBuilder::on(area)
@@ -158,11 +162,10 @@ where
 fn draw_curve<'a, DB: DrawingBackend + 'a>(
     c: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     s: &Series,
-) -> Result<(), String>
+) -> Result<(), PlotError>
 where
     DB::ErrorType: 'static,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
     let style = ShapeStyle::from(&s.color).stroke_width(2);
     let pts = s
         .points
@@ -196,11 +199,10 @@ where
 fn draw_panels<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     panels: &[Panel],
-) -> Result<(), String>
+) -> Result<(), PlotError>
 where
     DB::ErrorType: 'static,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("plot: {e}");
     root.fill(&WHITE).map_err(err)?;
     for (area, panel) in root.split_evenly((1, panels.len())).iter().zip(panels) {
         draw_panel(area, &panel.chart, &panel.markers, panel.legend.clone())?;
@@ -210,7 +212,7 @@ where
 }
 
 /// Writes `stem.png` and `stem.svg` in `dir`, the legend in the upper right corner.
-pub fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> Result<(), String> {
+pub fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> Result<(), FigureError> {
     write_chart_with_legend(dir, stem, chart, SeriesLabelPosition::UpperRight)
 }
 
@@ -221,7 +223,7 @@ pub fn write_chart_with_legend(
     stem: &str,
     chart: &Chart,
     legend: SeriesLabelPosition,
-) -> Result<(), String> {
+) -> Result<(), FigureError> {
     write_png_svg(
         dir,
         stem,
@@ -232,7 +234,7 @@ pub fn write_chart_with_legend(
 }
 
 /// Writes `stem.png` and `stem.svg` in `dir`: the panels side by side, each `PANEL_PX` (pixels).
-pub fn write_panels(dir: &Path, stem: &str, panels: &[Panel]) -> Result<(), String> {
+pub fn write_panels(dir: &Path, stem: &str, panels: &[Panel]) -> Result<(), FigureError> {
     let size = (PANEL_PX.0 * panels.len().max(1) as u32, PANEL_PX.1);
     write_png_svg(
         dir,
@@ -250,23 +252,25 @@ fn write_png_svg(
     dir: &Path,
     stem: &str,
     size: (u32, u32),
-    png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
-    svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
-) -> Result<(), String> {
+    png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), PlotError>,
+    svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), PlotError>,
+) -> Result<(), FigureError> {
     register_font();
     let create = |ext: &str| {
         let path = dir.join(format!("{stem}.{ext}"));
-        AtomicFile::create(&path).map_err(|e| format!("cannot create {}: {e}", path.display()))
+        AtomicFile::create(&path).map_err(|source| FigureError::CreateFile { path, source })
     };
     let (png_out, svg_out) = (create("png")?, create("svg")?);
-    png(BitMapBackend::new(png_out.path(), size).into_drawing_area())
-        .map_err(|e| format!("{}: {e}", png_out.target().display()))?;
-    svg(SVGBackend::new(svg_out.path(), size).into_drawing_area())
-        .map_err(|e| format!("{}: {e}", svg_out.target().display()))?;
+    let drawn = |out: &AtomicFile| {
+        let path = out.target().to_path_buf();
+        move |source| FigureError::Draw { path, source }
+    };
+    png(BitMapBackend::new(png_out.path(), size).into_drawing_area()).map_err(drawn(&png_out))?;
+    svg(SVGBackend::new(svg_out.path(), size).into_drawing_area()).map_err(drawn(&svg_out))?;
     for out in [png_out, svg_out] {
         let path = out.target().to_path_buf();
         out.commit()
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            .map_err(|source| FigureError::Write { path, source })?;
     }
     Ok(())
 }

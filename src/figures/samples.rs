@@ -1,6 +1,7 @@
 //! The runs the figures read and the samples they take: a built-in scenario at 1 kHz, the first
 //! muscle's signal as a time series or at one time.
 
+use super::error::FigureError;
 use crate::config::ActuatorConfig;
 use crate::physics::models::ModelKind;
 use crate::sim::scenario::{Run, Scenario};
@@ -8,10 +9,10 @@ use crate::sim::simulation::default_stepping;
 use crate::sim::MuscleSnapshot;
 
 /// The built-in scenario `name` with `model` on `cfg`, at 1 kHz with the model's stepping.
-pub fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, String> {
+pub fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, FigureError> {
     let sc = Scenario::built_in(name, &cfg.muscles[0].params)?;
     sc.run(cfg, model, 1000.0, default_stepping(model))
-        .map_err(|e| e.to_string())
+        .map_err(FigureError::from)
 }
 
 /// The first muscle's signal `f` over the run, (time s, value).

@@ -57,18 +57,24 @@ impl ClockMode {
     }
 }
 
+/// A `clock` value that names no clock mode.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("clock {name:?} is not one of {}", ClockMode::NAMES.join(", "))]
+pub struct UnknownClock {
+    /// The value given, as an excerpt.
+    pub name: String,
+}
+
 impl std::str::FromStr for ClockMode {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownClock;
+    fn from_str(s: &str) -> Result<Self, UnknownClock> {
         match s {
             "wall" => Ok(ClockMode::Wall),
             "sim" => Ok(ClockMode::Sim),
             "lockstep" => Ok(ClockMode::Lockstep),
-            other => Err(format!(
-                "clock {:?} is not one of {}",
-                crate::text::excerpt(other),
-                ClockMode::NAMES.join(", ")
-            )),
+            other => Err(UnknownClock {
+                name: crate::text::excerpt(other),
+            }),
         }
     }
 }

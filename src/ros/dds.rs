@@ -29,16 +29,113 @@ use std::net::{IpAddr, Ipv4Addr};
 /// Highest valid `ROS_DOMAIN_ID` (as rmw implementations accept with default ports).
 const MAX_DOMAIN_ID: u16 = 232;
 
+/// Why the node cannot join DDS. A DDS library's own error is quoted as it prints itself
+/// (`{:?}`), as the `reason` of the step that failed.
+#[derive(Debug, thiserror::Error)]
+pub enum DdsError {
+    /// `ROS_DOMAIN_ID` is not an integer from 0 to `max`.
+    #[error("ROS_DOMAIN_ID={value:?} is invalid: expected an integer from 0 to {max}")]
+    DomainId {
+        /// The variable's value.
+        value: String,
+        /// The highest valid domain.
+        max: u16,
+    },
+    /// The DDS participant cannot be created.
+    #[error("cannot create the DDS participant (domain {domain}): {reason}")]
+    Participant {
+        /// The domain.
+        domain: u16,
+        /// The library's error.
+        reason: String,
+    },
+    /// The ROS 2 context cannot be created on the participant.
+    #[error("cannot create the ROS 2 context: {reason}")]
+    Context {
+        /// The library's error.
+        reason: String,
+    },
+    /// A resolved topic or service name the library refuses.
+    #[error("invalid name {name:?}: {reason}")]
+    InvalidName {
+        /// The resolved name.
+        name: String,
+        /// The library's error.
+        reason: String,
+    },
+    /// A topic cannot be created.
+    #[error("cannot create topic {name}: {reason}")]
+    Topic {
+        /// The resolved name.
+        name: String,
+        /// The library's error.
+        reason: String,
+    },
+    /// A subscription cannot be created.
+    #[error("cannot subscribe to {topic}: {reason}")]
+    Subscribe {
+        /// The resolved topic.
+        topic: String,
+        /// The library's error.
+        reason: String,
+    },
+    /// A publisher cannot be created.
+    #[error("cannot publish {topic}: {reason}")]
+    Publish {
+        /// The resolved topic.
+        topic: String,
+        /// The library's error.
+        reason: String,
+    },
+    /// A service server cannot be created.
+    #[error("cannot create service {name}: {reason}")]
+    Service {
+        /// The resolved name.
+        name: String,
+        /// The library's error.
+        reason: String,
+    },
+    /// An endpoint the node always has was not made (a bug of the endpoints' table).
+    #[error("internal error: endpoint {endpoint} was not made")]
+    NotMade {
+        /// The endpoint, as `{:?}` prints it.
+        endpoint: String,
+    },
+    /// The node's namespace and name the library refuses.
+    #[error("invalid node name {fqn}: {reason}")]
+    NodeName {
+        /// The fully qualified name.
+        fqn: String,
+        /// The library's error.
+        reason: String,
+    },
+    /// The node cannot be created.
+    #[error("cannot create node {fqn}: {reason}")]
+    Node {
+        /// The fully qualified name.
+        fqn: String,
+        /// The library's error.
+        reason: String,
+    },
+    /// The node's spinner cannot start.
+    #[error("cannot start the node's spinner: {reason}")]
+    Spinner {
+        /// The library's error.
+        reason: String,
+    },
+}
+
 /// The DDS domain from `ROS_DOMAIN_ID` (default 0).
-pub fn domain_id_from_env() -> Result<u16, String> {
+pub fn domain_id_from_env() -> Result<u16, DdsError> {
     match std::env::var("ROS_DOMAIN_ID") {
         Err(_) => Ok(0),
         Ok(s) if s.trim().is_empty() => Ok(0),
         Ok(s) => match s.trim().parse::<u16>() {
             Ok(d) if d <= MAX_DOMAIN_ID => Ok(d),
-            _ => Err(format!(
-                "ROS_DOMAIN_ID={s:?} is invalid: expected an integer from 0 to {MAX_DOMAIN_ID}"
-            )),
+            _ => Err(DdsError::DomainId {
+                value: s,
+                max: MAX_DOMAIN_ID,
+            }),
         },
     }
 }
@@ -66,7 +163,7 @@ impl Dds {
     /// Unless SUBNET, discovery stays on this host: only 127.0.0.1 is announced and every UDP
     /// socket is bound to it (rustdds binds 0.0.0.0 otherwise, open to any host), so there is no
     /// multicast listener and discovery is unicast on loopback.
-    pub(crate) fn start() -> Result<Self, String> {
+    pub(crate) fn start() -> Result<Self, DdsError> {
         let domain = domain_id_from_env()?;
         let local = discovery_is_local();
         let mut builder = DomainParticipantBuilder::new(domain);
@@ -75,11 +172,14 @@ impl Dds {
                 .with_only_networks([IpAddr::V4(Ipv4Addr::LOCALHOST)])
                 .with_bind_address(Ipv4Addr::LOCALHOST);
         }
-        let participant = builder
-            .build()
-            .map_err(|e| format!("cannot create the DDS participant (domain {domain}): {e:?}"))?;
-        let context = Context::from_domain_participant(participant)
-            .map_err(|e| format!("cannot create the ROS 2 context: {e:?}"))?;
+        let participant = builder.build().map_err(|e| DdsError::Participant {
+            domain,
+            reason: format!("{e:?}"),
+        })?;
+        let context =
+            Context::from_domain_participant(participant).map_err(|e| DdsError::Context {
+                reason: format!("{e:?}"),
+            })?;
         Ok(Self {
             context,
             domain,
@@ -108,8 +208,11 @@ fn profile(qos: Qos) -> QosProfile {
     }
 }
 
-fn dds_name(resolved: &str) -> Result<Name, String> {
-    Name::parse(resolved).map_err(|e| format!("invalid name {resolved:?}: {e:?}"))
+fn dds_name(resolved: &str) -> Result<Name, DdsError> {
+    Name::parse(resolved).map_err(|e| DdsError::InvalidName {
+        name: resolved.to_string(),
+        reason: format!("{e:?}"),
+    })
 }
 
 /// The node's topics and services.
@@ -185,7 +288,7 @@ impl Maker<'_> {
         e: Endpoint,
         k: usize,
         relative: &str,
-    ) -> Result<(rustdds::Topic, String, QosProfile), String> {
+    ) -> Result<(rustdds::Topic, String, QosProfile), DdsError> {
         let spec = spec_of(e);
         let resolved = self.resolve(relative);
         let (pkg, ty) = spec.package_and_type();
@@ -193,7 +296,10 @@ impl Maker<'_> {
         let t = self
             .node
             .create_topic(&dds_name(&resolved)?, MessageTypeName::new(pkg, ty), &qos)
-            .map_err(|e| format!("cannot create topic {resolved}: {e:?}"))?;
+            .map_err(|e| DdsError::Topic {
+                name: resolved.clone(),
+                reason: format!("{e:?}"),
+            })?;
         self.names.add(e, k, resolved.clone());
         Ok((t, resolved, qos))
     }
@@ -202,7 +308,7 @@ impl Maker<'_> {
     fn subscribe<M: 'static + DeserializeOwned>(
         &mut self,
         e: Endpoint,
-    ) -> Result<Option<Subscription<M>>, String> {
+    ) -> Result<Option<Subscription<M>>, DdsError> {
         if !self.has(spec_of(e).when) {
             return Ok(None);
         }
@@ -214,15 +320,18 @@ impl Maker<'_> {
         e: Endpoint,
         k: usize,
         relative: &str,
-    ) -> Result<Subscription<M>, String> {
+    ) -> Result<Subscription<M>, DdsError> {
         let (t, resolved, qos) = self.topic(e, k, relative)?;
         self.node
             .create_subscription::<M>(&t, Some(qos))
-            .map_err(|e| format!("cannot subscribe to {resolved}: {e:?}"))
+            .map_err(|e| DdsError::Subscribe {
+                topic: resolved,
+                reason: format!("{e:?}"),
+            })
     }
 
     /// A publisher of `e`, if this node has it.
-    fn publish<M: Serialize>(&mut self, e: Endpoint) -> Result<Option<Publisher<M>>, String> {
+    fn publish<M: Serialize>(&mut self, e: Endpoint) -> Result<Option<Publisher<M>>, DdsError> {
         if !self.has(spec_of(e).when) {
             return Ok(None);
         }
@@ -230,11 +339,14 @@ impl Maker<'_> {
         self.node
             .create_publisher::<M>(&t, Some(qos))
             .map(Some)
-            .map_err(|e| format!("cannot publish {resolved}: {e:?}"))
+            .map_err(|e| DdsError::Publish {
+                topic: resolved,
+                reason: format!("{e:?}"),
+            })
     }
 
     /// The server of `e`.
-    fn serve<Req, Resp>(&mut self, e: Endpoint) -> Result<Server<Req, Resp>, String>
+    fn serve<Req, Resp>(&mut self, e: Endpoint) -> Result<Server<Req, Resp>, DdsError>
     where
         Req: 'static + ros2_client::Message + Clone,
         Resp: 'static + ros2_client::Message,
@@ -252,7 +364,10 @@ impl Maker<'_> {
                 qos.clone(),
                 qos,
             )
-            .map_err(|e| format!("cannot create service {resolved}: {e:?}"))?;
+            .map_err(|e| DdsError::Service {
+                name: resolved.clone(),
+                reason: format!("{e:?}"),
+            })?;
         self.names.add(e, 0, resolved);
         Ok(server)
     }
@@ -275,8 +390,10 @@ impl Maker<'_> {
 }
 
 /// Every `Some` of a table entry the node always has.
-fn always<T>(e: Endpoint, made: Option<T>) -> Result<T, String> {
-    made.ok_or_else(|| format!("internal error: endpoint {e:?} was not made"))
+fn always<T>(e: Endpoint, made: Option<T>) -> Result<T, DdsError> {
+    made.ok_or_else(|| DdsError::NotMade {
+        endpoint: format!("{e:?}"),
+    })
 }
 
 impl Endpoints {
@@ -289,7 +406,7 @@ impl Endpoints {
         clock_mode: ClockMode,
         driven_joints: bool,
         logger: &Logger,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, DdsError> {
         let mut m = Maker {
             node,
             setup,

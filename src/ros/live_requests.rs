@@ -216,10 +216,24 @@ fn to_json(name: &str, v: &ParameterValue) -> Value {
     p
 }
 
+/// A client's JSON value that is no value of this node's parameters.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+enum UnsupportedValue {
+    /// `null`.
+    #[error("a parameter cannot be unset")]
+    Null,
+    /// An array or an object.
+    #[error("this node has no array or object parameters")]
+    Compound,
+}
+
 /// A client's value as a ROS parameter: a number is a double when it says `float64` or the
 /// parameter is one (Foxglove's parameter panel sends `500` for a double of 500.0), else an
 /// integer when it is whole.
-fn from_json(p: &ParameterIn, current: Option<&ParameterValue>) -> Result<ParameterValue, String> {
+fn from_json(
+    p: &ParameterIn,
+    current: Option<&ParameterValue>,
+) -> Result<ParameterValue, UnsupportedValue> {
     let double =
         p.ty.as_deref() == Some("float64") || matches!(current, Some(ParameterValue::Double(_)));
     Ok(match &p.value {
@@ -229,10 +243,8 @@ fn from_json(p: &ParameterIn, current: Option<&ParameterValue>) -> Result<Parame
             (false, Some(i)) => ParameterValue::Integer(i),
             _ => ParameterValue::Double(n.as_f64().unwrap_or(f64::NAN)),
         },
-        Value::Null => return Err("a parameter cannot be unset".into()),
-        Value::Array(_) | Value::Object(_) => {
-            return Err("this node has no array or object parameters".into())
-        }
+        Value::Null => return Err(UnsupportedValue::Null),
+        Value::Array(_) | Value::Object(_) => return Err(UnsupportedValue::Compound),
     })
 }
 
@@ -266,7 +278,9 @@ fn bounded(why: &str) -> String {
 /// error status with the store's reason. With an `id`, the values after are the answer.
 fn set_parameters(node: &Node, params: &[ParameterIn], id: Option<&str>, answer: &Answer) {
     for p in params {
+        // The store's refusal is ros2-client's reason text.
         let result = from_json(p, node.get_parameter(&p.name).as_ref())
+            .map_err(|e| e.to_string())
             .and_then(|v| node.set_parameter(&p.name, v));
         if let Err(why) = result {
             answer.text(protocol::status(

@@ -24,6 +24,7 @@
 //! - `live`: the live view, a Foxglove WebSocket server (off the tick thread);
 //!   `live_requests`: what its clients ask, answered on the executor;
 //! - `signals`: SIGINT and SIGTERM;
+//! - `error`: why the node cannot run ([`NodeError`]);
 //! - `node`: the node's main, which wires these together.
 
 pub(crate) mod args;
@@ -31,6 +32,7 @@ pub(crate) mod clock;
 pub(crate) mod dds;
 pub(crate) mod diagnostics;
 pub(crate) mod endpoints;
+mod error;
 pub(crate) mod live;
 mod live_requests;
 pub(crate) mod logging;
@@ -49,10 +51,17 @@ mod tasks;
 mod threads;
 pub(crate) mod tick;
 
-pub use args::DEFAULT_NODE_NAME;
+pub use args::{ArgsError, FlowTooDeep, NameError, ParamsFileError, ValueError, DEFAULT_NODE_NAME};
+pub use clock::UnknownClock;
+pub use dds::DdsError;
+pub use error::NodeError;
+pub use params::{BuildError, ParameterError};
+pub use setup::SetupError;
+pub use signals::SignalError;
+pub use threads::ThreadsError;
 
 /// Runs the node until SIGINT/SIGTERM. `args` is everything after `node` on the command line
 /// (`--ros-args ...`). Errors (bad argument, bad parameter, DDS set-up) come back as one line.
-pub fn run_node(args: Vec<String>) -> Result<(), String> {
+pub fn run_node(args: Vec<String>) -> Result<(), NodeError> {
     node::run(&args)
 }

@@ -2,9 +2,10 @@
 //! executor, and the stop. Each piece lives in its own module; this one only wires them.
 
 use super::clock::{ClockMode, NodeClock};
-use super::dds::{Dds, Endpoints, Served};
+use super::dds::{Dds, DdsError, Endpoints, Served};
 use super::diagnostics::{self, DiagSources, InputStats};
 use super::endpoints::{Endpoint, Names};
+use super::error::NodeError;
 use super::live::{Catalogue, LiveOptions, LiveStatus, LiveView, Request};
 use super::live_requests;
 use super::logging::{Logger, Reporter};
@@ -27,7 +28,7 @@ use std::sync::{Arc, OnceLock};
 
 /// Runs the node (see [`super::run_node`]): the set-up, the DDS endpoints, the recording, the
 /// threads, the executor until a stop signal, and the stop.
-pub fn run(argv: &[String]) -> Result<(), String> {
+pub fn run(argv: &[String]) -> Result<(), NodeError> {
     let Some(setup) = setup(argv)? else {
         return Ok(());
     };
@@ -51,9 +52,9 @@ pub fn run(argv: &[String]) -> Result<(), String> {
         &logger,
     )?;
     let (live, live_error) = start_live(&setup, &dds, &endpoints.names, clock.mode(), &logger);
-    let spinner = node
-        .spinner()
-        .map_err(|e| format!("cannot start the node's spinner: {e:?}"))?;
+    let spinner = node.spinner().map_err(|e| DdsError::Spinner {
+        reason: format!("{e:?}"),
+    })?;
 
     // Tick 0's stamp, the recording's tick origin: the loop starts right after.
     let tick_origin_ns = clock.start_origin_ns();
@@ -154,7 +155,7 @@ fn start_live(
                 "live view (foxglove) not started: {e}; the node runs on without it \
                  (-p foxglove_port:=N for another port, 0 for none)"
             ));
-            (None, e)
+            (None, e.to_string())
         }
     }
 }
@@ -164,7 +165,7 @@ fn create_node(
     setup: &Setup,
     dds: &Dds,
     shared: &Arc<NodeState>,
-) -> Result<ros2_client::Node, String> {
+) -> Result<ros2_client::Node, DdsError> {
     let mut options = NodeOptions::new()
         .enable_rosout(!setup.ros_args.disable_rosout)
         .start_parameter_services(true);
@@ -172,14 +173,20 @@ fn create_node(
         // Reported by the parameter services as given (the store's default is false).
         options = options.declare_parameter("use_sim_time", ParameterValue::Boolean(true));
     }
-    let node_name = NodeName::new(&setup.namespace, &setup.name)
-        .map_err(|e| format!("invalid node name {}: {e:?}", setup.fqn))?;
+    let node_name =
+        NodeName::new(&setup.namespace, &setup.name).map_err(|e| DdsError::NodeName {
+            fqn: setup.fqn.clone(),
+            reason: format!("{e:?}"),
+        })?;
     dds.context
         .new_node(
             node_name,
             param_callbacks::attach(shared, options, &setup.params),
         )
-        .map_err(|e| format!("cannot create node {}: {e:?}", setup.fqn))
+        .map_err(|e| DdsError::Node {
+            fqn: setup.fqn.clone(),
+            reason: format!("{e:?}"),
+        })
 }
 
 /// What the set-up noted before the logger existed, and `use_sim_time` where the node is the
@@ -316,7 +323,7 @@ fn stop(
     rec: Option<RecordTx>,
     signals: &StopSignals,
     logger: &Logger,
-) -> Result<(), String> {
+) -> Result<(), NodeError> {
     let summary = threads.stop(logger)?;
     threads::log_summary(logger, &summary);
     drop(rec);
@@ -400,7 +407,7 @@ fn start_recording(
         }
         Err(e) => {
             logger.error(&format!("not recording: {e}"));
-            (None, e)
+            (None, e.to_string())
         }
     }
 }

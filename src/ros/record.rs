@@ -74,6 +74,20 @@ impl RecordTx {
     }
 }
 
+/// Why the node's recording cannot start.
+#[derive(Debug, thiserror::Error)]
+pub enum RecordError {
+    /// A channel of the layout is refused (a name or type).
+    #[error(transparent)]
+    Layout(#[from] crate::recording::schema::SchemaError),
+    /// The run's metadata cannot be written as a record.
+    #[error(transparent)]
+    Metadata(#[from] crate::runs::metadata::MetadataError),
+    /// The file cannot be created or written.
+    #[error(transparent)]
+    Start(#[from] crate::recording::RecordingError),
+}
+
 /// A running recording.
 pub struct NodeRecorder {
     pub recorder: Recorder,
@@ -109,11 +123,13 @@ pub fn file_path(p: &NodeParams, fqn: &str, start_ns: i64) -> PathBuf {
 
 /// The recording's channels: every endpoint the node has that the table records
 /// ([`super::endpoints::ENDPOINTS`]), in the table's order, under its resolved name.
-pub(crate) fn layout(names: &Names) -> Result<Layout, String> {
+pub(crate) fn layout(names: &Names) -> Result<Layout, RecordError> {
     let mut layout = Layout::new();
     for r in names.in_table_order() {
         if let Some(ch) = r.channel() {
-            layout.add(ch, &r.name, r.spec().type_name)?;
+            layout
+                .add(ch, &r.name, r.spec().type_name)
+                .map_err(RecordError::Layout)?;
         }
     }
     Ok(layout)
@@ -127,7 +143,7 @@ pub(crate) fn start(
     actuator: &Actuator,
     clock: &Arc<NodeClock>,
     tick_origin_ns: i64,
-) -> Result<NodeRecorder, String> {
+) -> Result<NodeRecorder, RecordError> {
     let start_ns = time::now_ns();
     let params_json = {
         let mut m = serde_json::Map::new();
@@ -161,12 +177,14 @@ pub(crate) fn start(
         joints: actuator.joint_names().to_vec(),
     };
     let layout = layout(names)?;
+    let metadata = meta.to_map().map_err(RecordError::Metadata)?;
     let recorder = Recorder::start(
         &file_path(p, fqn, start_ns),
         layout.specs(),
-        vec![(runs::METADATA_NAME.into(), meta.to_map()?)],
+        vec![(runs::METADATA_NAME.into(), metadata)],
         RecorderOptions::default(),
-    )?;
+    )
+    .map_err(RecordError::Start)?;
     Ok(NodeRecorder {
         recorder,
         layout: Arc::new(layout),

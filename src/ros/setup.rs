@@ -3,8 +3,30 @@
 //! arguments.
 
 use super::args::DEFAULT_NODE_NAME;
-use super::args::{self, RosArgs};
-use super::params::{self, NodeParams};
+use super::args::{self, ArgsError, RosArgs};
+use super::params::{self, NodeParams, ParameterError};
+
+/// Why the command line gives no set-up.
+#[derive(Debug, thiserror::Error)]
+pub enum SetupError {
+    /// An argument, a remap rule, a `-p` value or a parameters file is refused.
+    #[error(transparent)]
+    Args(#[from] ArgsError),
+    /// `use_sim_time` given a value other than a bool.
+    #[error("{from}: use_sim_time must be a bool")]
+    UseSimTimeNotBool {
+        /// Where the value came from (`-p ...` or the file).
+        from: String,
+    },
+    /// A declared parameter given a value it refuses.
+    #[error("{from}: {source}")]
+    Parameter {
+        /// Where the value came from (`-p ...` or the file).
+        from: String,
+        /// Why it is refused.
+        source: ParameterError,
+    },
+}
 
 /// Everything the node needs, resolved from the command line before DDS starts.
 #[derive(Debug)]
@@ -22,7 +44,7 @@ pub(crate) struct Setup {
 }
 
 /// The set-up `argv` asks for; `None` after printing the usage for `--help`.
-pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
+pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, SetupError> {
     let ros_args = RosArgs::parse(argv)?;
     if ros_args.help {
         println!("{}", args::usage());
@@ -37,7 +59,7 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
     let mut p = NodeParams::default();
     let mut ignored = Vec::new();
     let mut use_sim_time = false;
-    for a in ros_args.resolved_params(&fqn)? {
+    for a in ros_args.resolved_params(&fqn).map_err(ArgsError::from)? {
         // As rclcpp and rclpy do (without `allow_undeclared_parameters`), a parameter this
         // node does not declare is ignored: a shared file holds other nodes' parameters.
         if a.name != params::table::USE_SIM_TIME && params::spec(&a.name).is_none() {
@@ -51,12 +73,15 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, String> {
         if a.name == params::table::USE_SIM_TIME {
             match a.value {
                 ros2_client::ParameterValue::Boolean(b) => use_sim_time = b,
-                _ => return Err(format!("{}: use_sim_time must be a bool", a.source)),
+                _ => return Err(SetupError::UseSimTimeNotBool { from: a.source }),
             }
             continue;
         }
         p.set(&a.name, &a.value, true)
-            .map_err(|e| format!("{}: {e}", a.source))?;
+            .map_err(|source| SetupError::Parameter {
+                from: a.source.clone(),
+                source,
+            })?;
     }
     Ok(Some(Setup {
         namespace,
@@ -88,7 +113,7 @@ mod tests {
             .split_whitespace()
             .map(String::from)
             .collect();
-        assert!(setup(&bad).unwrap_err().contains("rate_hz"));
+        assert!(setup(&bad).unwrap_err().to_string().contains("rate_hz"));
         // An undeclared parameter is ignored with a note; a declared one keeps its checks.
         let unknown: Vec<String> = "--ros-args -p colour:=red -p model:=hill"
             .split_whitespace()
@@ -102,7 +127,7 @@ mod tests {
             .split_whitespace()
             .map(String::from)
             .collect();
-        assert!(setup(&bad).unwrap_err().contains("record"));
+        assert!(setup(&bad).unwrap_err().to_string().contains("record"));
         // use_sim_time: a bool, the last value wins; with clock wall it follows /clock.
         let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };
         let s = setup(&args(
@@ -125,6 +150,7 @@ mod tests {
         assert!(!setup(&args("--ros-args")).unwrap().unwrap().use_sim_time);
         assert!(setup(&args("--ros-args -p use_sim_time:=1"))
             .unwrap_err()
+            .to_string()
             .contains("use_sim_time must be a bool"));
     }
 }

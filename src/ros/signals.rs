@@ -11,6 +11,17 @@ const SIGNAL_INSIST_AFTER: Duration = Duration::from_secs(2);
 /// Longest the recording may take to finish on an insisted stop.
 const EMERGENCY_FINISH: Duration = Duration::from_secs(2);
 
+/// Why the stop signals cannot be handled.
+#[derive(Debug, thiserror::Error)]
+pub enum SignalError {
+    /// The handlers cannot be registered.
+    #[error("cannot install signal handlers: {0}")]
+    Handlers(#[source] std::io::Error),
+    /// The thread that waits for them cannot start.
+    #[error("cannot start the signal thread: {0}")]
+    Thread(#[source] std::io::Error),
+}
+
 /// The installed handlers.
 pub(crate) struct StopSignals {
     /// Receives one `()` on the first signal.
@@ -22,13 +33,13 @@ pub(crate) struct StopSignals {
 
 impl StopSignals {
     /// Installs the handlers first thing, so that an early Ctrl-C is not lost.
-    pub(crate) fn install() -> Result<Self, String> {
+    pub(crate) fn install() -> Result<Self, SignalError> {
         let (tx, requested) = smol::channel::bounded::<()>(1);
         let mut signals = signal_hook::iterator::Signals::new([
             signal_hook::consts::SIGINT,
             signal_hook::consts::SIGTERM,
         ])
-        .map_err(|e| format!("cannot install signal handlers: {e}"))?;
+        .map_err(SignalError::Handlers)?;
         let handle = signals.handle();
         let recording: Arc<Mutex<Option<RecordSender>>> = Arc::new(Mutex::new(None));
         let rec = recording.clone();
@@ -57,7 +68,7 @@ impl StopSignals {
                     }
                 }
             })
-            .map_err(|e| format!("cannot start the signal thread: {e}"))?;
+            .map_err(SignalError::Thread)?;
         Ok(Self {
             requested,
             recording,

@@ -109,6 +109,38 @@ pub(crate) struct ThreadInputs {
     pub(crate) pacing: Pacing,
 }
 
+/// Why the node's threads cannot start, or did not stop cleanly.
+#[derive(Debug, thiserror::Error)]
+pub enum ThreadsError {
+    /// A thread cannot be started.
+    #[error("cannot start the {thread} thread: {source}")]
+    Spawn {
+        /// Which: "recorder's input", "publisher", "tick".
+        thread: &'static str,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The tick loop outlived its grace at the stop.
+    #[error(
+        "the tick loop did not stop within {grace_s} s (a step at tick {tick} never returned); \
+         exiting without it"
+    )]
+    StopTimeout {
+        /// The grace, s.
+        grace_s: f64,
+        /// The tick it was stepping.
+        tick: u64,
+    },
+    /// The tick thread panicked.
+    #[error("the tick thread panicked")]
+    TickPanicked,
+}
+
+/// The error of starting `thread`.
+fn spawn_error(thread: &'static str) -> impl FnOnce(std::io::Error) -> ThreadsError {
+    move |source| ThreadsError::Spawn { thread, source }
+}
+
 /// The running threads.
 pub(crate) struct Threads {
     stop: Arc<AtomicBool>,
@@ -121,7 +153,7 @@ pub(crate) struct Threads {
 
 impl Threads {
     /// Starts them; returns the receiver of the tick loop's events too.
-    pub(crate) fn start(t: ThreadInputs) -> Result<(Self, Receiver<Event>), String> {
+    pub(crate) fn start(t: ThreadInputs) -> Result<(Self, Receiver<Event>), ThreadsError> {
         let (applied_tx, applied) = match &t.rec {
             Some(tx) => {
                 let (atx, arx) = mpsc::sync_channel::<Applied>(APPLIED_QUEUE);
@@ -129,7 +161,7 @@ impl Threads {
                 let h = std::thread::Builder::new()
                     .name("record-inputs".into())
                     .spawn(move || record::applied_loop(arx, tx))
-                    .map_err(|e| format!("cannot start the recorder's input thread: {e}"))?;
+                    .map_err(spawn_error("recorder's input"))?;
                 (Some(atx), Some(h))
             }
             None => (None, None),
@@ -148,7 +180,7 @@ impl Threads {
         let publisher = std::thread::Builder::new()
             .name("publish".into())
             .spawn(move || publish_loop(sample_rx, outlets))
-            .map_err(|e| format!("cannot start the publisher thread: {e}"))?;
+            .map_err(spawn_error("publisher"))?;
         let tick = tick::spawn(
             t.actuator,
             t.publish_every,
@@ -163,7 +195,7 @@ impl Threads {
                 pacing: t.pacing,
             },
         )
-        .map_err(|e| format!("cannot start the tick thread: {e}"))?;
+        .map_err(spawn_error("tick"))?;
         Ok((
             Self {
                 stop,
@@ -180,7 +212,7 @@ impl Threads {
     /// Stops the tick loop, then the publisher and the input recorder, which end once the
     /// loop's channels close. A step that never returns must not hold the process: the loop
     /// gets [`TICK_STOP_GRACE`], then the stop goes on without it (an error).
-    pub(crate) fn stop(self, logger: &Logger) -> Result<RunSummary, String> {
+    pub(crate) fn stop(self, logger: &Logger) -> Result<RunSummary, ThreadsError> {
         self.stop.store(true, Ordering::SeqCst);
         let deadline = Instant::now() + TICK_STOP_GRACE;
         while !self.tick.is_finished() && Instant::now() < deadline {
@@ -188,18 +220,14 @@ impl Threads {
         }
         if !self.tick.is_finished() {
             let tick = self.stats.current_tick.load(Ordering::Relaxed);
-            let msg = format!(
-                "the tick loop did not stop within {} s (a step at tick {tick} never returned); \
-                 exiting without it",
-                TICK_STOP_GRACE.as_secs_f64()
-            );
-            logger.error(&msg);
-            return Err(msg);
+            let e = ThreadsError::StopTimeout {
+                grace_s: TICK_STOP_GRACE.as_secs_f64(),
+                tick,
+            };
+            logger.error(&e.to_string());
+            return Err(e);
         }
-        let summary = self
-            .tick
-            .join()
-            .map_err(|_| "the tick thread panicked".to_string())?;
+        let summary = self.tick.join().map_err(|_| ThreadsError::TickPanicked)?;
         let _ = self.publisher.join();
         if let Some(t) = self.applied {
             let _ = t.join();

@@ -3,11 +3,14 @@
 //! --log-level [logger:=]level [--]`. Parameter values and files follow `params_file.rs`;
 //! names, namespaces and remapping follow `names.rs`.
 
+mod error;
 mod names;
 mod params_file;
 
+pub use error::{ArgsError, FlowTooDeep, ParamsFileError, ValueError};
 pub use names::{
-    check_name, check_node_name, expand, normalise_namespace, resolve, Remap, DEFAULT_NODE_NAME,
+    check_name, check_node_name, expand, normalise_namespace, resolve, NameError, Remap,
+    DEFAULT_NODE_NAME,
 };
 pub use params_file::{parse_param_rule, read_params_file};
 
@@ -67,7 +70,7 @@ environment: ROS_DOMAIN_ID (default 0); ROS_AUTOMATIC_DISCOVERY_RANGE=SUBNET to 
 
 impl RosArgs {
     /// Parses everything after `node` on the command line. Parameter files are read here.
-    pub fn parse(args: &[String]) -> Result<Self, String> {
+    pub fn parse(args: &[String]) -> Result<Self, ArgsError> {
         let mut out = RosArgs::default();
         let mut i = 0;
         let mut in_ros = false;
@@ -78,21 +81,19 @@ impl RosArgs {
                     "--ros-args" => in_ros = true,
                     "-h" | "--help" => out.help = true,
                     other => {
-                        return Err(format!(
-                            "unexpected argument {:?}: ROS arguments go after --ros-args \
-                             (try `muscle_actuator node --help`)",
-                            excerpt(other)
-                        ))
+                        return Err(ArgsError::Unexpected {
+                            arg: excerpt(other),
+                        })
                     }
                 }
                 i += 1;
                 continue;
             }
-            let mut value = |flag: &str| -> Result<String, String> {
+            let mut value = |flag: &str| -> Result<String, ArgsError> {
                 i += 1;
-                args.get(i)
-                    .cloned()
-                    .ok_or_else(|| format!("{flag} needs a value"))
+                args.get(i).cloned().ok_or_else(|| ArgsError::MissingValue {
+                    flag: flag.to_string(),
+                })
             };
             match a {
                 "--" => in_ros = false,
@@ -123,11 +124,9 @@ impl RosArgs {
                 "--enable-stdout-logs" => out.disable_stdout = false,
                 "--disable-external-lib-logs" | "--enable-external-lib-logs" => {}
                 other => {
-                    return Err(format!(
-                        "unknown ROS argument {:?} (expected -r, -p, --params-file, \
-                         --log-level, --)",
-                        excerpt(other)
-                    ))
+                    return Err(ArgsError::Unknown {
+                        arg: excerpt(other),
+                    })
                 }
             }
             i += 1;
@@ -135,33 +134,42 @@ impl RosArgs {
         Ok(out)
     }
 
-    fn add_remap(&mut self, rule: &str) -> Result<(), String> {
-        let quoted = excerpt(rule);
+    fn add_remap(&mut self, rule: &str) -> Result<(), ArgsError> {
+        let quoted = || excerpt(rule);
         let (lhs, to) = rule
             .split_once(":=")
-            .ok_or_else(|| format!("-r {quoted:?}: expected FROM:=TO"))?;
+            .ok_or_else(|| ArgsError::RemapSyntax { rule: quoted() })?;
         // An optional `node:` prefix (a name has no ':' otherwise).
         let (node, from) = match lhs.split_once(':') {
             Some((n, f)) => (Some(n.to_string()), f),
             None => (None, lhs),
         };
         if from.is_empty() || to.is_empty() {
-            return Err(format!("-r {quoted:?}: empty name"));
+            return Err(ArgsError::RemapEmpty { rule: quoted() });
         }
+        let bad_name = |source| ArgsError::BadName {
+            rule: quoted(),
+            source,
+        };
         match from {
             "__ns" => {
-                let ns = normalise_namespace(to)
-                    .map_err(|e| format!("-r {quoted:?}: bad namespace: {e}"))?;
+                let ns = normalise_namespace(to).map_err(|source| ArgsError::BadNamespace {
+                    rule: quoted(),
+                    source,
+                })?;
                 self.push_node_rule(node, |s| s.namespace = Some(ns));
             }
             "__node" | "__name" => {
-                check_node_name(to).map_err(|e| format!("-r {quoted:?}: bad node name: {e}"))?;
+                check_node_name(to).map_err(|source| ArgsError::BadNodeName {
+                    rule: quoted(),
+                    source,
+                })?;
                 let name = to.to_string();
                 self.push_node_rule(node, |s| s.node_name = Some(name));
             }
             _ => {
-                check_name(from).map_err(|e| format!("-r {quoted:?}: bad name: {e}"))?;
-                check_name(to).map_err(|e| format!("-r {quoted:?}: bad name: {e}"))?;
+                check_name(from).map_err(bad_name)?;
+                check_name(to).map_err(bad_name)?;
                 self.remaps.push(Remap {
                     node,
                     from: from.into(),
@@ -183,7 +191,7 @@ impl RosArgs {
 
     /// The parameter assignments with every `--params-file` expanded for the node `fqn`
     /// (its fully qualified name) in command-line order.
-    pub fn resolved_params(&self, fqn: &str) -> Result<Vec<ParamAssignment>, String> {
+    pub fn resolved_params(&self, fqn: &str) -> Result<Vec<ParamAssignment>, ParamsFileError> {
         let mut out = Vec::new();
         for p in &self.params {
             if p.source == PARAMS_FILE_MARK {
@@ -203,13 +211,10 @@ const PARAMS_FILE_MARK: &str = "\u{0}params-file";
 
 /// `--log-level level` or `--log-level logger:=level`; every logger of this process is the
 /// node's.
-fn parse_log_level(spec: &str) -> Result<Severity, String> {
+fn parse_log_level(spec: &str) -> Result<Severity, ArgsError> {
     let level = spec.rsplit_once(":=").map(|(_, l)| l).unwrap_or(spec);
-    Severity::parse(level).ok_or_else(|| {
-        format!(
-            "--log-level {:?}: unknown level (debug, info, warn, error, fatal)",
-            excerpt(spec)
-        )
+    Severity::parse(level).ok_or_else(|| ArgsError::LogLevel {
+        spec: excerpt(spec),
     })
 }
 
@@ -252,7 +257,7 @@ mod tests {
             "--ros-args -r __node:=9x",
             "--ros-args --frobnicate",
         ] {
-            let e = RosArgs::parse(&args(bad)).unwrap_err();
+            let e = RosArgs::parse(&args(bad)).unwrap_err().to_string();
             assert!(!e.is_empty(), "{bad}");
         }
     }
@@ -267,18 +272,27 @@ mod tests {
                 format!("{prefix}{}", "n".repeat(n)),
             ]
         };
-        let e = RosArgs::parse(&long("__node:=", 10_000)).unwrap_err();
+        let e = RosArgs::parse(&long("__node:=", 10_000))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("at most 255") && e.len() < 300, "{e}");
         assert!(RosArgs::parse(&long("__node:=", 255)).is_ok());
-        let e = RosArgs::parse(&long("__ns:=/", 300)).unwrap_err();
+        let e = RosArgs::parse(&long("__ns:=/", 300))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("at most 245") && e.len() < 300, "{e}");
-        let e = RosArgs::parse(&long("state:=", 300)).unwrap_err();
+        let e = RosArgs::parse(&long("state:=", 300))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("at most 247") && e.len() < 300, "{e}");
         let deep = format!("x:={}{}", "[".repeat(100_000), "]".repeat(100_000));
-        let e = RosArgs::parse(&["--ros-args".into(), "-p".into(), deep]).unwrap_err();
+        let e = RosArgs::parse(&["--ros-args".into(), "-p".into(), deep])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("nested deeper than 64") && e.len() < 300, "{e}");
         let e = RosArgs::parse(&["--ros-args".into(), "--bogus".into(), "b".repeat(1 << 20)])
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.len() < 300, "{e}");
     }
 }

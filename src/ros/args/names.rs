@@ -21,45 +21,71 @@ pub struct Remap {
     pub to: String,
 }
 
-/// Checks a node name: one token (see `check_token`) of at most 255 characters.
-pub fn check_node_name(n: &str) -> Result<(), String> {
-    if n.chars().count() > MAX_NODE_NAME_CHARS {
-        return Err(format!(
-            "{} characters: a node name has at most {MAX_NODE_NAME_CHARS}",
-            n.chars().count()
-        ));
+/// Why a name, node name or namespace breaks the rules of ROS 2 names.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum NameError {
+    /// Longer than its kind allows.
+    #[error("{chars} characters: a {kind} has at most {max}")]
+    TooLong {
+        /// Its length, characters.
+        chars: usize,
+        /// What it names: "node name", "topic or service name", "namespace".
+        kind: &'static str,
+        /// The most its kind allows, characters.
+        max: usize,
+    },
+    /// A token (or the whole name) is empty.
+    #[error("empty")]
+    Empty,
+    /// A token starts with a character other than a letter or `_`.
+    #[error("must not start with {0:?}")]
+    BadStart(char),
+    /// A token holds a character other than a letter, a digit or `_`.
+    #[error("character {0:?} not allowed")]
+    BadCharacter(char),
+    /// A token holds `__`.
+    #[error("repeated underscores are not allowed")]
+    RepeatedUnderscores,
+}
+
+/// `s` if it has at most `max` characters, else the error naming `kind`.
+fn check_length(s: &str, kind: &'static str, max: usize) -> Result<(), NameError> {
+    let chars = s.chars().count();
+    if chars > max {
+        return Err(NameError::TooLong { chars, kind, max });
     }
+    Ok(())
+}
+
+/// Checks a node name: one token (see `check_token`) of at most 255 characters.
+pub fn check_node_name(n: &str) -> Result<(), NameError> {
+    check_length(n, "node name", MAX_NODE_NAME_CHARS)?;
     check_token(n)
 }
 
 /// Checks one name token: starts with a letter or `_`, then letters, digits, `_`.
-fn check_token(t: &str) -> Result<(), String> {
+fn check_token(t: &str) -> Result<(), NameError> {
     let mut chars = t.chars();
     match chars.next() {
-        None => return Err("empty".into()),
+        None => return Err(NameError::Empty),
         Some(c) if c.is_ascii_alphabetic() || c == '_' => {}
-        Some(c) => return Err(format!("must not start with {c:?}")),
+        Some(c) => return Err(NameError::BadStart(c)),
     }
     if let Some(c) = t
         .chars()
         .find(|c| !(c.is_ascii_alphanumeric() || *c == '_'))
     {
-        return Err(format!("character {c:?} not allowed"));
+        return Err(NameError::BadCharacter(c));
     }
     if t.contains("__") {
-        return Err("repeated underscores are not allowed".into());
+        return Err(NameError::RepeatedUnderscores);
     }
     Ok(())
 }
 
 /// Checks a topic or service name as written by a user: absolute, relative or private (`~`).
-pub fn check_name(n: &str) -> Result<(), String> {
-    if n.chars().count() > MAX_TOPIC_NAME_CHARS {
-        return Err(format!(
-            "{} characters: a topic or service name has at most {MAX_TOPIC_NAME_CHARS}",
-            n.chars().count()
-        ));
-    }
+pub fn check_name(n: &str) -> Result<(), NameError> {
+    check_length(n, "topic or service name", MAX_TOPIC_NAME_CHARS)?;
     let rest = if n == "~" {
         return Ok(());
     } else if let Some(r) = n.strip_prefix("~/") {
@@ -70,7 +96,7 @@ pub fn check_name(n: &str) -> Result<(), String> {
         n
     };
     if rest.is_empty() {
-        return Err("empty".into());
+        return Err(NameError::Empty);
     }
     for tok in rest.split('/') {
         check_token(tok)?;
@@ -79,13 +105,8 @@ pub fn check_name(n: &str) -> Result<(), String> {
 }
 
 /// Normalises a namespace: absolute, no trailing slash (except the root `/`).
-pub fn normalise_namespace(ns: &str) -> Result<String, String> {
-    if ns.chars().count() > MAX_NAMESPACE_CHARS {
-        return Err(format!(
-            "{} characters: a namespace has at most {MAX_NAMESPACE_CHARS}",
-            ns.chars().count()
-        ));
-    }
+pub fn normalise_namespace(ns: &str) -> Result<String, NameError> {
+    check_length(ns, "namespace", MAX_NAMESPACE_CHARS)?;
     let trimmed = ns.trim_matches('/');
     if trimmed.is_empty() {
         return Ok("/".into());

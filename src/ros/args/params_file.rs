@@ -2,8 +2,8 @@
 //! rclcpp's `parameter_map_from`): YAML values to ROS 2 parameter types, the node sections of a
 //! file and which of them apply to a node, and the bounds checked before any YAML is parsed.
 
+use super::error::{ArgsError, FlowTooDeep, ParamsFileError, ValueError};
 use super::ParamAssignment;
-use crate::physics::models::MODELS;
 use crate::{files::read_regular_file, text::excerpt};
 use ros2_client::ParameterValue;
 use std::path::Path;
@@ -17,24 +17,27 @@ pub const MAX_FLOW_DEPTH: usize = 64;
 
 /// One `-p NAME:=VALUE` rule: the value read as a YAML scalar or flow sequence, as rcl reads
 /// it (a value that is not valid YAML is the string itself; an empty one is the empty string).
-pub fn parse_param_rule(rule: &str) -> Result<ParamAssignment, String> {
-    let (name, val) = rule.split_once(":=").ok_or_else(|| {
-        format!(
-            "-p {:?}: expected NAME:=VALUE (e.g. -p model:={})",
-            excerpt(rule),
-            MODELS[0].name
-        )
-    })?;
+pub fn parse_param_rule(rule: &str) -> Result<ParamAssignment, ArgsError> {
+    let quoted = || excerpt(rule);
+    let (name, val) = rule
+        .split_once(":=")
+        .ok_or_else(|| ArgsError::ParamSyntax { rule: quoted() })?;
     if name.is_empty() {
-        return Err(format!("-p {:?}: empty parameter name", excerpt(rule)));
+        return Err(ArgsError::ParamEmptyName { rule: quoted() });
     }
-    check_flow_depth(val).map_err(|e| format!("-p {:?}: {e}", excerpt(rule)))?;
+    check_flow_depth(val).map_err(|source| ArgsError::ParamTooDeep {
+        rule: quoted(),
+        source,
+    })?;
     let yaml: serde_norway::Value = if val.is_empty() {
         serde_norway::Value::String(String::new())
     } else {
         serde_norway::from_str(val).unwrap_or(serde_norway::Value::String(val.into()))
     };
-    let value = yaml_to_param(&yaml).map_err(|e| format!("-p {:?}: {e}", excerpt(rule)))?;
+    let value = yaml_to_param(&yaml).map_err(|source| ArgsError::ParamValue {
+        rule: quoted(),
+        source,
+    })?;
     Ok(ParamAssignment {
         name: name.into(),
         value,
@@ -43,7 +46,7 @@ pub fn parse_param_rule(rule: &str) -> Result<ParamAssignment, String> {
 }
 
 /// Converts a YAML scalar or sequence into a parameter value of the ROS 2 types.
-pub fn yaml_to_param(v: &serde_norway::Value) -> Result<ParameterValue, String> {
+pub fn yaml_to_param(v: &serde_norway::Value) -> Result<ParameterValue, ValueError> {
     use serde_norway::Value as Y;
     Ok(match v {
         Y::Bool(b) => ParameterValue::Boolean(*b),
@@ -53,11 +56,11 @@ pub fn yaml_to_param(v: &serde_norway::Value) -> Result<ParameterValue, String> 
             } else if let Some(f) = n.as_f64() {
                 ParameterValue::Double(f)
             } else {
-                return Err(format!("number {n} out of range"));
+                return Err(ValueError::OutOfRange(n.to_string()));
             }
         }
         Y::String(s) => ParameterValue::String(s.clone()),
-        Y::Null => return Err("empty value".into()),
+        Y::Null => return Err(ValueError::Empty),
         Y::Sequence(items) => {
             if items.is_empty() {
                 ParameterValue::StringArray(vec![])
@@ -75,10 +78,10 @@ pub fn yaml_to_param(v: &serde_norway::Value) -> Result<ParameterValue, String> 
                         .collect(),
                 )
             } else {
-                return Err("an array must hold values of one type".into());
+                return Err(ValueError::MixedArray);
             }
         }
-        Y::Mapping(_) => return Err("a mapping is not a parameter value".into()),
+        Y::Mapping(_) => return Err(ValueError::Mapping),
         Y::Tagged(t) => return yaml_to_param(&t.value),
     })
 }
@@ -90,13 +93,16 @@ pub fn yaml_to_param(v: &serde_norway::Value) -> Result<ParameterValue, String> 
 /// `muscle_actuator:` is the node in the root namespace only; `*` stands for one name segment
 /// and `**` for any number (`/**` is every node). Nested keys become dotted parameter names.
 /// Every matching section applies, in file order.
-pub fn read_params_file(path: &Path, fqn: &str) -> Result<Vec<ParamAssignment>, String> {
+pub fn read_params_file(path: &Path, fqn: &str) -> Result<Vec<ParamAssignment>, ParamsFileError> {
     let shown = excerpt(&path.display().to_string());
-    let bytes = read_regular_file(path, MAX_PARAMS_FILE_BYTES).map_err(|e| {
-        format!("cannot read parameters file {shown} (a regular file of at most 1 MiB): {e}")
+    let bytes =
+        read_regular_file(path, MAX_PARAMS_FILE_BYTES).map_err(|source| ParamsFileError::Read {
+            file: shown.clone(),
+            source,
+        })?;
+    let text = String::from_utf8(bytes).map_err(|_| ParamsFileError::NotUtf8 {
+        file: shown.clone(),
     })?;
-    let text =
-        String::from_utf8(bytes).map_err(|_| format!("parameters file {shown}: not UTF-8 text"))?;
     parse_params_yaml(&text, &shown, fqn)
 }
 
@@ -108,18 +114,21 @@ pub fn parse_params_yaml(
     text: &str,
     source: &str,
     fqn: &str,
-) -> Result<Vec<ParamAssignment>, String> {
-    check_flow_depth(text).map_err(|e| format!("parameters file {source}: {e}"))?;
-    let doc: serde_norway::Value = serde_norway::from_str(text)
-        .map_err(|e| format!("parameters file {source}: not valid YAML: {e}"))?;
+) -> Result<Vec<ParamAssignment>, ParamsFileError> {
+    let file = || source.to_string();
+    check_flow_depth(text).map_err(|e| ParamsFileError::TooDeep {
+        file: file(),
+        source: e,
+    })?;
+    let doc: serde_norway::Value =
+        serde_norway::from_str(text).map_err(|e| ParamsFileError::Yaml {
+            file: file(),
+            source: e,
+        })?;
     let top = match &doc {
         serde_norway::Value::Mapping(m) => m,
         serde_norway::Value::Null => return Ok(vec![]),
-        _ => {
-            return Err(format!(
-                "parameters file {source}: expected `node_name: {{ros__parameters: {{...}}}}`"
-            ))
-        }
+        _ => return Err(ParamsFileError::NotNodeSections { file: file() }),
     };
     let mut sections = Vec::new();
     node_sections(top, "", source, &mut sections)?;
@@ -153,13 +162,12 @@ fn node_sections<'a>(
     prefix: &str,
     source: &str,
     out: &mut Vec<(String, &'a serde_norway::Value)>,
-) -> Result<(), String> {
+) -> Result<(), ParamsFileError> {
+    let file = || source.to_string();
     let parent = match map.get(PARAMS_KEY) {
         Some(params) => {
             if prefix.is_empty() {
-                return Err(format!(
-                    "parameters file {source}: `{PARAMS_KEY}` needs a node name above it"
-                ));
+                return Err(ParamsFileError::NoNodeName { file: file() });
             }
             out.push((prefix.to_string(), params));
             // The node's own name dropped: its siblings live in its namespace.
@@ -174,20 +182,19 @@ fn node_sections<'a>(
     for (key, value) in map {
         let key = key
             .as_str()
-            .ok_or_else(|| format!("parameters file {source}: node keys must be strings"))?;
+            .ok_or_else(|| ParamsFileError::NodeKeyNotString { file: file() })?;
         if key == PARAMS_KEY {
             continue;
         }
         if key.is_empty() {
-            return Err(format!("parameters file {source}: empty node key"));
+            return Err(ParamsFileError::EmptyNodeKey { file: file() });
         }
         let name = join_node_key(&parent, key);
         let Some(inner) = value.as_mapping() else {
-            return Err(format!(
-                "parameters file {source}: {:?} holds a value before any `{PARAMS_KEY}` \
-                 (expected `node_name: {{{PARAMS_KEY}: {{...}}}}`)",
-                excerpt(&name)
-            ));
+            return Err(ParamsFileError::ValueBeforeParameters {
+                file: file(),
+                name: excerpt(&name),
+            });
         };
         node_sections(inner, &name, source, out)?;
     }
@@ -199,11 +206,11 @@ fn flatten(
     prefix: &str,
     source: &str,
     out: &mut Vec<ParamAssignment>,
-) -> Result<(), String> {
+) -> Result<(), ParamsFileError> {
     let Some(map) = v.as_mapping() else {
-        return Err(format!(
-            "parameters file {source}: `ros__parameters` must be a mapping"
-        ));
+        return Err(ParamsFileError::ParametersNotMapping {
+            file: source.to_string(),
+        });
     };
     for (k, val) in map {
         let k = match k {
@@ -221,11 +228,10 @@ fn flatten(
         if val.is_mapping() {
             flatten(val, &name, source, out)?;
         } else {
-            let value = yaml_to_param(val).map_err(|e| {
-                format!(
-                    "parameters file {source}: parameter {:?}: {e}",
-                    excerpt(&name)
-                )
+            let value = yaml_to_param(val).map_err(|e| ParamsFileError::Value {
+                file: source.to_string(),
+                name: excerpt(&name),
+                source: e,
             })?;
             out.push(ParamAssignment {
                 name,
@@ -275,16 +281,16 @@ fn glob(pat: &[&str], name: &[&str]) -> bool {
 /// Checks the nesting of YAML flow collections before the text is parsed (see
 /// [`MAX_FLOW_DEPTH`]). Brackets are counted wherever they stand, quoted or not: a text whose
 /// strings open 64 brackets without closing them is refused too.
-pub fn check_flow_depth(text: &str) -> Result<(), String> {
+pub fn check_flow_depth(text: &str) -> Result<(), FlowTooDeep> {
     let mut depth = 0usize;
     for b in text.bytes() {
         match b {
             b'[' | b'{' => {
                 depth += 1;
                 if depth > MAX_FLOW_DEPTH {
-                    return Err(format!(
-                        "nested deeper than {MAX_FLOW_DEPTH} levels of [ ] or {{ }}"
-                    ));
+                    return Err(FlowTooDeep {
+                        max: MAX_FLOW_DEPTH,
+                    });
                 }
             }
             b']' | b'}' => depth = depth.saturating_sub(1),
@@ -307,16 +313,22 @@ mod tests {
             "{a: ".repeat(100_000),
             "}".repeat(100_000)
         );
-        let e = parse_params_yaml(&deep, "deep.yaml", "/muscle_actuator").unwrap_err();
+        let e = parse_params_yaml(&deep, "deep.yaml", "/muscle_actuator")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("nested deeper than 64"), "{e}");
-        let e = read_params_file(Path::new("/dev/zero"), "/muscle_actuator").unwrap_err();
+        let e = read_params_file(Path::new("/dev/zero"), "/muscle_actuator")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("regular file"), "{e}");
         let dir = std::env::temp_dir().join(format!("params-fifo-{}", std::process::id()));
         let _ = std::fs::remove_file(&dir);
         let c = std::ffi::CString::new(dir.to_str().unwrap()).unwrap();
         // SAFETY: a valid NUL-terminated path.
         assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
-        let e = read_params_file(&dir, "/muscle_actuator").unwrap_err();
+        let e = read_params_file(&dir, "/muscle_actuator")
+            .unwrap_err()
+            .to_string();
         let _ = std::fs::remove_file(&dir);
         assert!(e.contains("regular file"), "{e}");
         // Ordinary nesting still reads.

@@ -2,6 +2,7 @@
 //! `ros2msg` schemas), the input topics a client may publish on, and the two services; which
 //! ones, the endpoints' table says ([`crate::ros::endpoints::Live`]).
 
+use super::error::LiveError;
 use crate::msgs::definition;
 use crate::recording::schema::ros2msg_schema;
 use crate::ros::endpoints::{Live, Names};
@@ -17,6 +18,29 @@ pub(crate) struct ChannelInfo {
     pub(crate) topic: String,
     pub(crate) type_name: &'static str,
     pub(crate) schema: String,
+}
+
+/// Why a client cannot publish on a topic; names and types quoted as excerpts.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub(crate) enum InputRefused {
+    /// An input topic, of another type.
+    #[error("{topic} takes {expected}, not {given}")]
+    WrongType {
+        /// The topic.
+        topic: String,
+        /// Its type.
+        expected: String,
+        /// The type the client gave.
+        given: String,
+    },
+    /// Not an input topic of this node.
+    #[error("{topic} is not an input topic of this node (inputs: {inputs})")]
+    NotAnInput {
+        /// The topic.
+        topic: String,
+        /// The input topics, joined.
+        inputs: String,
+    },
 }
 
 /// The `.srv` text of `~/step`, split into request and response below.
@@ -49,7 +73,7 @@ pub(crate) struct Catalogue {
 impl Catalogue {
     /// The channels, inputs and services of the endpoints the node has, under their resolved
     /// names; a channel's id is its [`Outlet`]'s index + 1.
-    pub(crate) fn new(names: &Names) -> Result<Self, String> {
+    pub(crate) fn new(names: &Names) -> Result<Self, LiveError> {
         let mut channels = Vec::new();
         let mut inputs = Vec::new();
         let mut services = Vec::new();
@@ -66,7 +90,8 @@ impl Catalogue {
                         id: outlet.index() as u32 + 1,
                         topic: r.name.clone(),
                         type_name,
-                        schema: ros2msg_schema(type_name, &definition)?,
+                        schema: ros2msg_schema(type_name, &definition)
+                            .map_err(LiveError::Schema)?,
                     });
                 }
                 Live::Input(kind) => inputs.push((r.name.clone(), kind, type_name)),
@@ -105,39 +130,39 @@ impl Catalogue {
     }
 
     /// The input topic `topic` of type `type_name`, or why a client cannot publish on it.
-    pub(crate) fn input(&self, topic: &str, type_name: &str) -> Result<InputTopic, String> {
+    pub(crate) fn input(&self, topic: &str, type_name: &str) -> Result<InputTopic, InputRefused> {
         // Clients name types `pkg/msg/Type` or `pkg/Type`.
         let normal = match type_name.split('/').collect::<Vec<_>>()[..] {
             [pkg, ty] => format!("{pkg}/msg/{ty}"),
             _ => type_name.to_string(),
         };
+        let excerpt = crate::text::excerpt;
         match self.inputs.iter().find(|(t, _, _)| t == topic) {
             Some((_, kind, ty)) if *ty == normal => Ok(*kind),
-            Some((_, _, ty)) => Err(format!(
-                "{} takes {ty}, not {}",
-                crate::text::excerpt(topic),
-                crate::text::excerpt(type_name)
-            )),
-            None => Err(format!(
-                "{} is not an input topic of this node (inputs: {})",
-                crate::text::excerpt(topic),
-                crate::text::excerpt(
+            Some((_, _, ty)) => Err(InputRefused::WrongType {
+                topic: excerpt(topic),
+                expected: ty.to_string(),
+                given: excerpt(type_name),
+            }),
+            None => Err(InputRefused::NotAnInput {
+                topic: excerpt(topic),
+                inputs: excerpt(
                     &self
                         .inputs
                         .iter()
                         .map(|(t, _, _)| t.as_str())
                         .collect::<Vec<_>>()
-                        .join(", ")
-                )
-            )),
+                        .join(", "),
+                ),
+            }),
         }
     }
 }
 
 /// A service's request or response description, in the form of both the current and the older
 /// specification (`requestSchema` / `responseSchema`).
-fn part(schema_name: &str, lookup_name: &str) -> Result<(Value, String), String> {
-    let schema = ros2msg_schema(lookup_name, &service_part)?;
+fn part(schema_name: &str, lookup_name: &str) -> Result<(Value, String), LiveError> {
+    let schema = ros2msg_schema(lookup_name, &service_part).map_err(LiveError::Schema)?;
     Ok((
         json!({
             "encoding": "cdr",
@@ -150,7 +175,7 @@ fn part(schema_name: &str, lookup_name: &str) -> Result<(Value, String), String>
 }
 
 /// `advertiseServices` for (service, resolved name, `pkg/srv/Type`).
-fn services_json(served: &[(Service, &str, &str)]) -> Result<String, String> {
+fn services_json(served: &[(Service, &str, &str)]) -> Result<String, LiveError> {
     let mut services = Vec::new();
     for &(service, name, ty) in served {
         let mut parts = ty.split('/');

@@ -10,7 +10,7 @@
 use super::channels::{InputTopic, Service};
 use super::decode::decode_input;
 use super::hub::Hub;
-use super::protocol::{self, ClientBinary, ClientOp, Level};
+use super::protocol::{self, ClientBinary, ClientOp, FrameError, Level};
 use super::queue::{Client, Frame, CLIENT_QUEUE};
 use super::request::{Answer, Request};
 use std::collections::HashMap;
@@ -44,6 +44,13 @@ enum End {
     Kicked(String),
     /// The socket failed.
     Failed(String),
+}
+
+impl End {
+    /// The client kicked for a frame outside the protocol.
+    fn kicked(e: FrameError) -> Self {
+        End::Kicked(e.to_string())
+    }
 }
 
 /// Serves one accepted connection until it ends.
@@ -199,8 +206,8 @@ impl Connection {
     fn read_all(&mut self, ws: &mut WebSocket<TcpStream>) -> Result<(), End> {
         for _ in 0..READS_PER_TURN {
             match ws.read() {
-                Ok(Message::Text(t)) => self.on_text(t.as_str()).map_err(End::Kicked)?,
-                Ok(Message::Binary(b)) => self.on_binary(&b).map_err(End::Kicked)?,
+                Ok(Message::Text(t)) => self.on_text(t.as_str()).map_err(End::kicked)?,
+                Ok(Message::Binary(b)) => self.on_binary(&b).map_err(End::kicked)?,
                 Ok(Message::Close(_)) => return Err(End::Closed),
                 Ok(_) => {}
                 Err(WsError::Io(e)) if e.kind() == ErrorKind::WouldBlock => return Ok(()),
@@ -219,7 +226,7 @@ impl Connection {
         Ok(())
     }
 
-    fn on_text(&mut self, text: &str) -> Result<(), String> {
+    fn on_text(&mut self, text: &str) -> Result<(), FrameError> {
         match ClientOp::parse(text)? {
             ClientOp::Subscribe { subscriptions } => {
                 for s in subscriptions {
@@ -267,7 +274,7 @@ impl Connection {
                         Ok(kind) => {
                             self.channels.insert(c.id, (kind, json));
                         }
-                        Err(e) => self.status(Level::Error, &e, None),
+                        Err(e) => self.status(Level::Error, &e.to_string(), None),
                     }
                 }
             }
@@ -302,7 +309,7 @@ impl Connection {
         Ok(())
     }
 
-    fn on_binary(&mut self, bytes: &[u8]) -> Result<(), String> {
+    fn on_binary(&mut self, bytes: &[u8]) -> Result<(), FrameError> {
         match ClientBinary::parse(bytes)? {
             ClientBinary::MessageData {
                 channel_id,
@@ -312,7 +319,7 @@ impl Connection {
                     Ok(input) => Request::Input(input),
                     Err(e) => Request::Unreadable {
                         what: e.what,
-                        error: e.error,
+                        error: e.error.to_string(),
                     },
                 }),
                 None => self.status(

@@ -17,7 +17,24 @@ use serde_json::Value;
 #[derive(Debug)]
 pub(crate) struct Unreadable {
     pub(crate) what: &'static str,
-    pub(crate) error: String,
+    pub(crate) error: DecodeError,
+}
+
+/// Why a payload is not the input topic's message.
+#[derive(Debug, thiserror::Error)]
+pub(crate) enum DecodeError {
+    /// Not the type's CDR.
+    #[error(transparent)]
+    Cdr(#[from] crate::recording::CdrError),
+    /// Not JSON; the parser's message as an excerpt.
+    #[error("not JSON: {0}")]
+    NotJson(String),
+    /// The type's defaults cannot be written as JSON.
+    #[error(transparent)]
+    Defaults(serde_json::Error),
+    /// JSON, but not the type's fields; the parser's message as an excerpt.
+    #[error("{0}")]
+    Fields(String),
 }
 
 /// The message `payload` carries for an input topic.
@@ -32,7 +49,7 @@ pub(crate) fn decode_input(
         InputTopic::MuscleCommand(_) => "cmd_activation",
         InputTopic::Load => "external load",
     };
-    let err = |error: String| Unreadable { what, error };
+    let err = |error: DecodeError| Unreadable { what, error };
     Ok(match kind {
         InputTopic::Activation => Input::Activation(decode(json, payload).map_err(err)?),
         InputTopic::ActivationArray => Input::ActivationArray(decode(json, payload).map_err(err)?),
@@ -50,15 +67,16 @@ impl InputMessage for ExternalLoad {}
 impl InputMessage for Float64 {}
 impl InputMessage for Float64MultiArray {}
 
-fn decode<T: InputMessage>(json: bool, payload: &[u8]) -> Result<T, String> {
+fn decode<T: InputMessage>(json: bool, payload: &[u8]) -> Result<T, DecodeError> {
+    let excerpt = |e: serde_json::Error| crate::text::excerpt(&e.to_string());
     if !json {
-        return decode_cdr(payload).map_err(String::from);
+        return decode_cdr(payload).map_err(DecodeError::Cdr);
     }
-    let given: Value = serde_json::from_slice(payload)
-        .map_err(|e| format!("not JSON: {}", crate::text::excerpt(&e.to_string())))?;
-    let mut full = serde_json::to_value(T::default()).map_err(|e| e.to_string())?;
+    let given: Value =
+        serde_json::from_slice(payload).map_err(|e| DecodeError::NotJson(excerpt(e)))?;
+    let mut full = serde_json::to_value(T::default()).map_err(DecodeError::Defaults)?;
     merge(&mut full, given);
-    serde_json::from_value(full).map_err(|e| crate::text::excerpt(&e.to_string()))
+    serde_json::from_value(full).map_err(|e| DecodeError::Fields(excerpt(e)))
 }
 
 /// `given` over `base`, object by object (a given non-object replaces the base's value).

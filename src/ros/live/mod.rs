@@ -20,6 +20,7 @@
 pub(crate) mod channels;
 mod client;
 mod decode;
+mod error;
 mod hub;
 pub(crate) mod protocol;
 mod queue;

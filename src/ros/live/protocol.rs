@@ -28,6 +28,37 @@ pub(crate) fn choose_subprotocol<'a>(
         .find_map(|name| SUBPROTOCOLS.iter().copied().find(|s| *s == name))
 }
 
+/// Why a client's frame is outside the protocol (the client is disconnected with it).
+#[derive(Debug, thiserror::Error)]
+pub(crate) enum FrameError {
+    /// A text frame that is not JSON.
+    #[error("a text frame that is not JSON ({0})")]
+    NotJson(#[source] serde_json::Error),
+    /// A JSON text frame without an `op`.
+    #[error("a text frame without an \"op\"")]
+    NoOp,
+    /// An operation that is unknown or malformed.
+    #[error("op {op:?}: {reason}")]
+    BadOp {
+        /// The `op`, as an excerpt.
+        op: String,
+        /// The parser's reason, as an excerpt.
+        reason: String,
+    },
+    /// A binary frame shorter than its opcode's fields.
+    #[error("a binary frame of {0} bytes, too short for its opcode")]
+    Short(usize),
+    /// A service call whose encoding name is not UTF-8.
+    #[error("a service call whose encoding is not UTF-8")]
+    EncodingNotUtf8,
+    /// A binary frame with an opcode the protocol does not define.
+    #[error("a binary frame with the unknown opcode 0x{0:02x}")]
+    UnknownOpcode(u8),
+    /// A binary frame of no bytes.
+    #[error("an empty binary frame")]
+    Empty,
+}
+
 /// One operation a client sends in a text frame.
 #[derive(Debug, Deserialize)]
 #[serde(tag = "op", rename_all = "camelCase")]
@@ -69,12 +100,11 @@ pub(crate) enum ClientOp {
 impl ClientOp {
     /// Parses a text frame. The client's `advertise` is named `advertise` in the specification
     /// and `clientAdvertise` in some clients: both are taken.
-    pub(crate) fn parse(text: &str) -> Result<Self, String> {
-        let mut v: Value = serde_json::from_str(text)
-            .map_err(|e| format!("a text frame that is not JSON ({e})"))?;
+    pub(crate) fn parse(text: &str) -> Result<Self, FrameError> {
+        let mut v: Value = serde_json::from_str(text).map_err(FrameError::NotJson)?;
         let op = v.get("op").and_then(Value::as_str).map(str::to_owned);
         let Some(op) = op else {
-            return Err("a text frame without an \"op\"".into());
+            return Err(FrameError::NoOp);
         };
         let renamed = match op.as_str() {
             "clientAdvertise" => Some("advertise"),
@@ -84,12 +114,9 @@ impl ClientOp {
         if let (Some(r), Some(obj)) = (renamed, v.as_object_mut()) {
             obj.insert("op".into(), Value::String(r.into()));
         }
-        serde_json::from_value(v).map_err(|e| {
-            format!(
-                "op {:?}: {}",
-                crate::text::excerpt(&op),
-                crate::text::excerpt(&e.to_string())
-            )
+        serde_json::from_value(v).map_err(|e| FrameError::BadOp {
+            op: crate::text::excerpt(&op),
+            reason: crate::text::excerpt(&e.to_string()),
         })
     }
 }
@@ -143,13 +170,8 @@ fn u32_at(b: &[u8], at: usize) -> Option<u32> {
 
 impl<'a> ClientBinary<'a> {
     /// Parses a binary frame; an unknown opcode or a short frame is an error.
-    pub(crate) fn parse(b: &'a [u8]) -> Result<Self, String> {
-        let short = || {
-            format!(
-                "a binary frame of {} bytes, too short for its opcode",
-                b.len()
-            )
-        };
+    pub(crate) fn parse(b: &'a [u8]) -> Result<Self, FrameError> {
+        let short = || FrameError::Short(b.len());
         match b.first() {
             Some(0x01) => Ok(Self::MessageData {
                 channel_id: u32_at(b, 1).ok_or_else(short)?,
@@ -160,8 +182,7 @@ impl<'a> ClientBinary<'a> {
                 let call_id = u32_at(b, 5).ok_or_else(short)?;
                 let len = u32_at(b, 9).ok_or_else(short)? as usize;
                 let enc = b.get(13..13usize.saturating_add(len)).ok_or_else(short)?;
-                let encoding = std::str::from_utf8(enc)
-                    .map_err(|_| "a service call whose encoding is not UTF-8".to_string())?;
+                let encoding = std::str::from_utf8(enc).map_err(|_| FrameError::EncodingNotUtf8)?;
                 Ok(Self::ServiceCall {
                     service_id,
                     call_id,
@@ -169,8 +190,8 @@ impl<'a> ClientBinary<'a> {
                     payload: &b[13 + len..],
                 })
             }
-            Some(op) => Err(format!("a binary frame with the unknown opcode 0x{op:02x}")),
-            None => Err("an empty binary frame".into()),
+            Some(op) => Err(FrameError::UnknownOpcode(*op)),
+            None => Err(FrameError::Empty),
         }
     }
 }
@@ -267,7 +288,9 @@ mod tests {
             assert!(ClientOp::parse(bad).is_err(), "{bad}");
         }
         // A very long op name is quoted as an excerpt.
-        let e = ClientOp::parse(&format!(r#"{{"op":"{}"}}"#, "x".repeat(10_000))).unwrap_err();
+        let e = ClientOp::parse(&format!(r#"{{"op":"{}"}}"#, "x".repeat(10_000)))
+            .unwrap_err()
+            .to_string();
         assert!(e.len() < 300, "{e}");
     }
 

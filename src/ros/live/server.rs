@@ -3,6 +3,7 @@
 
 use super::channels::Catalogue;
 use super::client;
+use super::error::LiveError;
 use super::hub::{Hub, LiveTap};
 use super::queue::LiveStats;
 use super::request::Request;
@@ -51,18 +52,21 @@ pub(crate) struct LiveView {
 
 impl LiveView {
     /// Binds the port and starts accepting; an error (the port taken, say) is one line.
-    pub(crate) fn start(o: LiveOptions<'_>) -> Result<Self, String> {
+    pub(crate) fn start(o: LiveOptions<'_>) -> Result<Self, LiveError> {
         let ip = if o.local {
             Ipv4Addr::LOCALHOST
         } else {
             Ipv4Addr::UNSPECIFIED
         };
-        let listener = TcpListener::bind((ip, o.port))
-            .map_err(|e| format!("cannot listen on {ip}:{}: {e}", o.port))?;
-        let addr = listener.local_addr().map_err(|e| e.to_string())?;
+        let asked = SocketAddr::from((ip, o.port));
+        let listener = TcpListener::bind(asked).map_err(|source| LiveError::Listen {
+            addr: asked,
+            source,
+        })?;
+        let addr = listener.local_addr().map_err(LiveError::LocalAddr)?;
         listener
             .set_nonblocking(true)
-            .map_err(|e| format!("cannot listen on {addr}: {e}"))?;
+            .map_err(|source| LiveError::Listen { addr, source })?;
         let (tx, requests) = smol::channel::bounded(REQUEST_QUEUE);
         let mut capabilities = vec!["clientPublish", "parameters", "services"];
         if o.sim_time {
@@ -82,7 +86,7 @@ impl LiveView {
         let acceptor = std::thread::Builder::new()
             .name("live-accept".into())
             .spawn(move || accept_loop(listener, h))
-            .map_err(|e| format!("cannot start the live view's thread: {e}"))?;
+            .map_err(LiveError::Thread)?;
         Ok(Self {
             hub,
             acceptor,

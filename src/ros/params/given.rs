@@ -2,6 +2,7 @@
 //! view), read as its type: the checks every parameter of a type shares, with their one-line
 //! errors.
 
+use super::error::ParameterError;
 use super::limits::{MAX_NAME_CHARS, MAX_PATH_BYTES};
 use crate::text::excerpt;
 use ros2_client::ParameterValue;
@@ -34,7 +35,7 @@ impl Kind {
 /// A value for parameter `name` of type `kind`; `lenient` (start-up values from `-p` and files) also accepts an
 /// integer for a double.
 pub struct Given<'a> {
-    pub name: &'a str,
+    pub name: &'static str,
     pub kind: Kind,
     pub value: &'a ParameterValue,
     pub lenient: bool,
@@ -42,21 +43,20 @@ pub struct Given<'a> {
 
 impl Given<'_> {
     /// A double parameter's value.
-    pub fn double(&self) -> Result<f64, String> {
+    pub fn double(&self) -> Result<f64, ParameterError> {
         match self.value {
             ParameterValue::Double(d) => Ok(*d),
             ParameterValue::Integer(i) if self.lenient => Ok(*i as f64),
-            other => Err(format!(
-                "parameter {:?} must be a double (e.g. 1000.0), got {}",
-                self.name,
-                Self::describe(other)
-            )),
+            other => Err(ParameterError::NotDouble {
+                name: self.name,
+                got: Self::describe(other),
+            }),
         }
     }
 
     /// A string parameter's value: a name ([`Kind::Name`]) of at most [`MAX_NAME_CHARS`]
     /// characters, a path of at most [`MAX_PATH_BYTES`] bytes.
-    pub fn string(&self) -> Result<String, String> {
+    pub fn string(&self) -> Result<String, ParameterError> {
         let name = self.name;
         match self.value {
             ParameterValue::String(s) => {
@@ -66,18 +66,19 @@ impl Given<'_> {
                     ("4096 bytes", s.len() > MAX_PATH_BYTES)
                 };
                 if too_long {
-                    return Err(format!(
-                        "parameter {name:?} is too long ({} bytes, at most {limit}): {}",
-                        s.len(),
-                        excerpt(s)
-                    ));
+                    return Err(ParameterError::TooLong {
+                        name,
+                        bytes: s.len(),
+                        limit,
+                        excerpt: excerpt(s),
+                    });
                 }
                 Ok(s.clone())
             }
-            other => Err(format!(
-                "parameter {name:?} must be a string, got {}",
-                Self::describe(other)
-            )),
+            other => Err(ParameterError::NotString {
+                name,
+                got: Self::describe(other),
+            }),
         }
     }
 

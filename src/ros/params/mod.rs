@@ -3,13 +3,15 @@
 
 #[cfg(test)]
 mod docs_table;
+mod error;
 mod given;
 mod limits;
 mod node_params;
 pub mod table;
 
+pub use error::ParameterError;
 pub use given::Given;
-pub use node_params::NodeParams;
+pub use node_params::{BuildError, NodeParams};
 pub use table::{spec, OnChange, PARAMETERS};
 
 use crate::physics::models::ModelKind;
@@ -60,13 +62,17 @@ impl NodeParams {
     /// Sets one parameter with the ROS value's own type (as the parameter services deliver it),
     /// checking its rules but not the whole (see [`NodeParams::build`]).
     /// `lenient` (start-up values from `-p` and files) also accepts an integer for a double.
-    pub fn set(&mut self, name: &str, value: &ParameterValue, lenient: bool) -> Result<(), String> {
+    pub fn set(
+        &mut self,
+        name: &str,
+        value: &ParameterValue,
+        lenient: bool,
+    ) -> Result<(), ParameterError> {
         let Some(spec) = spec(name) else {
-            return Err(format!(
-                "unknown parameter {:?} (known: {})",
-                excerpt(name),
-                table::names().join(", ")
-            ));
+            return Err(ParameterError::Unknown {
+                name: excerpt(name),
+                known: table::names().join(", "),
+            });
         };
         (spec.set)(
             self,
@@ -94,7 +100,8 @@ mod tests {
         assert_eq!(p.model, ModelKind::HILL);
         let e = p
             .set("model", &ParameterValue::String("bogus".into()), false)
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("bogus"), "{e}");
         assert!(p
             .set("rate_hz", &ParameterValue::Double(0.0), false)
@@ -149,7 +156,10 @@ mod tests {
             .muscles
             .iter()
             .all(|m| m.params.energetics.energy_model == EnergyModel::Bhargava));
-        let e = p.set("energy_model", &s("heat"), false).unwrap_err();
+        let e = p
+            .set("energy_model", &s("heat"), false)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("\"heat\"") && e.contains("umberger2010"), "{e}");
         assert_eq!(p.energy_model, Some(EnergyModel::Bhargava));
         assert_eq!(p.value("energy_model"), Some(s("bhargava")));
@@ -176,7 +186,8 @@ mod tests {
         assert_eq!(p.clock, ClockMode::Lockstep);
         let e = p
             .set("clock", &ParameterValue::String("sundial".into()), false)
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("sundial") && e.contains("wall, sim, lockstep"),
             "{e}"
@@ -207,7 +218,8 @@ mod tests {
         ] {
             let e = p
                 .set(name, &ParameterValue::String("m".repeat(len)), false)
-                .unwrap_err();
+                .unwrap_err()
+                .to_string();
             assert!(e.contains("too long") && e.len() < 200, "{name}: {e}");
         }
         assert!(p
@@ -216,11 +228,13 @@ mod tests {
         // The excerpt plus the list of the parameters' names.
         let e = p
             .set(&"n".repeat(10_000), &ParameterValue::Boolean(true), false)
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.len() < 100 + table::names().join(", ").len(), "{e}");
         let e = p
             .set("record", &ParameterValue::String("y".repeat(10_000)), false)
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.len() < 200, "{e}");
     }
 
@@ -233,7 +247,7 @@ mod tests {
             false,
         )
         .unwrap();
-        let e = p.load_config().unwrap_err();
+        let e = p.load_config().unwrap_err().to_string();
         assert!(e.contains("/nonexistent/x.toml"), "{e}");
     }
 }

@@ -1,10 +1,21 @@
 //! The values of the node's parameters, and what they build.
 
-use crate::config::ActuatorConfig;
+use crate::config::{ActuatorConfig, ConfigError};
 use crate::physics::models::ModelKind;
 use crate::physics::params::EnergyModel;
 use crate::ros::clock::ClockMode;
 use crate::sim::Actuator;
+
+/// Why the parameters give no actuator.
+#[derive(Debug, thiserror::Error)]
+pub enum BuildError {
+    /// The configuration they name cannot be used.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// The actuator cannot be set up (model, rate, limb).
+    #[error(transparent)]
+    Actuator(#[from] crate::sim::SetupError),
+}
 
 /// The values of the node's parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -39,11 +50,11 @@ pub struct NodeParams {
 
 impl NodeParams {
     /// Loads the configuration these parameters name, with `energy_model` applied.
-    pub fn load_config(&self) -> Result<ActuatorConfig, String> {
+    pub fn load_config(&self) -> Result<ActuatorConfig, ConfigError> {
         let cfg = if self.config.is_empty() {
             ActuatorConfig::default()
         } else {
-            ActuatorConfig::resolve(&self.config).map_err(|e| e.to_string())?
+            ActuatorConfig::resolve(&self.config)?
         };
         Ok(match self.energy_model {
             Some(m) => cfg.with_energy_model(m),
@@ -52,9 +63,9 @@ impl NodeParams {
     }
 
     /// Builds the actuator these parameters describe (checks the whole set).
-    pub fn build(&self) -> Result<Actuator, String> {
+    pub fn build(&self) -> Result<Actuator, BuildError> {
         let cfg = self.load_config()?;
-        Actuator::new(&cfg, self.model, self.rate_hz).map_err(|e| e.to_string())
+        Actuator::new(&cfg, self.model, self.rate_hz).map_err(BuildError::from)
     }
 
     /// Publish every `n`th tick.

@@ -8,6 +8,7 @@
 //! Adding a parameter: a field of [`NodeParams`] and one entry here (its row in
 //! docs/ros-interface.md follows; the test says what to write).
 
+use super::error::ParameterError;
 use super::given::{Given, Kind};
 use super::limits::{DEFAULT_FOXGLOVE_PORT, MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
 use super::node_params::NodeParams;
@@ -79,7 +80,7 @@ pub struct ParameterSpec {
     /// Its value in `p`.
     pub get: fn(&NodeParams) -> ParameterValue,
     /// Checks `g`'s value and stores it in `p`, or says why not (one line).
-    pub set: fn(&mut NodeParams, &Given) -> Result<(), String>,
+    pub set: fn(&mut NodeParams, &Given) -> Result<(), ParameterError>,
 }
 
 /// Every parameter, in the order they are declared.
@@ -93,10 +94,7 @@ pub const PARAMETERS: &[ParameterSpec] = &[
         choices: Some(|| format!("one of {}", ModelKind::names_joined("|", "|"))),
         get: |p| ParameterValue::String(p.model.name().into()),
         set: |p, g| {
-            p.model = g
-                .string()?
-                .parse::<ModelKind>()
-                .map_err(|e| e.to_string())?;
+            p.model = g.string()?.parse::<ModelKind>()?;
             Ok(())
         },
     },
@@ -111,9 +109,7 @@ pub const PARAMETERS: &[ParameterSpec] = &[
         set: |p, g| {
             let r = g.double()?;
             if !(r.is_finite() && r > 0.0 && r <= MAX_RATE_HZ) {
-                return Err(format!(
-                    "rate_hz = {r} is invalid: must be a finite number > 0 and <= {MAX_RATE_HZ}"
-                ));
+                return Err(ParameterError::RateHz(r));
             }
             p.rate_hz = r;
             Ok(())
@@ -130,10 +126,7 @@ pub const PARAMETERS: &[ParameterSpec] = &[
         set: |p, g| {
             let r = g.double()?;
             if !(r.is_finite() && r >= 0.0) {
-                return Err(format!(
-                    "publish_rate_hz = {r} is invalid: must be finite and >= 0 \
-                     (0 = publish every tick)"
-                ));
+                return Err(ParameterError::PublishRateHz(r));
             }
             p.publish_rate_hz = r;
             Ok(())
@@ -168,10 +161,10 @@ pub const PARAMETERS: &[ParameterSpec] = &[
                 p.record = *b;
                 Ok(())
             }
-            other => Err(format!(
-                "parameter \"record\" must be a bool, got {}",
-                Given::describe(other)
-            )),
+            other => Err(ParameterError::NotBool {
+                name: g.name,
+                got: Given::describe(other),
+            }),
         },
     },
     ParameterSpec {
@@ -212,10 +205,7 @@ pub const PARAMETERS: &[ParameterSpec] = &[
         set: |p, g| {
             let f = g.double()?;
             if !(f.is_finite() && (0.0..=MAX_REAL_TIME_FACTOR).contains(&f)) {
-                return Err(format!(
-                    "real_time_factor = {f} is invalid: must be from 0 (as fast as possible) \
-                     to {MAX_REAL_TIME_FACTOR}"
-                ));
+                return Err(ParameterError::RealTimeFactor(f));
             }
             p.real_time_factor = f;
             Ok(())
@@ -232,9 +222,7 @@ pub const PARAMETERS: &[ParameterSpec] = &[
         set: |p, g| {
             let r = g.double()?;
             if !(r.is_finite() && r >= 0.0) {
-                return Err(format!(
-                    "clock_rate_hz = {r} is invalid: must be finite and >= 0 (0 = every tick)"
-                ));
+                return Err(ParameterError::ClockRateHz(r));
             }
             p.clock_rate_hz = r;
             Ok(())
@@ -253,10 +241,10 @@ pub const PARAMETERS: &[ParameterSpec] = &[
                 p.joint_state_timeout_ticks = *n;
                 Ok(())
             }
-            other => Err(format!(
-                "parameter \"joint_state_timeout_ticks\" must be an integer >= 1, got {}",
-                Given::describe(other)
-            )),
+            other => Err(ParameterError::NotCount {
+                name: g.name,
+                got: Given::describe(other),
+            }),
         },
     },
     ParameterSpec {
@@ -275,14 +263,14 @@ pub const PARAMETERS: &[ParameterSpec] = &[
         },
         set: |p, g| {
             let s = g.string()?;
-            p.energy_model =
-                if s.is_empty() {
-                    None
-                } else {
-                    Some(s.parse::<EnergyModel>().map_err(|e| {
-                        format!("{e} (or empty: each muscle's from the configuration)")
-                    })?)
-                };
+            p.energy_model = if s.is_empty() {
+                None
+            } else {
+                Some(
+                    s.parse::<EnergyModel>()
+                        .map_err(ParameterError::EnergyModel)?,
+                )
+            };
             Ok(())
         },
     },
@@ -299,11 +287,10 @@ pub const PARAMETERS: &[ParameterSpec] = &[
                 p.foxglove_port = *n as u16;
                 Ok(())
             }
-            other => Err(format!(
-                "parameter \"foxglove_port\" must be an integer from 0 (off) to {}, got {}",
-                u16::MAX,
-                Given::describe(other)
-            )),
+            other => Err(ParameterError::NotPort {
+                name: g.name,
+                got: Given::describe(other),
+            }),
         },
     },
 ];

@@ -1,0 +1,59 @@
+//! Why a command failed. `main` prints it as one line after `error: `.
+
+use super::steady::SteadyError;
+use crate::config::ConfigError;
+use crate::csv::CsvWriteError;
+use crate::files::OverwritesInput;
+use crate::recording::RecordingError;
+use crate::runs::RunError;
+use crate::figures::FigureError;
+use crate::physics::energetics::params::UnknownEnergyModel;
+use crate::physics::models::UnknownModel;
+use crate::ros::NodeError;
+
+/// Why a command failed.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// `--model` names no model.
+    #[error(transparent)]
+    Model(#[from] UnknownModel),
+    /// `--energy-model` names no energy model.
+    #[error(transparent)]
+    EnergyModel(#[from] UnknownEnergyModel),
+    /// `--config` cannot be used.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// An output that would overwrite one of the command's inputs.
+    #[error(transparent)]
+    OutputIsInput(#[from] OverwritesInput),
+    /// `--points` out of its rules.
+    #[error(transparent)]
+    Points(#[from] crate::sim::steady::SteadyError),
+    /// The CSV cannot be written.
+    #[error(transparent)]
+    Csv(#[from] CsvWriteError),
+    /// A recording that cannot be recovered.
+    #[error(transparent)]
+    Recording(#[from] RecordingError),
+    /// A run that cannot be simulated, recorded, exported, replayed or compared.
+    #[error(transparent)]
+    Run(#[from] RunError),
+    /// `simulate` ran no tick.
+    #[error("the scenario produced no ticks")]
+    NoTicks,
+    /// `replay` did not reproduce every recorded state (the counts are printed before).
+    #[error("the replay did not reproduce the recorded states")]
+    ReplayDiffers,
+    /// `compare --json` cannot write its JSON.
+    #[error(transparent)]
+    Json(#[from] serde_json::Error),
+    /// `figures` failed.
+    #[error(transparent)]
+    Figures(#[from] FigureError),
+    /// `steady` failed.
+    #[error(transparent)]
+    Steady(#[from] SteadyError),
+    /// `node` failed.
+    #[error(transparent)]
+    Node(#[from] NodeError),
+}
