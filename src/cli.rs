@@ -249,8 +249,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         }
         Command::Compare { a, b, plot, json } => compare(&a, &b, plot.as_deref(), json),
         Command::Recover { input, output } => {
-            let r =
-                crate::recording::recover::recover(&input, &output)?;
+            let r = crate::recording::recover::recover(&input, &output)?;
             if let Some(w) = &r.stopped_early {
                 eprintln!(
                     "warning: {} is truncated (no summary); reading stopped: {}",
@@ -323,8 +322,7 @@ fn simulate(
     out: Option<&Path>,
 ) -> Result<(), CliError> {
     let model = parse_model(model)?;
-    let run = crate::runs::run_scenario(scenario, cfg, model, rate_hz, substeps, out)
-        ?;
+    let run = crate::runs::run_scenario(scenario, cfg, model, rate_hz, substeps, out)?;
     if let Some(path) = csv {
         crate::csv::write_csv_to(&run, path)?;
     }

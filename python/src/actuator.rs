@@ -3,6 +3,7 @@
 //! released, and record a trajectory of any outputs.
 
 use crate::config::build;
+use crate::error_kinds::py_err;
 use crate::errors::{config_error, input_error, step_error, unknown_name, ErrorKind, CHUNK_TICKS};
 use crate::inputs::{checked, float_array, per_name, Kind, Values};
 use crate::outputs;
@@ -412,9 +413,7 @@ impl PyActuator {
     /// An actuator from the bytes of its pickle.
     #[staticmethod]
     fn _from_bytes(bytes: &[u8]) -> PyResult<Self> {
-        Ok(Self::wrap(
-            Actuator::from_bytes(bytes).map_err(input_error)?,
-        ))
+        Ok(Self::wrap(Actuator::from_bytes(bytes).map_err(py_err)?))
     }
     fn __repr__(&self) -> String {
         let a = self.a();
@@ -447,7 +446,7 @@ impl PyActuatorState {
     #[staticmethod]
     fn _from_bytes(bytes: &[u8]) -> PyResult<Self> {
         Ok(Self {
-            inner: Mutex::new(Actuator::from_bytes(bytes).map_err(input_error)?),
+            inner: Mutex::new(Actuator::from_bytes(bytes).map_err(py_err)?),
         })
     }
     fn __repr__(&self) -> String {

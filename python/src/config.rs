@@ -2,7 +2,8 @@
 //! overrides, a model, an energy model and a stepping, resolved by the crate's own functions so
 //! that every refusal carries the command line's message.
 
-use crate::errors::{config_error, file_error, unknown_name};
+use crate::error_kinds::py_err;
+use crate::errors::config_error;
 use muscle_actuator_core::config::overrides::with_overrides;
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::{ModelKind, UnknownModel};
@@ -57,14 +58,7 @@ pub fn resolve_config(
                         )
                     })?
             };
-            ActuatorConfig::resolve(&name).map_err(|e| {
-                // A built-in name fails only by its content; any other name is a file.
-                if is_built_in(&name) {
-                    config_error(e.to_string())
-                } else {
-                    file_error(std::path::Path::new(&name), e.to_string(), config_error)
-                }
-            })?
+            ActuatorConfig::resolve(&name).map_err(py_err)?
         }
     };
     for w in cfg.warnings() {
@@ -76,13 +70,6 @@ pub fn resolve_config(
         )?;
     }
     Ok(cfg)
-}
-
-/// Whether `name` is a built-in configuration's (`elbow`, `arm`).
-fn is_built_in(name: &str) -> bool {
-    ActuatorConfig::built_in_names()
-        .split(", ")
-        .any(|n| n == name)
 }
 
 /// Overrides as (dotted key, value): a dict `{"muscle.flexor.k_t": 2e5, ...}` or None.
@@ -113,7 +100,7 @@ pub fn configured(
     overrides: &[(String, toml::Value)],
     energy_model: Option<&str>,
 ) -> PyResult<ActuatorConfig> {
-    let cfg = with_overrides(cfg, overrides).map_err(|e| config_error(e.to_string()))?;
+    let cfg = with_overrides(cfg, overrides).map_err(py_err)?;
     Ok(match energy_model {
         Some(name) => cfg.with_energy_model(parse_energy_model(name)?),
         None => cfg,
@@ -121,18 +108,16 @@ pub fn configured(
 }
 
 pub fn parse_model(name: &str) -> PyResult<ModelKind> {
-    name.parse()
-        .map_err(|e: UnknownModel| unknown_name(e.to_string()))
+    name.parse().map_err(|e: UnknownModel| py_err(e))
 }
 
 pub fn parse_energy_model(name: &str) -> PyResult<EnergyModel> {
-    name.parse()
-        .map_err(|e: UnknownEnergyModel| unknown_name(e.to_string()))
+    name.parse().map_err(|e: UnknownEnergyModel| py_err(e))
 }
 
 /// The rate, checked as `--rate-hz` is.
 pub fn check_rate(rate_hz: f64) -> PyResult<()> {
-    limits::check_rate_hz("rate_hz", rate_hz).map_err(config_error)
+    limits::check_rate_hz("rate_hz", rate_hz).map_err(py_err)
 }
 
 /// Fixed sub-steps per tick, or the model's default stepping.
@@ -144,7 +129,7 @@ pub fn count(name: &str, v: i64) -> PyResult<usize> {
 pub fn stepping(model: ModelKind, substeps: Option<i64>) -> PyResult<Stepping> {
     match substeps.map(|n| count("substeps", n)).transpose()? {
         Some(n) => {
-            limits::check_substeps("substeps", n).map_err(config_error)?;
+            limits::check_substeps("substeps", n).map_err(py_err)?;
             Ok(Stepping::Fixed(n))
         }
         None => Ok(default_stepping(model)),
@@ -169,5 +154,5 @@ pub fn build(
         &overrides_of(overrides)?,
         energy_model,
     )?;
-    Actuator::with_stepping(&cfg, model, rate_hz, stepping).map_err(config_error)
+    Actuator::with_stepping(&cfg, model, rate_hz, stepping).map_err(py_err)
 }

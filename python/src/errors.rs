@@ -1,16 +1,15 @@
 //! The package's exceptions (docs/python.md#errors): `Error`, a `ValueError`, and its kinds —
 //! `ConfigError`, `InputError`, `StepError` (also a `RuntimeError`), `RecordingError`,
 //! `UnknownNameError` (also a `KeyError`) and `FileNotFound` (also a `FileNotFoundError`).
-//! The crate reports most failures as message strings; the kind is told by the call site (and,
-//! for a file, by whether it exists and opens), and the message is kept as it is.
+//! Which kind each of the crates' errors raises is [`crate::error_kinds`]'s; the errors this crate
+//! finds itself (arguments of the wrong type or shape) are raised where they are found.
 
 use pyo3::exceptions::{
-    PyBaseException, PyFileNotFoundError, PyKeyError, PyOSError, PyRuntimeError, PyValueError,
+    PyBaseException, PyFileNotFoundError, PyKeyError, PyRuntimeError, PyValueError,
 };
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyTuple, PyType};
-use std::path::Path;
 
 /// Ticks stepped between two checks of Python's signals (Ctrl-C) in a long call.
 pub const CHUNK_TICKS: u64 = 10_000;
@@ -160,22 +159,6 @@ pub fn input_error(msg: impl Into<String>) -> PyErr {
 pub fn unknown_name(msg: impl Into<String>) -> PyErr {
     ErrorKind::UnknownName.err(msg)
 }
-pub fn recording_error(msg: impl Into<String>) -> PyErr {
-    ErrorKind::Recording.err(msg)
-}
-pub fn file_not_found(msg: impl Into<String>) -> PyErr {
-    ErrorKind::FileNotFound.err(msg)
-}
-
-/// A failure to read `path` that the crate reports as `msg` alone: `FileNotFound` when the file
-/// does not exist, `OSError` when it exists but does not open, else `otherwise` (its content).
-pub fn file_error(path: &Path, msg: String, otherwise: fn(String) -> PyErr) -> PyErr {
-    match std::fs::File::open(path) {
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => file_not_found(msg),
-        Err(_) => PyOSError::new_err(msg),
-        Ok(_) => otherwise(msg),
-    }
-}
 
 /// The `StepError` of a failed tick (of batch instance `instance`, if any).
 pub fn step_error(py: Python<'_>, tick: u64, reason: &str, instance: Option<usize>) -> PyErr {
@@ -186,23 +169,8 @@ pub fn step_error(py: Python<'_>, tick: u64, reason: &str, instance: Option<usiz
     with_step_attributes(py, ErrorKind::Step.err(msg), tick, reason, instance)
 }
 
-/// A `StepError` of the crate's message "tick N failed: REASON; …" (a scenario's run), with
-/// `tick` and `reason` read from it; None if `msg` is not of that form.
-pub fn step_error_of_message(py: Python<'_>, msg: &str) -> Option<PyErr> {
-    let rest = msg.strip_prefix("tick ")?;
-    let (tick, reason) = rest.split_once(" failed: ")?;
-    let tick: u64 = tick.parse().ok()?;
-    let reason = reason.split_once("; ").map_or(reason, |(r, _)| r);
-    Some(with_step_attributes(
-        py,
-        ErrorKind::Step.err(msg),
-        tick,
-        reason,
-        None,
-    ))
-}
-
-fn with_step_attributes(
+/// `err` with the attributes of the failed tick: `tick`, `reason` and `instance`.
+pub fn with_step_attributes(
     py: Python<'_>,
     err: PyErr,
     tick: u64,

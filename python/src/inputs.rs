@@ -5,7 +5,7 @@
 //! `InputError`, or an `UnknownNameError` for a name the limb does not have.
 
 use crate::errors::{input_error, unknown_name};
-use muscle_actuator_core::sim::input::{validate_activation, validate_load};
+use muscle_actuator_core::sim::input::{validate_activation, validate_load, Rejection};
 use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -120,10 +120,9 @@ pub fn per_name(obj: &Bound<'_, PyAny>, names: &[String], kind: Kind) -> PyResul
         .map_err(|r| {
             let msg = format!("{}: {r}", kind.what());
             // A name not of this limb is an unknown name; a repeated or non-finite one, bad input.
-            if keys.iter().any(|k| !names.contains(k)) {
-                unknown_name(msg)
-            } else {
-                input_error(msg)
+            match r {
+                Rejection::UnknownName { .. } => unknown_name(msg),
+                _ => input_error(msg),
             }
         })?;
         return Ok(Values::Named(accepted.values));

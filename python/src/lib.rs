@@ -14,6 +14,7 @@
 
 mod actuator;
 mod config;
+mod error_kinds;
 mod errors;
 mod inputs;
 mod outputs;

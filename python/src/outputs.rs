@@ -1,7 +1,7 @@
 //! The outputs a trajectory carries (`muscle_actuator_core::sim::rollout::Outputs`: by the names of
 //! the one field list) as numpy arrays.
 
-use crate::errors::{input_error, unknown_name};
+use crate::error_kinds::py_err;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -11,17 +11,7 @@ pub use muscle_actuator_core::sim::rollout::{write_tick, Outputs};
 /// The outputs named (None: all): an unknown name refused as an `UnknownNameError`, a repeated
 /// one as an `InputError`.
 pub fn named(names: Option<Vec<String>>) -> PyResult<Outputs> {
-    let unknown = names.as_ref().is_some_and(|names| {
-        let all = Outputs::all();
-        names.iter().any(|n| !all.keys.iter().any(|(k, _)| k == n))
-    });
-    Outputs::named(names).map_err(|e| {
-        if unknown {
-            unknown_name(e)
-        } else {
-            input_error(e)
-        }
-    })
+    Outputs::named(names).map_err(py_err)
 }
 
 /// One buffer per output for `lead` leading entries (instances × ticks) of their widths.

@@ -4,15 +4,13 @@
 //! command's figures as its `--json` prints them. `muscle_actuator/run.py` wraps the dicts.
 
 use crate::config::{configured, parse_model, resolve_config};
-use crate::errors::{
-    config_error, file_error, file_not_found, input_error, recording_error, step_error_of_message,
-    unknown_name,
-};
+use crate::error_kinds::{py_err, ToPyErr};
+use crate::errors::{input_error, ErrorKind};
 use crate::outputs::{self, Outputs};
 use muscle_actuator_core::files::check_not_an_input;
 use muscle_actuator_core::sim::scenario::Run;
+use muscle_actuator_recording::runs::RunError;
 use numpy::PyArray1;
-use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use std::path::PathBuf;
@@ -96,7 +94,7 @@ pub fn _simulate<'py>(
             .filter(|p| p.is_file())
             .collect();
         let refs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
-        check_not_an_input(o, &refs).map_err(input_error)?;
+        check_not_an_input(o, &refs).map_err(py_err)?;
     }
     let run = py
         .detach(|| {
@@ -108,22 +106,13 @@ pub fn _simulate<'py>(
                 substeps,
                 out.as_deref(),
             )
-            .map_err(String::from)
         })
-        .map_err(|e| {
-            // The scenario resolved: a failed tick, a recording that could not be written, or a
-            // set-up the scenario's run refuses.
-            step_error_of_message(py, &e).unwrap_or_else(|| match &out {
-                Some(o) if e.contains(&o.display().to_string()) => PyOSError::new_err(e),
-                _ => config_error(e),
-            })
-        })?;
+        .map_err(|e| e.to_py(py))?;
     run_dict(py, run)
 }
 
-/// The scenario `simulate` names, resolved as `run_scenario` resolves it: a name that is neither
-/// built in nor a file raises `UnknownNameError` (`FileNotFound` if it ends in `.toml`, as the
-/// crate's message says), an unreadable file `OSError`, a bad one `ConfigError`.
+/// The scenario `simulate` names, resolved as `run_scenario` resolves it (its error's exception:
+/// [`crate::error_kinds`]).
 fn check_scenario(
     scenario: &str,
     cfg: &muscle_actuator_core::config::ActuatorConfig,
@@ -131,28 +120,9 @@ fn check_scenario(
     let Some(first) = cfg.muscles.first() else {
         return Ok(());
     };
-    match muscle_actuator_core::sim::scenario::Scenario::resolve(scenario, &first.params) {
-        Ok(_) => Ok(()),
-        Err(e) => {
-            let path = std::path::Path::new(scenario);
-            Err(if path.exists() {
-                file_error(path, e.to_string(), config_error)
-            } else if scenario.ends_with(".toml") {
-                file_not_found(e)
-            } else {
-                unknown_name(e)
-            })
-        }
-    }
-}
-
-/// A failure to read recordings `paths`, reported as `msg` by the crate: `FileNotFound` or
-/// `OSError` for the first that does not exist or open, else `RecordingError`.
-fn recording_failure(paths: &[&std::path::Path], msg: String) -> PyErr {
-    match paths.iter().find(|p| std::fs::File::open(p).is_err()) {
-        Some(p) => file_error(p, msg, recording_error),
-        None => recording_error(msg),
-    }
+    muscle_actuator_core::sim::scenario::Scenario::resolve(scenario, &first.params)
+        .map(|_| ())
+        .map_err(py_err)
 }
 
 /// A recording (node or `simulate --out`) as `export` reads it; the warning of a file cut by a
@@ -165,12 +135,18 @@ pub fn _read_recording<'py>(
     let path = PathBuf::from(path_of(py, path, "path")?);
     let (run, warning) = py
         .detach(|| {
-            let loaded = muscle_actuator_recording::runs::load_run(&path)?;
-            let run = muscle_actuator_recording::runs::export::run_of(&loaded)
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-            Ok::<_, String>((run, loaded.warning))
+            let loaded =
+                muscle_actuator_recording::runs::load_run(&path).map_err(RunError::from)?;
+            let run =
+                muscle_actuator_recording::runs::export::run_of(&loaded).map_err(|source| {
+                    RunError::Export {
+                        path: path.clone(),
+                        source,
+                    }
+                })?;
+            Ok::<_, RunError>((run, loaded.warning))
         })
-        .map_err(|e| recording_failure(&[&path], e))?;
+        .map_err(|e| e.to_py(py))?;
     let d = run_dict(py, run)?;
     d.set_item("warning", warning)?;
     Ok(d)
@@ -195,13 +171,17 @@ pub fn _compare<'py>(
         .map(PathBuf::from);
     if let Some(p) = &plot {
         for written in [p.with_extension("png"), p.with_extension("svg")] {
-            check_not_an_input(&written, &[a.as_path(), b.as_path()]).map_err(input_error)?;
+            check_not_an_input(&written, &[a.as_path(), b.as_path()]).map_err(py_err)?;
         }
     }
     py.detach(|| {
         let c = muscle_actuator_recording::runs::compare::compare_files(&a, &b, None)?;
-        let json = serde_json::to_string_pretty(&c).map_err(|e| e.to_string())?;
-        Ok::<_, String>((json, c.warnings))
+        Ok::<_, RunError>(c)
     })
-    .map_err(|e| recording_failure(&[&a, &b], e))
+    .map_err(|e| e.to_py(py))
+    .and_then(|c| {
+        let json = serde_json::to_string_pretty(&c)
+            .map_err(|e| ErrorKind::Error.err(format!("comparison as JSON: {e}")))?;
+        Ok((json, c.warnings))
+    })
 }

@@ -3,13 +3,13 @@
 use super::steady::SteadyError;
 use crate::config::ConfigError;
 use crate::csv::CsvWriteError;
-use crate::files::OverwritesInput;
-use crate::recording::RecordingError;
-use crate::runs::RunError;
 use crate::figures::FigureError;
+use crate::files::OverwritesInput;
 use crate::physics::energetics::params::UnknownEnergyModel;
 use crate::physics::models::UnknownModel;
+use crate::recording::RecordingError;
 use crate::ros::NodeError;
+use crate::runs::RunError;
 
 /// Why a command failed.
 #[derive(Debug, thiserror::Error)]

@@ -61,9 +61,7 @@ pub fn cocontraction(
         initial_force: 0.0,
         inputs,
     };
-    let r = sc
-        .run(cfg, model, 1000.0, default_stepping(model))
-        ?;
+    let r = sc.run(cfg, model, 1000.0, default_stepping(model))?;
     let last = r.last().ok_or(FigureError::NoTicks)?;
     let sum = |f: fn(&MuscleSnapshot) -> f64| last.muscles.iter().map(f).sum::<f64>();
     Ok(CocontractionPoint {

@@ -27,13 +27,6 @@ pub enum SplitError {
     MoreThanOneLine,
 }
 
-/// For callers whose errors are still one-line text.
-impl From<SplitError> for String {
-    fn from(e: SplitError) -> String {
-        e.to_string()
-    }
-}
-
 /// Why a CSV file cannot be written ([`write_text_to`]).
 #[derive(Debug, thiserror::Error)]
 pub enum CsvWriteError {
@@ -68,13 +61,6 @@ impl CsvWriteError {
     /// Whether the path does not exist (its directory missing).
     pub fn is_not_found(&self) -> bool {
         self.io_kind() == std::io::ErrorKind::NotFound
-    }
-}
-
-/// For callers whose errors are still one-line text.
-impl From<CsvWriteError> for String {
-    fn from(e: CsvWriteError) -> String {
-        e.to_string()
     }
 }
 

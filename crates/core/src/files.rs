@@ -94,13 +94,6 @@ pub struct OverwritesInput {
     pub input: std::path::PathBuf,
 }
 
-/// For callers whose errors are still one-line text.
-impl From<OverwritesInput> for String {
-    fn from(e: OverwritesInput) -> String {
-        e.to_string()
-    }
-}
-
 /// An output file written whole or not at all: created under a hidden temporary name beside its
 /// target (`.NAME.tmp-PID-N.EXT`, in the same directory, so that the rename stays on one file
 /// system; the target's extension kept, for writers that pick the format by it), and renamed over

@@ -72,13 +72,6 @@ impl StateError {
     }
 }
 
-/// For callers whose errors are still one-line text.
-impl From<StateError> for String {
-    fn from(e: StateError) -> String {
-        e.to_string()
-    }
-}
-
 /// Something whose state is written to saved bytes and read back into a value of the same
 /// structure (built anew from the same configuration).
 pub trait SavedState {

@@ -84,13 +84,6 @@ pub enum StampError {
     },
 }
 
-/// For callers whose errors are still one-line text.
-impl From<StampError> for String {
-    fn from(e: StampError) -> String {
-        e.to_string()
-    }
-}
-
 /// Simulated time of `tick` at `rate_hz`, ns.
 pub fn tick_ns(tick: u64, rate_hz: f64) -> u64 {
     (tick as f64 * 1e9 / rate_hz).round() as u64

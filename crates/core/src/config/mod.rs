@@ -88,13 +88,6 @@ impl ConfigError {
     }
 }
 
-/// For callers whose errors are still one-line text.
-impl From<ConfigError> for String {
-    fn from(e: ConfigError) -> String {
-        e.to_string()
-    }
-}
-
 /// The error of `parameter` = `value` breaking `rule`.
 fn rule(parameter: String, value: impl ToString, rule: &'static str) -> ParamError {
     ParamError {

@@ -113,13 +113,6 @@ pub enum PlantError {
     Model(#[from] ModelBuildError),
 }
 
-/// For callers whose errors are still one-line text.
-impl From<PlantError> for String {
-    fn from(e: PlantError) -> String {
-        e.to_string()
-    }
-}
-
 /// The muscles, their anchors and the joints they drive.
 #[derive(Debug, Clone)]
 pub struct Plant {

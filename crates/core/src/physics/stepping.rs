@@ -26,13 +26,6 @@ pub enum SteppingError {
     },
 }
 
-/// For callers whose errors are still one-line text.
-impl From<SteppingError> for String {
-    fn from(e: SteppingError) -> String {
-        e.to_string()
-    }
-}
-
 /// How a tick is divided into implicit sub-steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Stepping {

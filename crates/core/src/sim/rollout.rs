@@ -47,13 +47,6 @@ pub enum OutputsError {
     ),
 }
 
-/// For callers whose errors are still one-line text.
-impl From<OutputsError> for String {
-    fn from(e: OutputsError) -> String {
-        e.to_string()
-    }
-}
-
 /// Every output's name, comma-separated.
 fn output_names() -> String {
     Outputs::all()

@@ -61,13 +61,6 @@ pub struct RecordMismatch {
     pub run_joints: usize,
 }
 
-/// For callers whose errors are still one-line text.
-impl From<RecordMismatch> for String {
-    fn from(e: RecordMismatch) -> String {
-        e.to_string()
-    }
-}
-
 /// The result of running a scenario (or of reading a recording back): its names and rate, and
 /// its records.
 #[derive(Debug, Clone, PartialEq)]

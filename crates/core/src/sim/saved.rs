@@ -101,13 +101,6 @@ pub enum SavedStateError {
     Refused(String),
 }
 
-/// For callers whose errors are still one-line text.
-impl From<SavedStateError> for String {
-    fn from(e: SavedStateError) -> String {
-        e.to_string()
-    }
-}
-
 /// The actuator the body describes.
 fn restore(body: &[u8]) -> Result<Actuator, SavedStateError> {
     let refused = SavedStateError::Refused;

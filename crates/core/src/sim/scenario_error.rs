@@ -80,13 +80,6 @@ impl ScenarioError {
     }
 }
 
-/// For callers whose errors are still one-line text.
-impl From<ScenarioError> for String {
-    fn from(e: ScenarioError) -> String {
-        e.to_string()
-    }
-}
-
 /// A rule a scenario breaks.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BadScenario {
@@ -216,13 +209,6 @@ impl ScenarioRunError {
     /// Whether an input names a muscle or joint the limb does not have.
     pub fn is_unknown_name(&self) -> bool {
         matches!(self, ScenarioRunError::UnknownName { .. })
-    }
-}
-
-/// For callers whose errors are still one-line text.
-impl From<ScenarioRunError> for String {
-    fn from(e: ScenarioRunError) -> String {
-        e.to_string()
     }
 }
 

@@ -64,10 +64,3 @@ pub enum SetupError {
         source: rayon::ThreadPoolBuildError,
     },
 }
-
-/// For callers whose errors are still one-line text.
-impl From<SetupError> for String {
-    fn from(e: SetupError) -> String {
-        e.to_string()
-    }
-}

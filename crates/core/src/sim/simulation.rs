@@ -39,13 +39,6 @@ pub struct StepError {
     pub reason: &'static str,
 }
 
-/// For callers whose errors are still one-line text.
-impl From<StepError> for String {
-    fn from(e: StepError) -> String {
-        e.to_string()
-    }
-}
-
 /// A plant with its state, stepped tick by tick.
 #[derive(Debug, Clone)]
 pub struct Simulation {

@@ -73,13 +73,6 @@ pub enum SteadyError {
     },
 }
 
-/// For callers whose errors are still one-line text.
-impl From<SteadyError> for String {
-    fn from(e: SteadyError) -> String {
-        e.to_string()
-    }
-}
-
 /// ` at v_s = … m/s (… vmax)`, or nothing.
 fn failing_velocity(at: Option<f64>, v_max: f64) -> String {
     at.map_or_else(String::new, |v| {

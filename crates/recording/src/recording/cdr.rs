@@ -29,12 +29,6 @@ pub enum CdrError {
     Decode(#[source] cdr_encoding::Error),
 }
 
-impl From<CdrError> for String {
-    fn from(e: CdrError) -> Self {
-        e.to_string()
-    }
-}
-
 /// Serializes a message as ROS 2 does on the wire: encapsulation header + XCDR1 LE body.
 pub fn encode_cdr<T: Serialize>(msg: &T) -> Result<Vec<u8>, CdrError> {
     let body = cdr_encoding::to_vec::<T, LittleEndian>(msg).map_err(CdrError::Encode)?;

@@ -228,9 +228,3 @@ impl RecordingError {
         self
     }
 }
-
-impl From<RecordingError> for String {
-    fn from(e: RecordingError) -> Self {
-        e.to_string()
-    }
-}

@@ -35,12 +35,6 @@ pub enum SchemaError {
     },
 }
 
-impl From<SchemaError> for String {
-    fn from(e: SchemaError) -> Self {
-        e.to_string()
-    }
-}
-
 /// The separator line rosbag2 puts between definitions.
 pub const SEPARATOR: &str =
     "================================================================================";

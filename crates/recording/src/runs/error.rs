@@ -220,9 +220,3 @@ impl RunError {
         }
     }
 }
-
-impl From<RunError> for String {
-    fn from(e: RunError) -> Self {
-        e.to_string()
-    }
-}

@@ -47,12 +47,6 @@ pub enum LimitError {
     },
 }
 
-impl From<LimitError> for String {
-    fn from(e: LimitError) -> Self {
-        e.to_string()
-    }
-}
-
 /// A tick rate, Hz: finite, > 0 and at most the node's [`MAX_RATE_HZ`]. `name` says where it
 /// came from (`--rate-hz`, `metadata muscle_actuator.rate_hz`).
 pub fn check_rate_hz(name: &str, r: f64) -> Result<(), LimitError> {

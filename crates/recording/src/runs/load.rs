@@ -48,12 +48,6 @@ impl LoadError {
     }
 }
 
-impl From<LoadError> for String {
-    fn from(e: LoadError) -> Self {
-        e.to_string()
-    }
-}
-
 /// What makes a recording that reads fine not a run of this program to load (the file is named
 /// by [`LoadError::Invalid`]).
 #[derive(Debug, thiserror::Error)]

@@ -173,12 +173,6 @@ pub enum BuildError {
     Setup(#[from] SetupError),
 }
 
-impl From<MetadataError> for String {
-    fn from(e: MetadataError) -> Self {
-        e.to_string()
-    }
-}
-
 /// The record's value of `k`, or the error naming the missing key.
 fn get<'a>(m: &'a BTreeMap<String, String>, k: &'static str) -> Result<&'a String, MetadataError> {
     m.get(k).ok_or(MetadataError::Missing { key: k })
