@@ -39,7 +39,7 @@ def raised(fn, *args, **kwargs) -> BaseException:
 def test_configuration_errors():
     for call in [
         lambda: ma.Actuator({"muscle": [{"name": "flexor", "k_tt": 1.0}]}),
-        lambda: ma.Actuator(overrides={"muscle.biceps.k_t": 1.0}),
+        lambda: ma.Actuator(overrides={"muscle.flexor.k_tt": 1.0}),
         lambda: ma.Actuator(overrides={"muscle.flexor.k_t": -5.0}),
         lambda: ma.Actuator(overrides=[1]),
         lambda: ma.Actuator(rate_hz=0.0),
@@ -54,8 +54,10 @@ def test_configuration_errors():
 
 
 def test_a_batch_instance_keeps_its_class_and_says_which():
-    e = raised(ma.rollout, "elbow", "hill", np.zeros((2, 3, 2)), overrides=[{}, {"muscle.x.k_t": 1.0}])
+    e = raised(ma.rollout, "elbow", "hill", np.zeros((2, 3, 2)), overrides=[{}, {"muscle.flexor.k_t": -1.0}])
     assert type(e) is ma.ConfigError and str(e).startswith("instance 1: ")
+    e = raised(ma.rollout, "elbow", "hill", np.zeros((2, 3, 2)), overrides=[{}, {"muscle.x.k_t": 1.0}])
+    assert type(e) is ma.UnknownNameError and str(e).startswith("instance 1: ")
     e = raised(ma.rollout, "elbow", "hux", np.zeros((1, 3, 2)))
     assert type(e) is ma.UnknownNameError
 
@@ -96,6 +98,7 @@ def test_unknown_names(cli):
         (lambda: a.rollout(np.zeros((3, 2)), outputs=["forces"]), 'unknown output "forces"'),
         (lambda: ma.simulate("pulse", model="hill")["forces"], "unknown output 'forces'"),
         (lambda: ma.simulate("pulse", model="hill").muscle("biceps"), "unknown muscle 'biceps'"),
+        (lambda: ma.Actuator(overrides={"muscle.biceps.k_t": 1.0}), 'overrides: override "muscle.biceps.k_t": no muscle named "biceps"'),
     ]:
         e = raised(call)
         assert type(e) is ma.UnknownNameError and str(e).startswith(msg), str(e)
