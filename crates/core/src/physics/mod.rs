@@ -5,6 +5,7 @@
 //! - [`contractile`]: the contractile elements' mathematics (§3, §6, §7); [`models`]: the
 //!   interface a model implements, the models, one file each, and [`MODELS`], the one place
 //!   where they are named;
+//! - [`curves`]: the curve sets, the paper's and OpenSim's DeGroote 2016 and Thelen 2003 (§4b);
 //! - [`spring`], [`tendon`], [`parallel_element`]: the passive elements (§4);
 //! - [`mtu`]: one muscle–tendon unit (§5); [`moment_arm`], [`joint`], [`topology`]: the limb
 //!   (§8, §8b); [`plant`]: the whole limb as one ODE (§5, §8b);
@@ -17,6 +18,7 @@
 
 pub mod activation;
 pub mod contractile;
+pub mod curves;
 pub mod energetics;
 pub mod joint;
 pub mod models;

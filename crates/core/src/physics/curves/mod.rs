@@ -1,0 +1,238 @@
+//! Curve sets: the normalised curves a Hill-type muscle is made of, from three sources
+//! (docs/model.md §4b). A set is named in configurations by [`CurveSet::name`].
+//!
+//! - [`paper`]: the paper's force–length and force–velocity curves (§3), the default;
+//! - [`degroote2016`]: DeGrooteFregly2016Muscle's curves as OpenSim 4.6 computes them;
+//! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them.
+//!
+//! [`CurveSet::evaluate`] evaluates one [`Curve`] of a set, with the set's default constants, at
+//! a normalised argument: fibre length `l̃ = l_M/l_opt`, fibre velocity `ṽ` (lengthening
+//! positive; 0 and 1 at ṽ = 0 and -1), tendon length `l̃_T = l_T/l_s`. The results are forces
+//! as fractions of the maximum isometric force. tests/reference/opensim_curves.csv holds
+//! OpenSim's own values of the two OpenSim sets (scripts/opensim_curves.py).
+
+use serde::{Deserialize, Serialize};
+use std::str::FromStr;
+
+pub mod degroote2016;
+pub mod paper;
+pub mod thelen2003;
+
+use crate::physics::params::MuscleParams;
+
+/// Which curves a Hill-type muscle uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CurveSet {
+    /// The paper's curves (docs/model.md §3–§4).
+    #[default]
+    Paper,
+    /// De Groote et al. (2016), Ann Biomed Eng 44(10), as OpenSim's DeGrooteFregly2016Muscle.
+    DeGroote2016,
+    /// Thelen (2003), J Biomech Eng 125(1), as OpenSim's Thelen2003Muscle.
+    Thelen2003,
+}
+
+/// One normalised curve of a set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Curve {
+    /// Active force–length multiplier at normalised fibre length l̃.
+    ActiveForceLength,
+    /// Passive (parallel element) force at normalised fibre length l̃.
+    PassiveForceLength,
+    /// Force–velocity multiplier at normalised fibre velocity ṽ (at full activation where the
+    /// curve depends on activation, [`thelen2003`]).
+    ForceVelocity,
+    /// Tendon force at normalised tendon length l̃_T.
+    TendonForceLength,
+}
+
+impl Curve {
+    /// Every curve.
+    pub const ALL: [Curve; 4] = [
+        Curve::ActiveForceLength,
+        Curve::PassiveForceLength,
+        Curve::ForceVelocity,
+        Curve::TendonForceLength,
+    ];
+
+    /// Its name, as in tests/reference/opensim_curves.csv.
+    pub fn name(self) -> &'static str {
+        match self {
+            Curve::ActiveForceLength => "active_force_length",
+            Curve::PassiveForceLength => "passive_force_length",
+            Curve::ForceVelocity => "force_velocity",
+            Curve::TendonForceLength => "tendon_force_length",
+        }
+    }
+}
+
+impl CurveSet {
+    /// Every curve set.
+    pub const ALL: [CurveSet; 3] = [
+        CurveSet::Paper,
+        CurveSet::DeGroote2016,
+        CurveSet::Thelen2003,
+    ];
+
+    /// Its name in configurations.
+    pub fn name(self) -> &'static str {
+        match self {
+            CurveSet::Paper => "paper",
+            CurveSet::DeGroote2016 => "degroote2016",
+            CurveSet::Thelen2003 => "thelen2003",
+        }
+    }
+
+    /// The names, comma-separated (for messages and help).
+    pub fn names() -> String {
+        Self::ALL.map(|s| s.name()).join(", ")
+    }
+
+    /// `curve` of this set at the normalised argument `x`, with the set's default constants
+    /// (the paper's: `MuscleParams::default()`'s width, shape and eccentric asymptote). `None`
+    /// for the paper's passive and tendon curves, which are not normalised (docs/model.md §4).
+    pub fn evaluate(self, curve: Curve, x: f64) -> Option<f64> {
+        match self {
+            CurveSet::Paper => evaluate_paper(curve, x),
+            CurveSet::DeGroote2016 => Some(evaluate_degroote2016(curve, x)),
+            CurveSet::Thelen2003 => Some(evaluate_thelen2003(curve, x)),
+        }
+    }
+}
+
+fn evaluate_paper(curve: Curve, x: f64) -> Option<f64> {
+    let p = MuscleParams::default();
+    match curve {
+        Curve::ActiveForceLength => Some(paper::active_force_length(x, p.fl_width, p.fl_shape)),
+        Curve::ForceVelocity => Some(paper::force_velocity(x, p.eccentric_asymptote)),
+        Curve::PassiveForceLength | Curve::TendonForceLength => None,
+    }
+}
+
+fn evaluate_degroote2016(curve: Curve, x: f64) -> f64 {
+    use degroote2016 as d;
+    match curve {
+        Curve::ActiveForceLength => d::active_force_length(x, d::DEFAULT_ACTIVE_FORCE_WIDTH_SCALE),
+        Curve::PassiveForceLength => {
+            d::passive_force_length(x, d::DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE)
+        }
+        Curve::ForceVelocity => d::force_velocity(x),
+        Curve::TendonForceLength => {
+            let k_t = d::tendon_shape(d::DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE);
+            d::tendon_force_length(x, k_t)
+        }
+    }
+}
+
+fn evaluate_thelen2003(curve: Curve, x: f64) -> f64 {
+    use thelen2003 as t;
+    match curve {
+        Curve::ActiveForceLength => t::active_force_length(x, t::DEFAULT_KSHAPE_ACTIVE),
+        Curve::PassiveForceLength => {
+            t::passive_force_length(x, t::DEFAULT_FMAX_MUSCLE_STRAIN, t::DEFAULT_KSHAPE_PASSIVE)
+        }
+        Curve::ForceVelocity => t::force_velocity(x, 1.0, &t::ForceVelocityShape::default()),
+        Curve::TendonForceLength => t::tendon_force_length(x, t::DEFAULT_FMAX_TENDON_STRAIN),
+    }
+}
+
+impl std::fmt::Display for CurveSet {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// An unknown curve set name (quoted as a short excerpt).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown curve set {0:?}: expected one of {names}", names = CurveSet::names())]
+pub struct UnknownCurveSet(pub String);
+
+impl FromStr for CurveSet {
+    type Err = UnknownCurveSet;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| UnknownCurveSet(s.chars().take(64).collect()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, Deserialize, Serialize, PartialEq)]
+    struct Muscle {
+        curves: CurveSet,
+    }
+
+    #[test]
+    fn names_parse_display_and_serialise_alike() {
+        for set in CurveSet::ALL {
+            assert_eq!(set.name().parse::<CurveSet>(), Ok(set));
+            assert_eq!(set.to_string(), set.name());
+            let text = format!("curves = \"{}\"\n", set.name());
+            assert_eq!(
+                toml::from_str::<Muscle>(&text).unwrap(),
+                Muscle { curves: set }
+            );
+            assert_eq!(toml::to_string(&Muscle { curves: set }).unwrap(), text);
+        }
+        assert_eq!(CurveSet::default(), CurveSet::Paper);
+    }
+
+    #[test]
+    fn an_unknown_name_lists_the_names() {
+        let err = "DeGroote2016".parse::<CurveSet>().unwrap_err();
+        assert_eq!(err, UnknownCurveSet("DeGroote2016".into()));
+        let message = err.to_string();
+        assert!(
+            message.contains("paper, degroote2016, thelen2003"),
+            "{message}"
+        );
+        assert!(toml::from_str::<Muscle>("curves = \"hill\"").is_err());
+    }
+
+    #[test]
+    fn every_set_is_one_at_optimal_length_and_isometric() {
+        for set in CurveSet::ALL {
+            let fl = set.evaluate(Curve::ActiveForceLength, 1.0).unwrap();
+            assert!((fl - 1.0).abs() < 1e-15, "{set}: {fl}");
+            assert_eq!(
+                set.evaluate(Curve::ForceVelocity, -1.0)
+                    .map(|f| f.abs() < 1e-15),
+                Some(true)
+            );
+            let fv = set.evaluate(Curve::ForceVelocity, 0.0).unwrap();
+            assert!((fv - 1.0).abs() < 1e-15, "{set}: {fv}");
+        }
+    }
+
+    #[test]
+    fn the_opensim_sets_have_every_curve_and_the_paper_only_the_contractile_ones() {
+        for curve in Curve::ALL {
+            assert!(CurveSet::DeGroote2016.evaluate(curve, 1.02).is_some());
+            assert!(CurveSet::Thelen2003.evaluate(curve, 1.02).is_some());
+        }
+        assert_eq!(
+            CurveSet::Paper.evaluate(Curve::PassiveForceLength, 1.2),
+            None
+        );
+        assert_eq!(
+            CurveSet::Paper.evaluate(Curve::TendonForceLength, 1.02),
+            None
+        );
+        // Tendon force 1 at each OpenSim set's strain at one normalised force.
+        let dgf = CurveSet::DeGroote2016
+            .evaluate(Curve::TendonForceLength, 1.049)
+            .unwrap();
+        let thelen = CurveSet::Thelen2003
+            .evaluate(Curve::TendonForceLength, 1.04)
+            .unwrap();
+        assert!(
+            (dgf - 1.0).abs() < 1e-14 && (thelen - 1.0).abs() < 1e-14,
+            "{dgf} {thelen}"
+        );
+    }
+}
