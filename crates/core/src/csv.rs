@@ -84,7 +84,7 @@ pub fn writer<W: Write>(out: W) -> ::csv::Writer<W> {
 }
 
 /// Writes `x` as a CSV field in Rust's shortest round-trip form (`{x}`), through `buf`.
-pub fn write_number<W: Write>(
+pub(crate) fn write_number<W: Write>(
     w: &mut ::csv::Writer<W>,
     buf: &mut String,
     x: f64,

@@ -3,7 +3,7 @@
 //! every output of an offline command written whole or not at all ([`AtomicFile`]).
 
 /// Largest configuration or scenario file read, bytes.
-pub const MAX_FILE_BYTES: u64 = 1 << 20;
+pub(crate) const MAX_FILE_BYTES: u64 = 1 << 20;
 
 /// Reads `path` if it is a regular file of at most `max_bytes` bytes. The type and size are
 /// checked before reading, so a device (`/dev/zero`), a FIFO or a directory is refused instead of

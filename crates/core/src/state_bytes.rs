@@ -64,7 +64,7 @@ pub enum StateError {
 
 impl StateError {
     /// This error as one inside `part`.
-    pub fn in_part(self, part: impl Into<String>) -> Self {
+    pub(crate) fn in_part(self, part: impl Into<String>) -> Self {
         StateError::In {
             part: part.into(),
             error: Box::new(self),
@@ -74,7 +74,7 @@ impl StateError {
 
 /// Something whose state is written to saved bytes and read back into a value of the same
 /// structure (built anew from the same configuration).
-pub trait SavedState {
+pub(crate) trait SavedState {
     /// Writes the state.
     fn save_state(&self, out: &mut StateWriter);
     /// Reads back what `save_state` wrote; Err, naming the value, for bytes that do not fit
@@ -114,7 +114,7 @@ impl StateWriter {
         self.u64(v.to_bits());
     }
     /// The length, then each value.
-    pub fn f64s(&mut self, v: &[f64]) {
+    pub(crate) fn f64s(&mut self, v: &[f64]) {
         self.usize(v.len());
         for &x in v {
             self.f64(x);
@@ -223,7 +223,7 @@ impl<'a> StateReader<'a> {
     }
 
     /// A length that must be `expected` (the size of the structure read into).
-    pub fn expect_len(&mut self, what: &str, expected: usize) -> Result<(), StateError> {
+    pub(crate) fn expect_len(&mut self, what: &str, expected: usize) -> Result<(), StateError> {
         let n = self.u64(what)?;
         if n != expected as u64 {
             return Err(StateError::Length {
@@ -236,7 +236,7 @@ impl<'a> StateReader<'a> {
     }
 
     /// A run of values into `out`, whose length the saved one must equal.
-    pub fn f64s_into(&mut self, what: &str, out: &mut [f64]) -> Result<(), StateError> {
+    pub(crate) fn f64s_into(&mut self, what: &str, out: &mut [f64]) -> Result<(), StateError> {
         self.expect_len(what, out.len())?;
         self.check_room(out.len(), 8, what)?;
         for v in out.iter_mut() {
@@ -246,7 +246,7 @@ impl<'a> StateReader<'a> {
     }
 
     /// A run of values of any length up to `max`, appended to `out`.
-    pub fn f64s_extend(
+    pub(crate) fn f64s_extend(
         &mut self,
         what: &str,
         max: usize,
@@ -269,7 +269,7 @@ impl<'a> StateReader<'a> {
 
     /// A count of items of `item_bytes` bytes each that must fit in what is left (so that a
     /// damaged count is refused before anything is allocated for it).
-    pub fn check_room(
+    pub(crate) fn check_room(
         &self,
         count: usize,
         item_bytes: usize,

@@ -2,7 +2,7 @@
 //! errors as `line L, column C: message`.
 
 /// Longest parse error message, characters (it may quote the file).
-pub const MAX_MESSAGE_CHARS: usize = 300;
+pub(crate) const MAX_MESSAGE_CHARS: usize = 300;
 
 /// A message on one line (whitespace runs, newlines included, made one space), at most
 /// [`MAX_MESSAGE_CHARS`] characters.
@@ -19,7 +19,7 @@ pub fn one_line(message: &str) -> String {
 
 /// A TOML parse error of `text` as `line L, column C: message` on one line (the parser's own
 /// rendering quotes the whole offending line, however long).
-pub fn toml_error(e: &toml::de::Error, text: &str) -> String {
+pub(crate) fn toml_error(e: &toml::de::Error, text: &str) -> String {
     let at = match e.span() {
         Some(span) => {
             let before = &text.as_bytes()[..span.start.min(text.len())];

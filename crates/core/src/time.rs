@@ -90,7 +90,7 @@ pub fn tick_ns(tick: u64, rate_hz: f64) -> u64 {
 }
 
 /// The tick whose simulated time is `ns`.
-pub fn ns_tick(ns: u64, rate_hz: f64) -> u64 {
+pub(crate) fn ns_tick(ns: u64, rate_hz: f64) -> u64 {
     (ns as f64 * rate_hz / 1e9).round() as u64
 }
 

@@ -32,7 +32,7 @@ impl ActuatorConfig {
     }
 
     /// Names of the built-in configurations.
-    pub fn built_in_names() -> String {
+    pub(crate) fn built_in_names() -> String {
         BUILT_IN
             .iter()
             .map(|(n, _)| *n)

@@ -5,7 +5,7 @@ use crate::physics::params::JointParams;
 
 /// End-stop torque: a stiff, damped spring beyond the range limits that only ever pushes back
 /// into the range, N m.
-pub fn limit_torque(p: &JointParams, theta: f64, omega: f64) -> f64 {
+pub(crate) fn limit_torque(p: &JointParams, theta: f64, omega: f64) -> f64 {
     if theta > p.max_angle {
         (-p.limit_stiffness * (theta - p.max_angle) - p.limit_damping * omega).min(0.0)
     } else if theta < p.min_angle {
@@ -17,7 +17,7 @@ pub fn limit_torque(p: &JointParams, theta: f64, omega: f64) -> f64 {
 
 /// The end-stop torque's slopes `(∂τ_limit/∂θ, ∂τ_limit/∂ω)` (N m/rad, N m s/rad): the spring and
 /// damper while they push back, zero inside the range or while the stop lets go.
-pub fn limit_torque_slopes(p: &JointParams, theta: f64, omega: f64) -> (f64, f64) {
+pub(crate) fn limit_torque_slopes(p: &JointParams, theta: f64, omega: f64) -> (f64, f64) {
     let engaged = if theta > p.max_angle {
         -p.limit_stiffness * (theta - p.max_angle) - p.limit_damping * omega < 0.0
     } else if theta < p.min_angle {
@@ -34,7 +34,7 @@ pub fn limit_torque_slopes(p: &JointParams, theta: f64, omega: f64) -> (f64, f64
 
 /// Angular acceleration `dω/dt = (τ_muscles - c ω + τ_ext + τ_limit) / I`, rad/s², where
 /// `τ_muscles = Σ_i r_i(θ) F_SE,i` is the muscles' net torque, N m.
-pub fn angular_acceleration(
+pub(crate) fn angular_acceleration(
     p: &JointParams,
     theta: f64,
     omega: f64,
@@ -48,13 +48,13 @@ pub fn angular_acceleration(
 /// Angular acceleration of a driven joint within a tick, rad/s²: zero, so that the prescribed
 /// motion is `θ(t) = θ0 + ω0 (t - t0)`, `ω(t) = ω0` from the values set at the tick's start
 /// (docs/model.md §8c).
-pub fn driven_angular_acceleration() -> f64 {
+pub(crate) fn driven_angular_acceleration() -> f64 {
     0.0
 }
 
 /// A driven joint's angle `θ0 + ω0 t` at time t after the tick's start, from the angle θ0 and
 /// velocity ω0 set at the start (linear extrapolation), rad.
-pub fn prescribed_angle(theta0: f64, omega0: f64, t: f64) -> f64 {
+pub(crate) fn prescribed_angle(theta0: f64, omega0: f64, t: f64) -> f64 {
     theta0 + omega0 * t
 }
 

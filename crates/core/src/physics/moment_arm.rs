@@ -17,7 +17,7 @@ pub enum MomentArm {
 
 impl MomentArm {
     /// The coefficients, constant term first.
-    pub fn coefficients(&self) -> &[f64] {
+    pub(crate) fn coefficients(&self) -> &[f64] {
         match self {
             MomentArm::Constant(c) => std::slice::from_ref(c),
             MomentArm::Polynomial(c) => c,
@@ -46,7 +46,7 @@ impl MomentArm {
     }
 
     /// The path-length change `∫_0^θ r(s) ds`, m (so `L(θ) = L(0) - excursion(θ)`).
-    pub fn excursion(&self, theta: f64) -> f64 {
+    pub(crate) fn excursion(&self, theta: f64) -> f64 {
         match self {
             MomentArm::Constant(c) => c * theta,
             MomentArm::Polynomial(c) => {
@@ -61,7 +61,7 @@ impl MomentArm {
 
     /// Whether r(θ) keeps one strict sign on [lo, hi]: checked at the ends and at every real
     /// root of r' in between (where r has its extrema), found by sampling and bisection.
-    pub fn keeps_sign_on(&self, lo: f64, hi: f64) -> bool {
+    pub(crate) fn keeps_sign_on(&self, lo: f64, hi: f64) -> bool {
         let r_lo = self.at(lo);
         let sign = r_lo.signum();
         if r_lo == 0.0 || !r_lo.is_finite() {

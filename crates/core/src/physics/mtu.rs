@@ -28,7 +28,7 @@ pub struct Mtu {
     /// Parallel element.
     pub parallel: ExpLinearSpring,
     /// The contractile element.
-    pub ce: Box<dyn ContractileModel>,
+    pub(crate) ce: Box<dyn ContractileModel>,
     /// Its phenomenological energy model (docs/model.md §11.4).
     pub probe: MuscleProbe,
 }
@@ -52,7 +52,7 @@ impl Mtu {
     }
 
     /// Number of state variables: l_m, v, then the contractile model's.
-    pub fn state_dim(&self) -> usize {
+    pub(crate) fn state_dim(&self) -> usize {
         2 + self.ce.state_dim()
     }
 
@@ -69,7 +69,7 @@ impl Mtu {
     }
 
     /// What the contractile element sees.
-    pub fn ce_inputs(&self, activation: f64, l_m: f64, v: f64) -> CeInputs {
+    pub(crate) fn ce_inputs(&self, activation: f64, l_m: f64, v: f64) -> CeInputs {
         CeInputs {
             activation,
             fibre_length: l_m,
@@ -79,7 +79,13 @@ impl Mtu {
     }
 
     /// Fibre acceleration from eq. (8): `(F_SE - F_CE - F_P - B_m v) / M`, m/s².
-    pub fn fibre_acceleration(&self, tendon_force: f64, ce_force: f64, l_m: f64, v: f64) -> f64 {
+    pub(crate) fn fibre_acceleration(
+        &self,
+        tendon_force: f64,
+        ce_force: f64,
+        l_m: f64,
+        v: f64,
+    ) -> f64 {
         let p = &self.params;
         (tendon_force - ce_force - self.parallel.force(l_m) - damper_force(p.b_m, v)) / p.mass
     }
@@ -197,7 +203,7 @@ impl Mtu {
 
     /// Fibre length at rest with the MTU held at total length `length` (a = 0, no bonds): where
     /// the tendon force equals the parallel force, by bisection (both are monotone).
-    pub fn resting_fibre_length(&self, length: f64) -> f64 {
+    pub(crate) fn resting_fibre_length(&self, length: f64) -> f64 {
         let residual = |l_m: f64| self.tendon.force(length - l_m) - self.parallel.force(l_m);
         let (mut lo, mut hi) = (0.0, length);
         for _ in 0..200 {

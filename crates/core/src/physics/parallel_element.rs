@@ -16,6 +16,6 @@ pub fn parallel_spring(p: &MuscleParams) -> ExpLinearSpring {
 }
 
 /// Parallel damper `F_d = B_m v`, N (v: lengthening velocity, m/s).
-pub fn damper_force(b_m: f64, v: f64) -> f64 {
+pub(crate) fn damper_force(b_m: f64, v: f64) -> f64 {
     b_m * v
 }

@@ -53,7 +53,7 @@ pub struct MuscleParams {
     /// Tendon length where it turns linear, m. `None` derives it by force continuity (docs/model.md §4).
     pub l_tc: Option<f64>,
     /// Tendon force where it turns linear, N.
-    pub f_tc: f64,
+    pub(crate) f_tc: f64,
     /// Parallel element exponential shape k_me, 1/m.
     pub k_me: f64,
     /// Parallel spring constant of the exponential part k_ml, N/m.
@@ -65,7 +65,7 @@ pub struct MuscleParams {
     /// Length where the parallel spring turns linear l_mc, m.
     pub l_mc: f64,
     /// Force where the parallel spring turns linear F_mc, N.
-    pub f_mc: f64,
+    pub(crate) f_mc: f64,
     /// Parallel damping B_m, N s/m.
     pub b_m: f64,
     /// Cross-bridge parameters of the Huxley models.
@@ -121,7 +121,7 @@ pub struct CrossBridgeParams {
     /// Attachment range h, m.
     pub h: f64,
     /// Optimal half-sarcomere length, m.
-    pub s_hs: f64,
+    pub(crate) s_hs: f64,
     /// Grid cells per unit ξ of the full Huxley model (method of characteristics).
     pub pde_cells: usize,
 }
@@ -239,7 +239,7 @@ impl Checker<'_> {
 }
 
 /// Relative force jump at l_tc above which a configured l_tc is reported as discontinuous.
-pub const TENDON_CONTINUITY_TOLERANCE: f64 = 1e-3;
+pub(crate) const TENDON_CONTINUITY_TOLERANCE: f64 = 1e-3;
 
 impl MuscleParams {
     /// Tendon length where the tendon turns linear, by force continuity (docs/model.md §4):
@@ -346,7 +346,7 @@ impl MuscleParams {
     }
 
     /// A warning when a configured l_tc breaks force continuity of the tendon (docs/model.md §4).
-    pub fn continuity_warning(&self, prefix: &str) -> Option<String> {
+    pub(crate) fn continuity_warning(&self, prefix: &str) -> Option<String> {
         let l_tc = self.l_tc?;
         let exp_force = self.k_tl / self.k_te * ((self.k_te * (l_tc - self.l_ts)).exp() - 1.0);
         let jump = (exp_force - self.f_tc).abs();

@@ -276,7 +276,7 @@ impl Plant {
 
     /// The resting state: joints at their initial angles and at rest (driven joints at their
     /// input motion), each fibre where tendon and parallel element balance, no bonds.
-    pub fn resting_state(&self, inputs: &Inputs, y: &mut [f64]) {
+    pub(crate) fn resting_state(&self, inputs: &Inputs, y: &mut [f64]) {
         y.fill(0.0);
         for (j, p) in self.joints.iter().enumerate() {
             y[2 * j] = p.initial_angle;
@@ -298,7 +298,7 @@ impl Plant {
 
     /// Writes the driven joints' input motion (angle, velocity at the tick's start) into the
     /// state; free joints are left alone.
-    pub fn set_driven_motion(&self, inputs: &Inputs, y: &mut [f64]) {
+    pub(crate) fn set_driven_motion(&self, inputs: &Inputs, y: &mut [f64]) {
         for (j, p) in self.joints.iter().enumerate() {
             if p.driven {
                 y[2 * j] = inputs.joint_angle[j];
@@ -309,7 +309,7 @@ impl Plant {
 
     /// Writes the driven joints' motion at `dt` after the tick's start (the within-tick rule,
     /// [`joint::prescribed_angle`]) into the state.
-    pub fn set_driven_motion_after(&self, inputs: &Inputs, dt: f64, y: &mut [f64]) {
+    pub(crate) fn set_driven_motion_after(&self, inputs: &Inputs, dt: f64, y: &mut [f64]) {
         for (j, p) in self.joints.iter().enumerate() {
             if p.driven {
                 let (theta0, omega0) = (inputs.joint_angle[j], inputs.joint_velocity[j]);
@@ -322,7 +322,7 @@ impl Plant {
     /// After a tick: each driven joint's input angle moves on to where the tick's extrapolation
     /// ended (the state's angle), so that a motion set once carries on linearly until it is set
     /// again.
-    pub fn carry_driven_motion(&self, y: &[f64], inputs: &mut Inputs) {
+    pub(crate) fn carry_driven_motion(&self, y: &[f64], inputs: &mut Inputs) {
         for (j, p) in self.joints.iter().enumerate() {
             if p.driven {
                 inputs.joint_angle[j] = y[2 * j];
@@ -443,7 +443,7 @@ impl Plant {
 
     /// The plant of some of the joints and muscles (a component: every joint a muscle spans is
     /// among `joints`), joints renumbered in the given order.
-    pub fn subset(&self, joints: &[usize], muscles: &[usize]) -> Plant {
+    pub(crate) fn subset(&self, joints: &[usize], muscles: &[usize]) -> Plant {
         let renumber = |j: usize| joints.iter().position(|&k| k == j).expect("a component");
         let anchors: Vec<Anchor> = muscles
             .iter()

@@ -14,7 +14,7 @@ pub struct ExpLinearSpring {
     /// Length where the spring turns linear l_c, m.
     pub l_c: f64,
     /// Force at l_c where the linear part starts, F_c, N.
-    pub f_c: f64,
+    pub(crate) f_c: f64,
     /// Spring constant of the linear part k, N/m.
     pub k: f64,
 }

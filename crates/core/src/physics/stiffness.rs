@@ -1,7 +1,7 @@
 //! Stiffness of the fibre, the muscle–tendon unit and the joint (docs/model.md §8).
 
 /// Fibre stiffness `k_m = k_CE + dF_P/dl_m`, N/m.
-pub fn fibre_stiffness(k_ce: f64, k_pe: f64) -> f64 {
+pub(crate) fn fibre_stiffness(k_ce: f64, k_pe: f64) -> f64 {
     k_ce + k_pe
 }
 
@@ -18,7 +18,7 @@ pub fn series_stiffness(k_m: f64, k_se: f64) -> f64 {
 /// Adds one muscle's share of the joint stiffness matrix (docs/model.md §8b, fibres quasi-static)
 /// to `k` (row-major, `n × n`, N m/rad): `K_jk += k_mtu r_j r_k` over the joints it spans and
 /// `K_jj -= F_SE dr_j/dθ_j`. `arms` yields (joint, r_j (m), dr_j/dθ_j (m/rad)) per spanned joint.
-pub fn add_muscle_joint_stiffness<I>(
+pub(crate) fn add_muscle_joint_stiffness<I>(
     k: &mut [f64],
     n: usize,
     k_mtu: f64,

@@ -35,7 +35,7 @@ pub struct MuscleSpec {
     /// Its parameters.
     pub params: MuscleParams,
     /// Its tendon's attachment.
-    pub anchor: Anchor,
+    pub(crate) anchor: Anchor,
 }
 
 /// Joints and the muscles that drive them.

@@ -29,7 +29,7 @@ pub struct MuscleEnergy {
 
 impl MuscleEnergy {
     /// At rest: the sample of the resting state taken under `terms`, no energy spent.
-    pub fn at_rest(sample: MetabolicSample, terms: ExcitationTerms) -> Self {
+    pub(crate) fn at_rest(sample: MetabolicSample, terms: ExcitationTerms) -> Self {
         Self {
             sample,
             terms,

@@ -20,7 +20,7 @@ use crate::physics::topology::Anchor;
 
 /// Scratch storage for the muscle blocks' differences.
 #[derive(Debug, Clone, Default)]
-pub struct JacobianScratch {
+pub(crate) struct JacobianScratch {
     s: Vec<f64>,
     ds: Vec<f64>,
     scales: Vec<f64>,
@@ -46,7 +46,7 @@ pub fn leaf_dims(plant: &Plant, out: &mut Vec<usize>) {
 /// Fills `jac` with the Jacobian of the plant's equations at (t, y) under activations `act`;
 /// `f0` are the derivatives there. Returns the work in equivalent full evaluations.
 #[allow(clippy::too_many_arguments)]
-pub fn eval_jacobian(
+pub(crate) fn eval_jacobian(
     plant: &Plant,
     t: f64,
     y: &[f64],

@@ -145,7 +145,7 @@ impl Part {
 
     /// Takes this part's state, activations and inputs from the whole; its driven joints start
     /// the tick at their input motion.
-    pub fn gather(&mut self, y: &[f64], activation: &[f64], inputs: &Inputs) {
+    pub(crate) fn gather(&mut self, y: &[f64], activation: &[f64], inputs: &Inputs) {
         for (local, &global) in self.y.iter_mut().zip(&self.state_map) {
             *local = y[global];
         }
@@ -299,7 +299,7 @@ impl Part {
     }
 
     /// After a failed tick: back to the carried step size, no Jacobian, no sub-step history.
-    pub fn abandon(&mut self) {
+    pub(crate) fn abandon(&mut self) {
         self.h = self.saved_h;
         for m in &mut self.plant.mtus {
             m.ce.forget_history();

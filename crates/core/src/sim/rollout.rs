@@ -28,7 +28,7 @@ pub struct Outputs {
 }
 
 /// The prefix of a joint field's output name.
-pub const JOINT_PREFIX: &str = "joint.";
+pub(crate) const JOINT_PREFIX: &str = "joint.";
 
 /// Why a list of outputs is refused ([`Outputs::named`]).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]

@@ -54,11 +54,11 @@ pub struct RecordMismatch {
     /// Joints of the record.
     pub joints: usize,
     /// Entries of the record's stiffness matrix.
-    pub stiffness_entries: usize,
+    pub(crate) stiffness_entries: usize,
     /// Muscles of the run.
-    pub run_muscles: usize,
+    pub(crate) run_muscles: usize,
     /// Joints of the run.
-    pub run_joints: usize,
+    pub(crate) run_joints: usize,
 }
 
 /// The result of running a scenario (or of reading a recording back): its names and rate, and
@@ -182,7 +182,7 @@ impl Run {
     }
 
     /// Bytes one record takes: its time, its muscles' and joints' states and its matrix.
-    pub fn record_bytes(muscles: usize, joints: usize) -> f64 {
+    pub(crate) fn record_bytes(muscles: usize, joints: usize) -> f64 {
         (std::mem::size_of::<f64>()
             + muscles * std::mem::size_of::<MuscleSnapshot>()
             + joints * std::mem::size_of::<JointSnapshot>()) as f64

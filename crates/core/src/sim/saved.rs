@@ -53,7 +53,7 @@ use sha2::{Digest, Sha256};
 /// The first bytes of a saved state.
 pub const MAGIC: [u8; 8] = *b"MUSCACTS";
 /// The layout's version: what is saved, in which order.
-pub const VERSION: u32 = 1;
+pub(crate) const VERSION: u32 = 1;
 /// Magic, version and body length.
 const HEADER_BYTES: usize = 20;
 /// The SHA-256 at the end.

@@ -23,7 +23,7 @@ pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
 
 /// Most memory the records of a run may take, bytes (1 GiB): a run keeps one record per tick
 /// (for the CSV and the summary), so duration × rate and the limb's size are bounded together.
-pub const MAX_RUN_BYTES: f64 = (1u64 << 30) as f64;
+pub(crate) const MAX_RUN_BYTES: f64 = (1u64 << 30) as f64;
 
 /// Longest scenario name, characters (it names the run in reports and recordings).
 pub const MAX_NAME_CHARS: usize = 200;
@@ -387,7 +387,7 @@ pub struct ScenarioRunner {
 
 impl ScenarioRunner {
     /// Writes the inputs the schedules give at time t into `inputs` (sized for the plant).
-    pub fn fill_inputs(&self, t: f64, inputs: &mut Inputs) {
+    pub(crate) fn fill_inputs(&self, t: f64, inputs: &mut Inputs) {
         inputs.clear();
         let mut tendon_force_scheduled = false;
         for (input, &k) in self.scenario.inputs.iter().zip(&self.muscle_index) {

@@ -19,7 +19,7 @@ use std::sync::Arc;
 pub use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS, MAX_SUBSTEPS};
 
 /// Most threads a simulation steps its parts on.
-pub const MAX_THREADS: usize = 256;
+pub(crate) const MAX_THREADS: usize = 256;
 
 /// Highest tick rate, Hz (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;
@@ -108,7 +108,7 @@ impl Simulation {
     }
 
     /// Back to rest under `inputs`, tick 0.
-    pub fn reset_with(&mut self, inputs: &Inputs) {
+    pub(crate) fn reset_with(&mut self, inputs: &Inputs) {
         self.inputs.clone_from(inputs);
         self.activation.fill(0.0);
         self.plant.resting_state(&self.inputs, &mut self.y);
@@ -275,7 +275,7 @@ impl Simulation {
     /// Advances one tick and fills `out` with the published state: [`Simulation::step`] then
     /// [`Simulation::fill_snapshot`], with one hand-over to its threads for both. On a failure
     /// `out` is left as it was.
-    pub fn step_and_fill(&mut self, out: &mut StateSnapshot) -> Result<(), StepError> {
+    pub(crate) fn step_and_fill(&mut self, out: &mut StateSnapshot) -> Result<(), StepError> {
         let mut both = |s: &mut Self| {
             s.step_here()?;
             s.fill_here(out, None);

@@ -163,7 +163,7 @@ pub fn check_points(points: usize) -> Result<(), SteadyError> {
 
 /// `points` fractions of vmax evenly from -1 to 1: `(2i - m)/m`, m = points - 1, so that -1, 0
 /// and 1 are exact and the grid is symmetric. `points` odd and at least 3.
-pub fn velocity_fractions(points: usize) -> Vec<f64> {
+pub(crate) fn velocity_fractions(points: usize) -> Vec<f64> {
     let m = (points - 1) as f64;
     (0..points).map(|i| (2.0 * i as f64 - m) / m).collect()
 }

@@ -143,7 +143,7 @@ pub mod muscle_actuator_msgs {
     }
 
     /// Names of the wire fields of `MuscleState`, in order: `name`, then the field list.
-    pub const MUSCLE_STATE_FIELDS: [&str; 1 + MUSCLE_FIELD_COUNT] = {
+    pub(crate) const MUSCLE_STATE_FIELDS: [&str; 1 + MUSCLE_FIELD_COUNT] = {
         let mut out = [""; 1 + MUSCLE_FIELD_COUNT];
         out[0] = "name";
         let mut k = 0;
@@ -156,7 +156,7 @@ pub mod muscle_actuator_msgs {
 
     /// Names of the wire fields of `ActuatorState`, in order: the per-joint arrays are the
     /// joint field list.
-    pub const ACTUATOR_STATE_FIELDS: [&str; 6 + JOINT_FIELD_COUNT] = {
+    pub(crate) const ACTUATOR_STATE_FIELDS: [&str; 6 + JOINT_FIELD_COUNT] = {
         let mut out = [""; 6 + JOINT_FIELD_COUNT];
         out[0] = "header";
         out[1] = "model";
@@ -354,7 +354,7 @@ ros2_message!(StepResponse);
 pub struct MultiArrayDimension {
     pub label: String,
     pub size: u32,
-    pub stride: u32,
+    pub(crate) stride: u32,
 }
 
 /// `std_msgs/msg/MultiArrayLayout`.
@@ -439,7 +439,7 @@ ros2_message!(TriggerResponse);
 /// The `.msg` definitions of the recorded types (`pkg/msg/Type` → text), for the `ros2msg`
 /// schemas of recordings: ours from `msg/msg/`, the standard ones as in ROS 2 kilted (fields
 /// only).
-pub const DEFINITIONS: &[(&str, &str)] = &[
+pub(crate) const DEFINITIONS: &[(&str, &str)] = &[
     (
         "muscle_actuator_msgs/msg/ActivationCommand",
         include_str!("../../../../msg/msg/ActivationCommand.msg"),

@@ -41,7 +41,7 @@ impl Time {
 
     /// The wire's fields: seconds rounded down, saturated to `int32` (past 2038 a stamp stops
     /// at `i32::MAX` s, as ros2-client's conversion does), and the remainder in [0, 1e9) ns.
-    pub const fn sec_nanosec(self) -> (i32, u32) {
+    pub(crate) const fn sec_nanosec(self) -> (i32, u32) {
         let sec = self.nanos.div_euclid(NS_PER_S);
         let nanosec = self.nanos.rem_euclid(NS_PER_S) as u32;
         if sec > i32::MAX as i64 {

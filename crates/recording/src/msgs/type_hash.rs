@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 
 /// Why a type description could not be built from the `.msg` definitions.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-pub enum TypeHashError {
+pub(crate) enum TypeHashError {
     /// The definitions do not know a type the description needs.
     #[error("no definition of {name}")]
     NoDefinition {
@@ -206,7 +206,7 @@ fn json_string(s: &str) -> String {
 
 /// The type description of `type_name` (`pkg/msg/Type`) as hashed: the type and every type it
 /// refers to, transitively, looked up with `definition`.
-pub fn type_description_json(
+pub(crate) fn type_description_json(
     type_name: &str,
     definition: impl Fn(&str) -> Option<&'static str>,
 ) -> Result<String, TypeHashError> {
@@ -237,7 +237,7 @@ pub fn type_description_json(
 }
 
 /// `RIHS01_` and the hex SHA-256 of the type description of `type_name`.
-pub fn rihs01(
+pub(crate) fn rihs01(
     type_name: &str,
     definition: impl Fn(&str) -> Option<&'static str>,
 ) -> Result<String, TypeHashError> {

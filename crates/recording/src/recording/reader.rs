@@ -28,17 +28,17 @@ const MAGIC: &[u8; 8] = b"\x89MCAP0\r\n";
 
 /// Largest recording read, bytes (256 MiB: about 20 minutes of a 1 kHz elbow run recorded by
 /// `simulate --out` with an excitation changing every tick, 12 MB a minute).
-pub const MAX_RECORDING_BYTES: u64 = 256 << 20;
+pub(crate) const MAX_RECORDING_BYTES: u64 = 256 << 20;
 
 /// Most message bytes (decompressed) a recording may hold in memory (512 MiB: about 15 minutes
 /// of that run, 0.6 kB of messages a tick).
-pub const MAX_MESSAGE_BYTES: usize = 512 << 20;
+pub(crate) const MAX_MESSAGE_BYTES: usize = 512 << 20;
 
 /// Largest chunk (decompressed) read from a file cut by a crash, bytes, if larger than the file:
 /// such a chunk is decompressed whole and checked against its CRC before any of its records is
 /// taken, and may well be larger than what is left of the file (the recorder closes chunks at
 /// 1 MiB, rosbag2 at a few).
-pub const MAX_RECOVERED_CHUNK_BYTES: usize = 64 << 20;
+pub(crate) const MAX_RECOVERED_CHUNK_BYTES: usize = 64 << 20;
 
 /// One recorded message.
 #[derive(Debug, Clone, PartialEq)]
@@ -87,7 +87,7 @@ impl Recording {
 
     /// For a recording read up to a cut ([`Recording::stopped_early`]): the warning naming what
     /// was recovered, one line.
-    pub fn truncation_warning(&self, path: &Path) -> Option<String> {
+    pub(crate) fn truncation_warning(&self, path: &Path) -> Option<String> {
         self.stopped_early.as_ref()?;
         let (t0, t1) = self.log_time_range_s().unwrap_or_default();
         Some(format!(
@@ -99,7 +99,7 @@ impl Recording {
     }
 
     /// The first and last log times of the messages, s.
-    pub fn log_time_range_s(&self) -> Option<(f64, f64)> {
+    pub(crate) fn log_time_range_s(&self) -> Option<(f64, f64)> {
         let times = self.messages.iter().map(|m| m.log_time);
         Some((
             times.clone().min()? as f64 * 1e-9,
@@ -112,7 +112,7 @@ impl Recording {
 /// magic (a complete file, whose damage is an error); otherwise (a file cut by a crash) every
 /// message up to the cut, with [`Recording::stopped_early`] set. A cut file with no message is
 /// an error.
-pub fn read_run_file(path: &Path) -> Result<Recording, RecordingError> {
+pub(crate) fn read_run_file(path: &Path) -> Result<Recording, RecordingError> {
     let buf = read_file(path)?;
     let complete = buf.ends_with(MAGIC) && buf.len() >= 2 * MAGIC.len();
     let rec = read_bytes(&buf, !complete).map_err(|source| RecordingError::Invalid {

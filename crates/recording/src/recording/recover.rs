@@ -22,7 +22,7 @@ pub struct Recovered {
     pub channels: usize,
     pub metadata_records: usize,
     /// First and last log times of the messages, s.
-    pub range_s: (f64, f64),
+    pub(crate) range_s: (f64, f64),
     /// Why reading stopped early (`None`: the input was complete).
     pub stopped_early: Option<String>,
 }

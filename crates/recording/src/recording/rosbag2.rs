@@ -7,7 +7,7 @@
 use serde::Serialize;
 
 /// The rosbag2 metadata version written.
-pub const METADATA_VERSION: u32 = 9;
+pub(crate) const METADATA_VERSION: u32 = 9;
 /// The ROS distribution named in the metadata.
 pub const ROS_DISTRO: &str = "kilted";
 
@@ -116,7 +116,7 @@ pub struct Topic<'a> {
     /// Type name `pkg/msg/Type`.
     pub type_name: &'a str,
     /// Its `offered_qos_profiles` text ([`qos_yaml`]).
-    pub qos_yaml: &'a str,
+    pub(crate) qos_yaml: &'a str,
     /// REP-2016 type hash, when known.
     pub type_hash: Option<&'a str>,
     /// Messages recorded.
@@ -125,7 +125,7 @@ pub struct Topic<'a> {
 
 /// The bag's `metadata.yaml`: its `topics` (log times from `first` to `last`, ns; both ignored
 /// when there are no messages), stored in the MCAP file itself.
-pub fn metadata_yaml(topics: &[Topic], first: u64, last: u64) -> String {
+pub(crate) fn metadata_yaml(topics: &[Topic], first: u64, last: u64) -> String {
     let total: u64 = topics.iter().map(|t| t.message_count).sum();
     let (start, end) = if total == 0 { (0, 0) } else { (first, last) };
     let bag = BagFile {

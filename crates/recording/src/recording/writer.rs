@@ -31,7 +31,7 @@ pub struct ChannelSpec {
     /// The `ros2msg` schema text (see [`super::schema::ros2msg_schema`]).
     pub schema: String,
     /// `offered_qos_profiles` (rosbag2 YAML).
-    pub qos_yaml: String,
+    pub(crate) qos_yaml: String,
     /// REP-2016 type hash (`RIHS01_...`), when known.
     pub type_hash: Option<String>,
 }
@@ -43,13 +43,13 @@ pub struct RecorderOptions {
     pub capacity: usize,
     /// Message bytes the channel holds before producers start dropping (a flood of large
     /// messages must not pile up in memory while the disk catches up).
-    pub capacity_bytes: usize,
+    pub(crate) capacity_bytes: usize,
     /// Longest time a written message may stay in an open (unreadable) chunk.
-    pub flush_interval: Duration,
+    pub(crate) flush_interval: Duration,
     /// Chunk size target, bytes.
-    pub chunk_size: u64,
+    pub(crate) chunk_size: u64,
     /// zstd level.
-    pub compression_level: u32,
+    pub(crate) compression_level: u32,
 }
 
 impl Default for RecorderOptions {

@@ -13,12 +13,12 @@ pub struct SignalDiff {
     pub rms_diff: f64,
     pub max_abs_diff: f64,
     /// Time of the largest difference, s.
-    pub max_diff_time: f64,
+    pub(crate) max_diff_time: f64,
     pub peak_a: f64,
-    pub peak_b: f64,
+    pub(crate) peak_b: f64,
     /// Time of the peak (largest absolute value), s.
-    pub peak_time_a: f64,
-    pub peak_time_b: f64,
+    pub(crate) peak_time_a: f64,
+    pub(crate) peak_time_b: f64,
     /// 10 %–90 % rise time of the first rise towards the peak, s (None: no rise).
     pub rise_time_a: Option<f64>,
     pub rise_time_b: Option<f64>,
@@ -36,8 +36,8 @@ pub struct EnergyFigures {
     pub rms_power_a_w: f64,
     pub rms_power_b_w: f64,
     /// The phenomenological model's energy over the span, J.
-    pub phenomenological_energy_a_j: f64,
-    pub phenomenological_energy_b_j: f64,
+    pub(crate) phenomenological_energy_a_j: f64,
+    pub(crate) phenomenological_energy_b_j: f64,
 }
 
 /// The comparison.
@@ -60,7 +60,7 @@ pub struct Comparison {
 
 /// The muscle fields compared, by their names in the one field list
 /// ([`muscle_actuator_core::sim::snapshot::MuscleSnapshot::FIELDS`]).
-pub const MUSCLE_SIGNALS: [&str; 6] = [
+pub(crate) const MUSCLE_SIGNALS: [&str; 6] = [
     "force",
     "fiber_length",
     "stiffness",
@@ -69,7 +69,7 @@ pub const MUSCLE_SIGNALS: [&str; 6] = [
     "phenomenological_energy",
 ];
 /// The joint fields compared ([`muscle_actuator_core::sim::snapshot::JointSnapshot::FIELDS`]).
-pub const JOINT_SIGNALS: [&str; 3] = ["position", "torque", "stiffness"];
+pub(crate) const JOINT_SIGNALS: [&str; 3] = ["position", "torque", "stiffness"];
 
 /// (time, value) series of every compared signal of a run.
 pub fn series(run: &LoadedRun) -> Vec<(String, Vec<(f64, f64)>)> {
@@ -153,7 +153,7 @@ fn sorted_names(run: &LoadedRun, joints: bool) -> Vec<String> {
 }
 
 /// Compares two runs. Refuses runs with different muscles or joints, or without common time.
-pub fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, CompareError> {
+pub(crate) fn compare_runs(a: &LoadedRun, b: &LoadedRun) -> Result<Comparison, CompareError> {
     if sorted_names(a, false) != sorted_names(b, false) {
         return Err(CompareError::DifferentMuscles {
             a: a.meta.muscles.clone(),

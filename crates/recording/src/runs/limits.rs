@@ -10,7 +10,7 @@ pub use muscle_actuator_core::sim::simulation::MAX_SUBSTEPS;
 
 /// Most ticks a recorded run may span: replay simulates every one of them (10^8: a day at
 /// 1 kHz).
-pub const MAX_RECORDED_TICKS: u64 = 100_000_000;
+pub(crate) const MAX_RECORDED_TICKS: u64 = 100_000_000;
 
 /// A number out of its limits, named as where it came from (`--rate-hz`,
 /// `metadata muscle_actuator.rate_hz`).
@@ -83,7 +83,7 @@ pub fn check_substeps(name: &str, n: usize) -> Result<(), LimitError> {
 }
 
 /// A stepping within its rules ([`Stepping::check`]), named in the error.
-pub fn check_stepping(name: &str, s: Stepping) -> Result<(), LimitError> {
+pub(crate) fn check_stepping(name: &str, s: Stepping) -> Result<(), LimitError> {
     s.check().map_err(|reason| LimitError::Stepping {
         name: name.into(),
         reason,

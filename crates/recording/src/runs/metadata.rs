@@ -289,7 +289,7 @@ impl RunMeta {
     }
 
     /// Back from the record (fails with the missing or bad key).
-    pub fn from_map(m: &BTreeMap<String, String>) -> Result<Self, MetadataError> {
+    pub(crate) fn from_map(m: &BTreeMap<String, String>) -> Result<Self, MetadataError> {
         let f64_of = |k: &'static str| -> Result<f64, MetadataError> {
             let v = get(m, k)?;
             v.parse::<f64>().map_err(|_| bad(k, v))

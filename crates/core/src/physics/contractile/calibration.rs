@@ -12,13 +12,13 @@ pub struct CrossBridgeScale {
     /// Rates in 1/s (Huxley's ratios times the common factor).
     pub rates: Rates,
     /// The common rate factor.
-    pub rate_scale: f64,
+    pub(crate) rate_scale: f64,
     /// The model's own isometric steady moments at r = 1.
     pub q_iso: [f64; 3],
     /// Muscle length change per unit ξ, `L_h = lopt h / s_hs`, m.
     pub l_h: f64,
     /// `Fmax / Q1_iso`, N.
-    pub force_per_q1: f64,
+    pub(crate) force_per_q1: f64,
 }
 
 impl CrossBridgeScale {
@@ -126,7 +126,7 @@ pub fn calibrate_exact(p: &MuscleParams) -> CrossBridgeScale {
 
 /// The Hill model's short-range stiffness at full activation and optimal length,
 /// `k_iso = (Fmax / Q1_iso) Q0_iso / L_h` with the DM calibration (docs/model.md §8), N/m.
-pub fn hill_isometric_stiffness(dm: &CrossBridgeScale) -> f64 {
+pub(crate) fn hill_isometric_stiffness(dm: &CrossBridgeScale) -> f64 {
     dm.stiffness(dm.q_iso[0])
 }
 

@@ -24,13 +24,13 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Largest `(1 + |τ|) |Δ|` the Taylor series is used for.
-pub const TAYLOR_REACH: f64 = 1e-4;
+pub(crate) const TAYLOR_REACH: f64 = 1e-4;
 
 /// Φ(τ) and ϕ(τ) at the two limits of the last closure evaluation, as f64 bits: the model is
 /// shared read-only between the stepper's calls (`&self`), and one run steps it from one thread
 /// at a time, so relaxed atomics are plain loads and stores here.
 #[derive(Debug)]
-pub struct ClosureLimits {
+pub(crate) struct ClosureLimits {
     /// Per limit: τ, Φ(τ), ϕ(τ).
     kept: [[AtomicU64; 3]; 2],
 }
@@ -95,7 +95,7 @@ impl ClosureLimits {
 const SIXTH: f64 = 1.0 / 6.0;
 
 /// Φ and ϕ at τ + Δ from their values at τ, the series of the module's comment.
-pub fn taylor(tau: f64, cdf: f64, pdf: f64, d: f64) -> (f64, f64) {
+pub(crate) fn taylor(tau: f64, cdf: f64, pdf: f64, d: f64) -> (f64, f64) {
     let t2 = tau * tau - 1.0;
     let d2 = d * d;
     let d3_6 = d2 * d * SIXTH;

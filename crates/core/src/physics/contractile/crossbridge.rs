@@ -45,7 +45,7 @@ impl Rates {
     }
 
     /// `β_k = ∫ ξ^k f(ξ) dξ = f1 / (k + 2)`.
-    pub fn beta(&self, k: usize) -> f64 {
+    pub(crate) fn beta(&self, k: usize) -> f64 {
         self.f1 / (k as f64 + 2.0)
     }
 }

@@ -6,12 +6,12 @@ use crate::physics::contractile::crossbridge::Rates;
 use nalgebra::{Matrix3, Vector3};
 
 /// Smallest variance q² (in ξ² units) the closure accepts.
-pub const Q_VARIANCE_FLOOR: f64 = 1e-10;
+pub(crate) const Q_VARIANCE_FLOOR: f64 = 1e-10;
 /// Largest |mean| of the bond distribution (in h) the closure takes as Gaussian: bonds form on
 /// [0, 1] and detach fast outside it, so a physical distribution stays well inside.
-pub const MEAN_BOUND: f64 = 10.0;
+pub(crate) const MEAN_BOUND: f64 = 10.0;
 /// Largest variance (in h²) the closure takes as Gaussian, for the same reason.
-pub const VARIANCE_BOUND: f64 = 100.0;
+pub(crate) const VARIANCE_BOUND: f64 = 100.0;
 
 const INV_SQRT_2: f64 = std::f64::consts::FRAC_1_SQRT_2;
 const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
@@ -34,7 +34,7 @@ pub fn normal_pdf(x: f64) -> f64 {
 /// instead of computing it again (libm splits x to evaluate it in two exponentials), which
 /// leaves one exponential of a small argument. Relative difference from
 /// `normal_cdf`: within a few ulps of exp(-x²), i.e. about x² · 1e-16.
-pub fn normal_cdf_pdf(tau: f64) -> (f64, f64) {
+pub(crate) fn normal_cdf_pdf(tau: f64) -> (f64, f64) {
     let e = (-0.5 * tau * tau).exp();
     let pdf = INV_SQRT_2PI * e;
     let x = -tau * INV_SQRT_2;
@@ -122,7 +122,7 @@ pub fn partial_moments(p: f64, q: f64, tau: f64) -> [f64; 4] {
 }
 
 /// [`partial_moments`] from (Φ(τ), ϕ(τ)) given.
-pub fn partial_moments_of(p: f64, q: f64, tau: f64, (cdf, pdf): (f64, f64)) -> [f64; 4] {
+pub(crate) fn partial_moments_of(p: f64, q: f64, tau: f64, (cdf, pdf): (f64, f64)) -> [f64; 4] {
     let q2 = q * q;
     [
         cdf,
@@ -134,7 +134,7 @@ pub fn partial_moments_of(p: f64, q: f64, tau: f64, (cdf, pdf): (f64, f64)) -> [
 }
 
 /// Full moments of N(p, q²): `(1, p, p² + q², p³ + 3 p q²)`.
-pub fn full_moments(p: f64, q: f64) -> [f64; 4] {
+pub(crate) fn full_moments(p: f64, q: f64) -> [f64; 4] {
     let q2 = q * q;
     [1.0, p, p * p + q2, p * p * p + 3.0 * p * q2]
 }
@@ -151,7 +151,11 @@ pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
 
 /// [`closure`], keeping Φ and ϕ at its two limits in `limits` when given (for the fluxes at the
 /// tick's end, [`crate::physics::contractile::closure_limits`]).
-pub fn closure_keeping(rates: &Rates, q: &[f64; 3], limits: Option<&ClosureLimits>) -> [f64; 3] {
+pub(crate) fn closure_keeping(
+    rates: &Rates,
+    q: &[f64; 3],
+    limits: Option<&ClosureLimits>,
+) -> [f64; 3] {
     let k = 0.5 * (rates.f1 + rates.g1);
     let q0 = q[0];
     if q0 <= 0.0 {
@@ -191,7 +195,7 @@ pub fn moment_rates(rates: &Rates, q: &[f64; 3], r: f64, u: f64) -> [f64; 3] {
 }
 
 /// [`moment_rates`], its closure keeping its limits' values in `limits` when given.
-pub fn moment_rates_keeping(
+pub(crate) fn moment_rates_keeping(
     rates: &Rates,
     q: &[f64; 3],
     r: f64,

@@ -17,6 +17,11 @@ pub fn force_velocity(v_shortening: f64, v_max: f64, eccentric_asymptote: f64) -
 }
 
 /// `F_CE = Fmax a f(l_m) g(v_s)`, N (paper eq. 1).
-pub fn hill_force(f_max: f64, activation: f64, force_length: f64, force_velocity: f64) -> f64 {
+pub(crate) fn hill_force(
+    f_max: f64,
+    activation: f64,
+    force_length: f64,
+    force_velocity: f64,
+) -> f64 {
     f_max * activation * force_length * force_velocity
 }

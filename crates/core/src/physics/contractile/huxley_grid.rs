@@ -14,9 +14,9 @@ use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use std::collections::VecDeque;
 
 /// Bond fraction below which an outer cell is dropped.
-pub const NEGLIGIBLE_BONDS: f64 = 1e-13;
+pub(crate) const NEGLIGIBLE_BONDS: f64 = 1e-13;
 /// The grid always covers [-COVER_MARGIN, 1 + COVER_MARGIN] (the attachment range and a margin).
-pub const COVER_MARGIN: f64 = 0.05;
+pub(crate) const COVER_MARGIN: f64 = 0.05;
 
 /// Exact relaxation of one cell's bond fraction over `dt` with rates frozen at position `xi`:
 /// `n∞ + (n - n∞) exp(-(f + g) dt)`, `n∞ = r f / (f + g)`.

@@ -10,18 +10,18 @@ use crate::physics::energetics::probe::{
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BhargavaOptions {
     /// Activation heat constants of slow- and fast-twitch fibres, W/kg (40, 133).
-    pub activation_w_kg: [f64; 2],
+    pub(crate) activation_w_kg: [f64; 2],
     /// Maintenance heat constants of slow- and fast-twitch fibres, W/kg (74, 111).
-    pub maintenance_w_kg: [f64; 2],
+    pub(crate) maintenance_w_kg: [f64; 2],
     /// Shortening heat coefficient `0.16 F_iso + 0.18 F` (shortening) and `0.157 F`
     /// (lengthening) instead of `0.25 F` and 0.
-    pub force_dependent_shortening: bool,
+    pub(crate) force_dependent_shortening: bool,
     /// Count negative work (`-F v` when lengthening) in the total.
-    pub negative_work: bool,
+    pub(crate) negative_work: bool,
     /// Raise the shortening heat so that the total is not negative.
-    pub forbid_negative_total: bool,
+    pub(crate) forbid_negative_total: bool,
     /// Floor the heat rate at 1 W/kg.
-    pub heat_floor: bool,
+    pub(crate) heat_floor: bool,
 }
 
 impl Default for BhargavaOptions {
@@ -40,7 +40,7 @@ impl Default for BhargavaOptions {
 
 /// Fibre-length dependence of the maintenance heat: piecewise linear through (0, 0.5),
 /// (0.5, 0.5), (1, 1), (1.5, 0), (2, 0), constant beyond the ends (OpenSim's default curve).
-pub fn maintenance_length_factor(l_norm: f64) -> f64 {
+pub(crate) fn maintenance_length_factor(l_norm: f64) -> f64 {
     const X: [f64; 5] = [0.0, 0.5, 1.0, 1.5, 2.0];
     const Y: [f64; 5] = [0.5, 0.5, 1.0, 0.0, 0.0];
     if l_norm <= X[0] {
@@ -56,7 +56,7 @@ pub fn maintenance_length_factor(l_norm: f64) -> f64 {
 }
 
 /// Heat of the recruited fibres, `mass (c_ST u_ST + c_FT u_FT)`, W.
-pub fn fibre_heat_w(mass_kg: f64, constants_w_kg: [f64; 2], recruited: (f64, f64)) -> f64 {
+pub(crate) fn fibre_heat_w(mass_kg: f64, constants_w_kg: [f64; 2], recruited: (f64, f64)) -> f64 {
     mass_kg * (constants_w_kg[0] * recruited.0 + constants_w_kg[1] * recruited.1)
 }
 
@@ -80,7 +80,7 @@ pub fn bhargava_rates(o: &BhargavaOptions, m: &ProbeMuscle, x: &ProbeInputs) -> 
 
 /// The same with the excitation's terms computed beforehand (`terms.excitation` is
 /// `x.excitation`), W.
-pub fn bhargava_rates_with(
+pub(crate) fn bhargava_rates_with(
     o: &BhargavaOptions,
     m: &ProbeMuscle,
     x: &ProbeInputs,

@@ -21,7 +21,7 @@ use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
 
 /// The ξ^k-weighted fluxes, k = 0, 1, 2, 1/s.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct BridgeFluxes {
+pub(crate) struct BridgeFluxes {
     /// Attachment `A_k = ∫ ξ^k f (r - n) dξ`.
     pub attachment: [f64; 3],
     /// Detachment `D_k = ∫ ξ^k g n dξ`; D_0 is the ATP flux.
@@ -48,9 +48,9 @@ pub struct EnergyFluxes {
     /// Bonds broken, D_0: the ATP flux.
     pub detachment: f64,
     /// Strain brought in by new bonds, A_2 (units of the strain at ξ = 1).
-    pub strain_in: f64,
+    pub(crate) strain_in: f64,
     /// Strain taken out by broken bonds, D_2.
-    pub strain_out: f64,
+    pub(crate) strain_out: f64,
 }
 
 /// The rates with attachment only (`f1`; every `g` zero).
@@ -145,13 +145,13 @@ fn gaussian_parts(
 }
 
 /// Both fluxes of the DM model at moments `q` and attachment factor `r`.
-pub fn gaussian_fluxes(rates: &Rates, r: f64, q: &[f64; 3]) -> BridgeFluxes {
+pub(crate) fn gaussian_fluxes(rates: &Rates, r: f64, q: &[f64; 3]) -> BridgeFluxes {
     gaussian_fluxes_near(rates, r, q, None)
 }
 
 /// [`gaussian_fluxes`] with Φ and ϕ at the limits from the last closure evaluation's where they
 /// are near enough (docs/model.md §11.1, Cost): equal to a fresh evaluation to rounding.
-pub fn gaussian_fluxes_near(
+pub(crate) fn gaussian_fluxes_near(
     rates: &Rates,
     r: f64,
     q: &[f64; 3],
@@ -166,18 +166,18 @@ pub fn gaussian_fluxes_near(
 
 /// Grid detachment moments `D_k`: the grid's own quadrature of `∫ ξ^k g n dξ` (its closure with
 /// the attachment rate set to zero, so cells that straddle ξ = 0 or 1 are split as in φ).
-pub fn grid_detachment(grid: &CrossBridgeGrid, rates: &Rates) -> [f64; 3] {
+pub(crate) fn grid_detachment(grid: &CrossBridgeGrid, rates: &Rates) -> [f64; 3] {
     grid.closure(&detachment_only(rates))
 }
 
 /// Grid bound part of the attachment integral, `∫ ξ^k f n dξ` (its closure with every
 /// detachment rate set to zero).
-pub fn grid_bound_attachment(grid: &CrossBridgeGrid, rates: &Rates) -> [f64; 3] {
+pub(crate) fn grid_bound_attachment(grid: &CrossBridgeGrid, rates: &Rates) -> [f64; 3] {
     grid.closure(&attachment_only(rates))
 }
 
 /// Both fluxes of the full model's grid at attachment factor `r`.
-pub fn grid_fluxes(grid: &CrossBridgeGrid, rates: &Rates, r: f64) -> BridgeFluxes {
+pub(crate) fn grid_fluxes(grid: &CrossBridgeGrid, rates: &Rates, r: f64) -> BridgeFluxes {
     BridgeFluxes {
         attachment: attachment(rates, r, grid_bound_attachment(grid, rates)),
         detachment: grid_detachment(grid, rates),

@@ -21,7 +21,7 @@ pub const AVOGADRO_PER_MOL: f64 = 6.022_140_76e23;
 pub struct BridgeEnergyParams {
     /// Free energy of ATP hydrolysis e, J per molecule: 100 zJ (≈ 60 kJ/mol) in working muscle
     /// (Barclay 2015, Compr Physiol 5:961).
-    pub atp_free_energy_j: f64,
+    pub(crate) atp_free_energy_j: f64,
     /// Hill's (1938) heat coefficient a / P0 (0.25), which sets `ε = e / (½ k h²)`.
     pub hill_a_over_p0: f64,
     /// Share of the isometric ATP turnover at full activation spent on calcium handling (ion
@@ -41,27 +41,31 @@ impl Default for BridgeEnergyParams {
 
 /// Energy per ATP over the strain energy of a bridge at ξ = 1,
 /// `ε = e / (½ k h²) = (1 + a/P0) (f1 + g1) / f1` (Huxley 1957; 1.5387 with his rates).
-pub fn energy_ratio(f1: f64, g1: f64, hill_a_over_p0: f64) -> f64 {
+pub(crate) fn energy_ratio(f1: f64, g1: f64, hill_a_over_p0: f64) -> f64 {
     (1.0 + hill_a_over_p0) * (f1 + g1) / f1
 }
 
 /// Bridge stiffness `k = 2 e / (ε h²)`, N/m per bridge.
-pub fn bridge_stiffness_n_m(atp_free_energy_j: f64, energy_ratio: f64, h_m: f64) -> f64 {
+pub(crate) fn bridge_stiffness_n_m(atp_free_energy_j: f64, energy_ratio: f64, h_m: f64) -> f64 {
     2.0 * atp_free_energy_j / (energy_ratio * h_m * h_m)
 }
 
 /// Bridges per unit ξ in one half-sarcomere, `B = C / (k h)` (C = Fmax / Q1_iso, N).
-pub fn bridges_per_xi_half_sarcomere(force_per_q1_n: f64, stiffness_n_m: f64, h_m: f64) -> f64 {
+pub(crate) fn bridges_per_xi_half_sarcomere(
+    force_per_q1_n: f64,
+    stiffness_n_m: f64,
+    h_m: f64,
+) -> f64 {
     force_per_q1_n / (stiffness_n_m * h_m)
 }
 
 /// Moles of ATP whose free energy is one joule at e J per molecule, `1 / (e N_A)`, mol/J.
-pub fn atp_mol_per_j(atp_free_energy_j: f64) -> f64 {
+pub(crate) fn atp_mol_per_j(atp_free_energy_j: f64) -> f64 {
     1.0 / (atp_free_energy_j * AVOGADRO_PER_MOL)
 }
 
 /// Half-sarcomeres in series along the fibre, `N_hs = lopt / s_hs`.
-pub fn half_sarcomeres(l_opt_m: f64, s_hs_m: f64) -> f64 {
+pub(crate) fn half_sarcomeres(l_opt_m: f64, s_hs_m: f64) -> f64 {
     l_opt_m / s_hs_m
 }
 
@@ -69,21 +73,21 @@ pub fn half_sarcomeres(l_opt_m: f64, s_hs_m: f64) -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BridgeEnergyScale {
     /// Energy per ATP e, J.
-    pub atp_free_energy_j: f64,
+    pub(crate) atp_free_energy_j: f64,
     /// Bridges per unit ξ in the whole muscle, `N_hs B` (a count): a flux of 1/s in the units
     /// of the moments is this many molecules of ATP per second.
-    pub bridges_per_xi: f64,
+    pub(crate) bridges_per_xi: f64,
     /// Strain energy per unit of the ξ² moment, `½ C L_h`, J (docs/model.md §6's E_CE / Q2).
-    pub strain_j: f64,
+    pub(crate) strain_j: f64,
     /// Stiffness of one bridge k, N/m.
-    pub bridge_stiffness_n_m: f64,
+    pub(crate) bridge_stiffness_n_m: f64,
     /// Share of the isometric turnover spent on calcium handling.
     pub activation_share: f64,
     /// Moles of ATP per unit flux, `N_hs B / N_A`, mol (a tick's products instead of
     /// divisions: [`BridgeEnergyScale::new`] derives it).
-    pub atp_mol_per_flux: f64,
+    pub(crate) atp_mol_per_flux: f64,
     /// [`atp_mol_per_j`] of e, mol/J.
-    pub atp_mol_per_j: f64,
+    pub(crate) atp_mol_per_j: f64,
 }
 
 impl BridgeEnergyScale {
@@ -116,14 +120,14 @@ impl BridgeEnergyScale {
     }
 
     /// Strain energy carried by a ξ² flux `d2` (1/s): `½ C L_h d2`, W.
-    pub fn strain_power_w(&self, d2: f64) -> f64 {
+    pub(crate) fn strain_power_w(&self, d2: f64) -> f64 {
         self.strain_j * d2
     }
 }
 
 /// Mechanical work rate of the contractile element on its load, `F_CE v_s = -F_CE v`, W
 /// (positive when shortening).
-pub fn work_rate_w(force_n: f64, lengthening_velocity_m_s: f64) -> f64 {
+pub(crate) fn work_rate_w(force_n: f64, lengthening_velocity_m_s: f64) -> f64 {
     -force_n * lengthening_velocity_m_s
 }
 
@@ -136,23 +140,23 @@ pub fn activation_heat_w(activation: f64, activation_share: f64, isometric_bridg
 
 /// The bridges' powers at one instant, W (ATP rate in mol/s).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct BridgePowers {
+pub(crate) struct BridgePowers {
     /// ATP split by detachments, mol/s.
     pub atp_rate_mol_s: f64,
     /// Chemical power of the detachments, `e N_hs B D_0`.
     pub chemical_w: f64,
     /// Chemical power counted at attachment, `e N_hs B A_0`: the above plus e times the rate of
     /// change of the number of bound bridges.
-    pub chemical_at_attachment_w: f64,
+    pub(crate) chemical_at_attachment_w: f64,
     /// Heat at attachment: free energy not stored as strain, `e N_hs B A_0 - ½ C L_h A_2`.
-    pub attachment_heat_w: f64,
+    pub(crate) attachment_heat_w: f64,
     /// Heat at detachment: the strain a bridge still holds, `½ C L_h D_2`.
-    pub detachment_heat_w: f64,
+    pub(crate) detachment_heat_w: f64,
     /// Work on the load, `F_CE v_s`.
     pub work_w: f64,
     /// Rate of change of the stored strain energy, `½ C L_h (A_2 - D_2) - F_CE v_s`
     /// (`= ½ C L_h dQ2/dt` by eq. 12).
-    pub stored_rate_w: f64,
+    pub(crate) stored_rate_w: f64,
 }
 
 impl BridgePowers {
@@ -164,7 +168,7 @@ impl BridgePowers {
 
 /// The bridges' powers from the fluxes, the force `F_CE = C Q1` (N) and the fibre's lengthening
 /// velocity v (m/s).
-pub fn bridge_powers(
+pub(crate) fn bridge_powers(
     s: &BridgeEnergyScale,
     x: &EnergyFluxes,
     force_n: f64,

@@ -85,7 +85,7 @@ pub fn steady_bonds(rates: &Rates, r: f64, u: f64, xi: f64) -> f64 {
 
 /// Steady ATP flux `D_0 = A_0 = r (f1/2) [(1 - N) + N (1 - e^{-φ})/φ]`, 1/s (moment units).
 /// The same in both directions: Huxley's (1957) energy rate rises on lengthening too.
-pub fn steady_atp_flux(rates: &Rates, r: f64, u: f64) -> f64 {
+pub(crate) fn steady_atp_flux(rates: &Rates, r: f64, u: f64) -> f64 {
     let n = plateau(rates);
     r * 0.5 * rates.f1 * ((1.0 - n) + n * mean_exp(phi(rates, u)))
 }
@@ -97,7 +97,7 @@ pub fn energy_rate_ratio(rates: &Rates, u: f64) -> f64 {
 }
 
 /// Steady strain flux in at attachment, `A_2 = r f1 [(1 - N)/4 + N ∫_0^1 ξ³ e^{…} dξ]`.
-pub fn steady_attachment_strain_flux(rates: &Rates, r: f64, u: f64) -> f64 {
+pub(crate) fn steady_attachment_strain_flux(rates: &Rates, r: f64, u: f64) -> f64 {
     let n = plateau(rates);
     r * rates.f1 * ((1.0 - n) / 4.0 + n * cubic_exp(phi(rates, u), u > 0.0))
 }
@@ -105,7 +105,7 @@ pub fn steady_attachment_strain_flux(rates: &Rates, r: f64, u: f64) -> f64 {
 /// Steady strain flux out at detachment, `D_2 = ∫ ξ² g n dξ`: on [0, 1]
 /// `r g1 N [1/4 - ∫_0^1 ξ³ e^{…} dξ]`, plus the tail: `2 n(0) u³/g2²` below 0 when shortening,
 /// `g1 n(1) (1/β + 1/β²)/2` with `β = g1/(2|u|)` beyond 1 when lengthening.
-pub fn steady_detachment_strain_flux(rates: &Rates, r: f64, u: f64) -> f64 {
+pub(crate) fn steady_detachment_strain_flux(rates: &Rates, r: f64, u: f64) -> f64 {
     let n = r * plateau(rates);
     let ph = phi(rates, u);
     let inner = rates.g1 * n * (0.25 - cubic_exp(ph, u > 0.0));
@@ -123,7 +123,7 @@ pub fn steady_detachment_strain_flux(rates: &Rates, r: f64, u: f64) -> f64 {
 }
 
 /// The four energy fluxes of the steady state (`A_0 = D_0`).
-pub fn steady_energy_fluxes(rates: &Rates, r: f64, u: f64) -> EnergyFluxes {
+pub(crate) fn steady_energy_fluxes(rates: &Rates, r: f64, u: f64) -> EnergyFluxes {
     let atp = steady_atp_flux(rates, r, u);
     EnergyFluxes {
         attachment: atp,

@@ -17,10 +17,10 @@ pub struct BridgeEnergetics {
     /// Fluxes to watts and moles.
     pub scale: BridgeEnergyScale,
     /// The bridges' own isometric chemical power at full activation and optimal length, W.
-    pub isometric_bridge_w: f64,
+    pub(crate) isometric_bridge_w: f64,
     /// The activation heat at full activation, [`activation_heat_w`] at a = 1, W: it is
     /// proportional to a.
-    pub full_activation_heat_w: f64,
+    pub(crate) full_activation_heat_w: f64,
 }
 
 impl BridgeEnergetics {
@@ -42,12 +42,12 @@ impl BridgeEnergetics {
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct MechanismRates {
     /// Chemical power, ATP counted as it is split at detachment, plus the activation cost.
-    pub total_w: f64,
+    pub(crate) total_w: f64,
     /// Activation (calcium-handling) heat.
     pub activation_heat_w: f64,
     /// The bridges' heat: free energy not stored at attachment plus strain released at
     /// detachment.
-    pub bridge_heat_w: f64,
+    pub(crate) bridge_heat_w: f64,
     /// Work of the contractile element on its load, `F_CE v_s`.
     pub work_w: f64,
     /// Rate of change of the energy the attached bridges hold: their strain energy less the
@@ -59,7 +59,7 @@ pub struct MechanismRates {
 
 /// The mechanism's rates from the fluxes, the activation a, the contractile force (N) and the
 /// fibre's lengthening velocity (m/s).
-pub fn mechanism_rates(
+pub(crate) fn mechanism_rates(
     b: &BridgeEnergetics,
     fluxes: &EnergyFluxes,
     activation: f64,
@@ -88,7 +88,7 @@ pub struct MuscleProbe {
     pub muscle: ProbeMuscle,
     /// Moles of ATP per joule at the energy per ATP (for its ATP equivalent),
     /// [`crate::physics::energetics::bridge_power::atp_mol_per_j`], mol/J.
-    pub atp_mol_per_j: f64,
+    pub(crate) atp_mol_per_j: f64,
 }
 
 impl MuscleProbe {
@@ -168,7 +168,7 @@ pub struct MetabolicSample {
     /// Whether the metabolic power is the mechanism's (a model with bridges).
     pub bridges: bool,
     /// The phenomenological model's inputs.
-    pub probe_inputs: ProbeInputs,
+    pub(crate) probe_inputs: ProbeInputs,
     /// The published rates.
     pub rates: MetabolicRates,
 }
@@ -185,7 +185,7 @@ impl MetabolicSample {
     /// The two powers of the same instant under another excitation, given by its terms (a
     /// tick's start, where the command changes): the bridges do not see the excitation, the
     /// phenomenological models do.
-    pub fn powers_with_excitation(
+    pub(crate) fn powers_with_excitation(
         &self,
         probe: &MuscleProbe,
         terms: &ExcitationTerms,

@@ -56,7 +56,7 @@ impl EnergeticsParams {
 
     /// The probe's view of a muscle of force `f_max_n`, fibre length `l_opt_m` and maximum
     /// shortening velocity `v_max_m_s`.
-    pub fn probe_muscle(&self, f_max_n: f64, l_opt_m: f64, v_max_m_s: f64) -> ProbeMuscle {
+    pub(crate) fn probe_muscle(&self, f_max_n: f64, l_opt_m: f64, v_max_m_s: f64) -> ProbeMuscle {
         ProbeMuscle {
             mass_kg: self.mass_kg(f_max_n, l_opt_m),
             f_max_n,

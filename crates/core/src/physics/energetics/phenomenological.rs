@@ -17,7 +17,7 @@ pub enum PhenomenologicalModel {
 impl PhenomenologicalModel {
     /// Whether it reads the passive fibre force (Bhargava's shortening heat counts the whole
     /// fibre force); the others need not be given it.
-    pub fn reads_passive_force(&self) -> bool {
+    pub(crate) fn reads_passive_force(&self) -> bool {
         matches!(self, Self::Bhargava(_))
     }
 
@@ -32,7 +32,7 @@ impl PhenomenologicalModel {
 
     /// The same with the excitation's terms computed beforehand (`terms.excitation` is
     /// `x.excitation`).
-    pub fn rates_with(
+    pub(crate) fn rates_with(
         &self,
         m: &ProbeMuscle,
         x: &ProbeInputs,

@@ -52,7 +52,7 @@ pub fn exact_isometric_bridge_w(scale: &CrossBridgeScale, e: &BridgeEnergyScale)
 }
 
 /// The same for the DM model, from its own isometric moments, W.
-pub fn dm_isometric_bridge_w(scale: &CrossBridgeScale, e: &BridgeEnergyScale) -> f64 {
+pub(crate) fn dm_isometric_bridge_w(scale: &CrossBridgeScale, e: &BridgeEnergyScale) -> f64 {
     e.chemical_power_w(gaussian_fluxes(&scale.rates, 1.0, &scale.q_iso).detachment[0])
 }
 
@@ -88,7 +88,7 @@ pub fn exact_point(scale: &CrossBridgeScale, e: &BridgeEnergyScale, v_s: f64) ->
 }
 
 /// The DM model's steady state at v_s from its steady moments `q` there.
-pub fn dm_point(
+pub(crate) fn dm_point(
     scale: &CrossBridgeScale,
     e: &BridgeEnergyScale,
     q: &[f64; 3],
@@ -101,7 +101,7 @@ pub fn dm_point(
 
 /// DM steady moments at r = 1 for shortening rates `us` (h/s) in any order: each side of zero
 /// by continuation from the isometric state (`distribution_moment::steady_curve`).
-pub fn dm_moments(rates: &Rates, us: &[f64]) -> Result<Vec<[f64; 3]>, SteadyStateError> {
+pub(crate) fn dm_moments(rates: &Rates, us: &[f64]) -> Result<Vec<[f64; 3]>, SteadyStateError> {
     let mut out = vec![[0.0; 3]; us.len()];
     for side in [1.0, -1.0] {
         let mut idx: Vec<usize> = (0..us.len())
@@ -139,7 +139,7 @@ pub fn dm_curve(
 
 /// A phenomenological model's steady state for a contractile force `force_n` at v_s, with
 /// u = a = 1 at optimal length and no passive force.
-pub fn probe_point(
+pub(crate) fn probe_point(
     model: &PhenomenologicalModel,
     muscle: &ProbeMuscle,
     atp_free_energy_j: f64,
@@ -168,7 +168,7 @@ pub fn probe_point(
 }
 
 /// The Hill model's steady force at v_s: `Fmax g(v_s)` (docs/model.md §3), N.
-pub fn hill_steady_force(p: &MuscleParams, v_s: f64) -> f64 {
+pub(crate) fn hill_steady_force(p: &MuscleParams, v_s: f64) -> f64 {
     hill_force(
         p.f_max,
         1.0,

@@ -12,23 +12,23 @@ use crate::physics::energetics::probe::{
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UmbergerOptions {
     /// Aerobic scaling S: 1.5 for aerobic activity, 1.0 for anaerobic (Umberger 2003).
-    pub aerobic_factor: f64,
+    pub(crate) aerobic_factor: f64,
     /// Replace the fibre-type ratio r by Bhargava's recruited share `u_ST / (u_ST + u_FT)`.
-    pub bhargava_recruitment: bool,
+    pub(crate) bhargava_recruitment: bool,
     /// Lengthening heat coefficient k of `S A k α_ST v̄`: 0.3 (Umberger 2010), 4.0 (Umberger
     /// 2003, Uchida 2016).
-    pub lengthening_coefficient: f64,
+    pub(crate) lengthening_coefficient: f64,
     /// Count negative work (`-F v` when lengthening) in the total.
-    pub negative_work: bool,
+    pub(crate) negative_work: bool,
     /// Raise the shortening heat so that the total is not negative.
-    pub forbid_negative_total: bool,
+    pub(crate) forbid_negative_total: bool,
     /// Floor the heat rate at 1 W/kg.
-    pub heat_floor: bool,
+    pub(crate) heat_floor: bool,
 }
 
 impl UmbergerOptions {
     /// As published by Umberger (2010).
-    pub fn umberger_2010() -> Self {
+    pub(crate) fn umberger_2010() -> Self {
         Self {
             aerobic_factor: 1.5,
             bhargava_recruitment: false,
@@ -39,7 +39,7 @@ impl UmbergerOptions {
         }
     }
     /// With the changes of Uchida et al. (2016): OpenSim's defaults.
-    pub fn uchida_2016() -> Self {
+    pub(crate) fn uchida_2016() -> Self {
         Self {
             bhargava_recruitment: true,
             lengthening_coefficient: 4.0,
@@ -67,7 +67,11 @@ pub fn effort(excitation: f64, activation: f64) -> f64 {
 
 /// The slow-twitch share used: r itself, or Bhargava's recruited share
 /// `u_ST / (u_ST + u_FT)` (1 when u = 0) from the excitation's terms.
-pub fn slow_twitch_share(terms: &ExcitationTerms, ratio: f64, bhargava_recruitment: bool) -> f64 {
+pub(crate) fn slow_twitch_share(
+    terms: &ExcitationTerms,
+    ratio: f64,
+    bhargava_recruitment: bool,
+) -> f64 {
     if bhargava_recruitment {
         terms.recruited_share
     } else {
@@ -77,7 +81,7 @@ pub fn slow_twitch_share(terms: &ExcitationTerms, ratio: f64, bhargava_recruitme
 
 /// Activation and maintenance heat, W/kg: `S A^0.6 X`, `X = 128 (1 - r) + 25`; beyond lopt
 /// `X (0.4 + 0.6 F_iso)`; `a_power` is `A^0.6`.
-pub fn activation_maintenance_w_kg(
+pub(crate) fn activation_maintenance_w_kg(
     s: f64,
     a_power: f64,
     share: f64,
@@ -95,7 +99,7 @@ pub fn activation_maintenance_w_kg(
 
 /// Shortening heat, W/kg, `v̄ ≤ 0`: `S A² [min(α_ST |v̄|, 100) r + α_FT |v̄| (1 - r)]` with
 /// `α_ST = 100 / (V_max/2.5)`, `α_FT = 153 / V_max` (V_max, v̄ in lopt/s).
-pub fn shortening_w_kg(s: f64, a: f64, share: f64, v_norm: f64, v_max: f64) -> f64 {
+pub(crate) fn shortening_w_kg(s: f64, a: f64, share: f64, v_norm: f64, v_max: f64) -> f64 {
     // One division: 100 / (V_max / 2.5) = 250 / V_max.
     let inv_v_max = 1.0 / v_max;
     let alpha_slow = 250.0 * inv_v_max;
@@ -105,7 +109,7 @@ pub fn shortening_w_kg(s: f64, a: f64, share: f64, v_norm: f64, v_max: f64) -> f
 }
 
 /// Lengthening heat, W/kg, `v̄ > 0`: `S A k α_ST v̄`.
-pub fn lengthening_w_kg(s: f64, a: f64, k: f64, v_norm: f64, v_max: f64) -> f64 {
+pub(crate) fn lengthening_w_kg(s: f64, a: f64, k: f64, v_norm: f64, v_max: f64) -> f64 {
     s * a * k * (250.0 / v_max) * v_norm
 }
 
@@ -117,7 +121,7 @@ pub fn umberger_rates(o: &UmbergerOptions, m: &ProbeMuscle, x: &ProbeInputs) -> 
 
 /// The same with the excitation's terms computed beforehand (`terms.excitation` is
 /// `x.excitation`), W.
-pub fn umberger_rates_with(
+pub(crate) fn umberger_rates_with(
     o: &UmbergerOptions,
     m: &ProbeMuscle,
     x: &ProbeInputs,

@@ -27,9 +27,9 @@ pub struct CeInputs {
     /// Activation a, [0, 1].
     pub activation: f64,
     /// Fibre length l_m, m.
-    pub fibre_length: f64,
+    pub(crate) fibre_length: f64,
     /// Fibre lengthening velocity v = dl_m/dt, m/s.
-    pub fibre_velocity: f64,
+    pub(crate) fibre_velocity: f64,
     /// Filament overlap factor λ(l_m) = f(l_m) (the force–length curve), dimensionless.
     pub overlap: f64,
 }
@@ -40,11 +40,11 @@ pub struct SubstepMotion {
     /// Sub-step length, s.
     pub dt: f64,
     /// Activation at the sub-step's midpoint.
-    pub activation_mid: f64,
+    pub(crate) activation_mid: f64,
     /// Overlap factor at the midpoint's fibre length.
-    pub overlap_mid: f64,
+    pub(crate) overlap_mid: f64,
     /// Fibre length change over the sub-step, m (negative when shortening).
-    pub fibre_length_change: f64,
+    pub(crate) fibre_length_change: f64,
 }
 
 /// One muscle's contractile element.
@@ -128,7 +128,7 @@ pub struct ModelSpec {
     /// shorter than 1.5 ticks, `HIGH_BELOW` in `integrator/esdirk.rs`) take the fourth-order
     /// method rather than the third-order one (docs/model.md §10, docs/integration.md
     /// "Methods"; the work per tick is printed by `cargo bench --bench limb`).
-    pub fourth_order_transients: bool,
+    pub(crate) fourth_order_transients: bool,
     /// Its calibration: the model for one muscle with these parameters.
     pub build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError>,
 }

@@ -36,7 +36,7 @@ pub static SPEC: ModelSpec = ModelSpec {
 
 /// One muscle's DM element.
 #[derive(Debug, Clone)]
-pub struct DistributionMoment {
+pub(crate) struct DistributionMoment {
     /// Its calibration.
     pub scale: CrossBridgeScale,
     /// Its bridges' energetics (docs/model.md §11.2).

@@ -34,9 +34,9 @@ const GRID_EXTENT: f64 = 64.0;
 
 /// The closure over a sub-step: `φ(t) = φ0 + slope (t - t0)`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct HeldClosure {
+pub(crate) struct HeldClosure {
     /// φ_k at t0, 1/s.
-    pub phi: [f64; 3],
+    pub(crate) phi: [f64; 3],
     /// dφ_k/dt, 1/s².
     pub slope: [f64; 3],
     /// Start of the sub-step, s (time within the tick).
@@ -57,7 +57,7 @@ impl HeldClosure {
 
 /// One muscle's full Huxley element: its calibration, its grid, the closure over the sub-step.
 #[derive(Debug, Clone)]
-pub struct HuxleyPde {
+pub(crate) struct HuxleyPde {
     /// Its calibration (from the exact steady states).
     pub scale: CrossBridgeScale,
     /// The bond distribution.

@@ -88,7 +88,7 @@ pub struct EnergeticsParams {
     /// Share of the isometric ATP turnover at full activation spent on calcium handling, [0, 0.9].
     pub activation_share: f64,
     /// Share of slow-twitch fibres r, [0, 1] (the phenomenological models).
-    pub slow_twitch_ratio: f64,
+    pub(crate) slow_twitch_ratio: f64,
     /// Mass the phenomenological rates per kg apply to, kg. Not given: OpenSim's
     /// `(Fmax / σ) ρ lopt` with σ = 0.25 MPa and ρ = 1059.7 kg/m³ (the configuration's `mass`
     /// is the fibre's moving mass of eq. 8, not the muscle's).

@@ -21,7 +21,7 @@ pub const HUXLEY: Rates = Rates {
 
 /// `|a - b| <= tol * max(|b|, floor)`, with a message.
 #[track_caller]
-pub fn assert_rel(a: f64, b: f64, tol: f64, floor: f64, what: &str) {
+pub(crate) fn assert_rel(a: f64, b: f64, tol: f64, floor: f64, what: &str) {
     let err = (a - b).abs() / b.abs().max(floor);
     assert!(
         err <= tol,

@@ -11,7 +11,7 @@ const GAUSS_5: [(f64, f64); 5] = [
 ];
 
 /// `∫_a^b f` by the 5-point rule on each of `n` equal intervals.
-pub fn gauss(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+pub(crate) fn gauss(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
     let h = (b - a) / n as f64;
     (0..n)
         .map(|i| {
