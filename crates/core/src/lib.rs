@@ -13,6 +13,8 @@
 //! - [`files`]: bounded reading of the files a user names, files written whole (neutral).
 //! - [`state_bytes`]: the values of a saved state as bytes, every read checked (neutral).
 
+#![warn(missing_docs)]
+
 pub mod config;
 pub mod csv;
 pub mod files;

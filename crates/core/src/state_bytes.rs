@@ -2,7 +2,7 @@
 //! every read is checked, against what is left of the bytes and against the size the reader
 //! expects, with errors on one line that name the value. [`crate::sim::saved`] frames these
 //! bytes (magic, version, checksum); each part of the state writes and reads its own values
-//! ([`SavedState`]).
+//! (`SavedState`).
 //!
 //! Values: `u8`; flags as one byte 0 or 1; `u64` and sizes as 8 bytes little-endian; `f64` as its
 //! bits (`to_bits`, 8 bytes little-endian: every value comes back bit for bit, −0 and NaNs too);
@@ -15,38 +15,59 @@ pub enum StateError {
     /// Fewer bytes left than the value needs.
     #[error("the bytes end inside {what} (at byte {at} of {len}, {needed} more needed)")]
     Truncated {
+        /// The value being read.
         what: String,
+        /// Offset of the value's first byte.
         at: usize,
+        /// Length of all the bytes.
         len: usize,
+        /// Bytes the value needs from `at`.
         needed: usize,
     },
     /// A count of items whose bytes cannot all be there (refused before any allocation).
     #[error("the bytes end inside {what} ({count} items announced, {left} bytes left)")]
     CountTooLarge {
+        /// The value being read.
         what: String,
+        /// The count of items announced.
         count: usize,
+        /// Bytes left for the items.
         left: usize,
     },
     /// A flag byte other than 0 or 1.
     #[error("{what}: {value} is not a flag (0 or 1)")]
-    NotAFlag { what: String, value: u8 },
+    NotAFlag {
+        /// The value being read.
+        what: String,
+        /// The byte read.
+        value: u8,
+    },
     /// A size or index over the bound the reader set.
     #[error("{what}: {value} is over its bound {max}")]
     OverBound {
+        /// The value being read.
         what: String,
+        /// The size or index read.
         value: u64,
+        /// The largest value allowed.
         max: usize,
     },
     /// A length other than the structure's.
     #[error("{what}: {saved} saved, this structure has {expected}")]
     Length {
+        /// The value being read.
         what: String,
+        /// The length saved.
         saved: u64,
+        /// The structure's length.
         expected: usize,
     },
     /// Text that is not UTF-8.
     #[error("{what} is not UTF-8 text")]
-    NotUtf8 { what: String },
+    NotUtf8 {
+        /// The value being read.
+        what: String,
+    },
     /// Bytes after the last value.
     #[error("{0} bytes left over after the state")]
     LeftOver(usize),
@@ -57,7 +78,9 @@ pub enum StateError {
     /// An error in one part of the state, named (`muscle 1: …`).
     #[error("{part}: {error}")]
     In {
+        /// The part of the state (`muscle 1`).
         part: String,
+        /// The error inside it.
         error: Box<StateError>,
     },
 }

@@ -5,7 +5,7 @@
 pub(crate) const MAX_MESSAGE_CHARS: usize = 300;
 
 /// A message on one line (whitespace runs, newlines included, made one space), at most
-/// [`MAX_MESSAGE_CHARS`] characters.
+/// `MAX_MESSAGE_CHARS` characters.
 pub fn one_line(message: &str) -> String {
     let flat = message.split_whitespace().collect::<Vec<_>>().join(" ");
     if flat.chars().count() <= MAX_MESSAGE_CHARS {

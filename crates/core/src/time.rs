@@ -18,11 +18,17 @@ pub enum TimeBase {
     /// (ns since the Unix epoch). Under `clock:=wall` the stamps keep to the wall clock; under
     /// `sim` and `lockstep` they are simulated time from that origin. Named `wall` in a
     /// recording's metadata.
-    WallOrigin { tick_origin_ns: i64 },
+    WallOrigin {
+        /// The wall-clock time of tick 0, ns since the Unix epoch.
+        tick_origin_ns: i64,
+    },
     /// The time of an external `/clock` the node followed (`use_sim_time`), ns; tick k is
     /// stamped `tick_origin_ns + k / rate`, the origin being the first `/clock` time received
     /// (`None` until one arrived: the run has no tick yet).
-    RosClock { tick_origin_ns: Option<i64> },
+    RosClock {
+        /// The first `/clock` time received, ns (`None` until one arrived).
+        tick_origin_ns: Option<i64>,
+    },
 }
 
 impl TimeBase {

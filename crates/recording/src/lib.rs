@@ -8,6 +8,8 @@
 //! - [`runs`]: runs as recordings: channels, metadata, `simulate --out`, loading, replay,
 //!   compare, export, limits.
 
+#![warn(missing_docs)]
+
 pub mod msgs;
 pub mod recording;
 pub mod runs;

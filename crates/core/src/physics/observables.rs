@@ -134,13 +134,22 @@ observables! {
 /// The names and units are the snapshot's.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct EnergeticsOutputs {
+    /// Metabolic power, W.
     pub metabolic_power: f64,
+    /// Activation heat rate, W.
     pub activation_heat_rate: f64,
+    /// Shortening and lengthening heat rate, W.
     pub shortening_heat_rate: f64,
+    /// Work rate of the contractile element, W (shortening positive).
     pub work_rate: f64,
+    /// Rate of change of the energy the attached bridges hold, W.
     pub bridge_storage_rate: f64,
+    /// ATP rate, mol/s.
     pub atp_rate: f64,
+    /// Metabolic energy since start, J.
     pub metabolic_energy: f64,
+    /// The phenomenological model's metabolic power, W.
     pub phenomenological_power: f64,
+    /// The phenomenological model's energy since start, J.
     pub phenomenological_energy: f64,
 }

@@ -19,13 +19,28 @@ pub struct Accepted {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Rejection {
     /// The two arrays differ in length.
-    LengthMismatch { names: usize, values: usize },
+    LengthMismatch {
+        /// Length of the names array.
+        names: usize,
+        /// Length of the values array.
+        values: usize,
+    },
     /// A name that the actuator does not have (quoted).
-    UnknownName { name: String, known: Vec<String> },
+    UnknownName {
+        /// The name, quoted.
+        name: String,
+        /// The actuator's names.
+        known: Vec<String>,
+    },
     /// The same name twice in one command.
     DuplicateName(String),
     /// A NaN or infinite value.
-    NonFinite { name: String, value: f64 },
+    NonFinite {
+        /// The name the value was sent for, quoted.
+        name: String,
+        /// The value received.
+        value: f64,
+    },
     /// No entries at all.
     Empty,
 }

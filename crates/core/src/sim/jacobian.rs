@@ -129,7 +129,7 @@ pub(crate) fn eval_jacobian(
 pub trait PlantSystem {
     /// The plant.
     fn plant(&self) -> &Plant;
-    /// Fills the Jacobian (see [`eval_jacobian`]).
+    /// Fills the Jacobian (see `eval_jacobian`).
     fn jacobian(&self, t: f64, y: &[f64], f0: &[f64], jac: &mut ArrowheadJacobian) -> u64;
 }
 

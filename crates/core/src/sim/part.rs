@@ -307,6 +307,8 @@ impl Part {
         self.stepper.invalidate();
     }
 
+    /// Back to the start: contractile elements with nothing outside their ODE state, no
+    /// Jacobian, no carried sub-step size.
     pub fn reset(&mut self) {
         for m in &mut self.plant.mtus {
             m.ce.reset();

@@ -16,14 +16,18 @@ use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 /// [`JointSnapshot::FIELDS`], or the joints' stiffness matrix.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Source {
+    /// A field of every muscle: its index in [`MuscleSnapshot::FIELDS`].
     Muscle(usize),
+    /// A field of every joint: its index in [`JointSnapshot::FIELDS`].
     Joint(usize),
+    /// The joints' stiffness matrix (joints × joints, row-major), N m/rad.
     StiffnessMatrix,
 }
 
 /// A chosen list of outputs, by name.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outputs {
+    /// Each output's name and source, in the order they are written.
     pub keys: Vec<(String, Source)>,
 }
 

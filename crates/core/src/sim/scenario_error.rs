@@ -135,7 +135,7 @@ pub enum ScenarioRunError {
     /// The configuration, the plant or the simulation cannot be set up.
     #[error(transparent)]
     Setup(#[from] SetupError),
-    /// The run's records would take more than [`crate::sim::scenario::MAX_RUN_BYTES`].
+    /// The run's records would take more than `scenario::MAX_RUN_BYTES`.
     #[error(
         "a run of {duration} s at {rate_hz} Hz is {ticks} ticks, whose records ({muscles} \
          muscles, {joints} joints) take about {:.0} MiB, more than the {} MiB a run may \

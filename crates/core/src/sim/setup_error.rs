@@ -47,7 +47,7 @@ pub enum SetupError {
         plant_joints: usize,
     },
     /// A number of threads outside 1 to the most a simulation takes
-    /// ([`crate::sim::simulation::MAX_THREADS`]).
+    /// (`simulation::MAX_THREADS`).
     #[error("invalid threads = {threads}: must be 1 to {max}")]
     Threads {
         /// The number given.

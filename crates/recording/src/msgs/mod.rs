@@ -30,7 +30,9 @@ macro_rules! ros2_message {
 /// `std_msgs/msg/Header`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Header {
+    /// The time the data refers to, on the node's clock (docs/time.md).
     pub stamp: Time,
+    /// The coordinate frame of the data (empty: none).
     pub frame_id: String,
 }
 ros2_message!(Header);
@@ -51,8 +53,11 @@ pub mod muscle_actuator_msgs {
     /// `muscle_actuator_msgs/msg/ActivationCommand`.
     #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
     pub struct ActivationCommand {
+        /// The command's header (its stamp: when it takes effect, docs/time.md).
         pub header: Header,
+        /// Muscle names from the configuration.
         pub muscle: Vec<String>,
+        /// Neural excitation u of each named muscle, dimensionless, in [0, 1].
         pub excitation: Vec<f64>,
     }
     ros2_message!(ActivationCommand);
@@ -60,8 +65,11 @@ pub mod muscle_actuator_msgs {
     /// `muscle_actuator_msgs/msg/ExternalLoad`.
     #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
     pub struct ExternalLoad {
+        /// The command's header (its stamp: when it takes effect, docs/time.md).
         pub header: Header,
+        /// Joint names from the configuration.
         pub joint: Vec<String>,
+        /// Load torque on each named joint about its axis, N m, positive as the angle.
         pub torque: Vec<f64>,
     }
     ros2_message!(ExternalLoad);
@@ -70,7 +78,9 @@ pub mod muscle_actuator_msgs {
     /// [`MuscleSnapshot`] in their order (the one field list; the serde impls iterate it).
     #[derive(Debug, Clone, PartialEq, Default)]
     pub struct MuscleState {
+        /// The muscle's name in the configuration.
         pub name: String,
+        /// Its state after the tick (the rest of the message's fields, SI units).
         pub state: MuscleSnapshot,
     }
     ros2_message!(MuscleState);
@@ -115,14 +125,20 @@ pub mod muscle_actuator_msgs {
     /// row-major joint stiffness matrix.
     #[derive(Debug, Clone, PartialEq, Default)]
     pub struct ActuatorState {
+        /// Stamp: when the tick that computed this state was due, on the node's clock
+        /// (docs/time.md).
         pub header: Header,
+        /// The contractile-element model: `hill`, `huxley` or `huxley-pde`.
         pub model: String,
+        /// Ticks since the start (or the last reset).
         pub tick: u64,
+        /// Joint names, in the configuration's order.
         pub joint: Vec<String>,
         /// One per joint name.
         pub joints: Vec<JointSnapshot>,
         /// Row-major n × n, n = the number of joints, N m/rad.
         pub stiffness_matrix: Vec<f64>,
+        /// Every muscle, in the configuration's order.
         pub muscles: Vec<MuscleState>,
     }
     ros2_message!(ActuatorState);
@@ -300,10 +316,16 @@ pub fn state_messages(
 /// `sensor_msgs/msg/JointState`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct JointState {
+    /// Stamp: when the tick was due (published), or the time of the robot simulator's state
+    /// (driven joints).
     pub header: Header,
+    /// Joint names.
     pub name: Vec<String>,
+    /// Joint angles, rad.
     pub position: Vec<f64>,
+    /// Joint angular velocities, rad/s.
     pub velocity: Vec<f64>,
+    /// Net muscle torque on each joint, N m.
     pub effort: Vec<f64>,
 }
 ros2_message!(JointState);
@@ -311,6 +333,7 @@ ros2_message!(JointState);
 /// `std_msgs/msg/Float64`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Float64 {
+    /// The value.
     pub data: f64,
 }
 ros2_message!(Float64);
@@ -318,6 +341,7 @@ ros2_message!(Float64);
 /// `std_msgs/msg/Int64`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Int64 {
+    /// The value.
     pub data: i64,
 }
 ros2_message!(Int64);
@@ -325,6 +349,7 @@ ros2_message!(Int64);
 /// `rosgraph_msgs/msg/Clock`: the time of a graph that runs on simulated time.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Clock {
+    /// The graph's current time, ns.
     pub clock: Time,
 }
 ros2_message!(Clock);
@@ -340,7 +365,9 @@ ros2_message!(StepRequest);
 /// `muscle_actuator_msgs/srv/Step` response.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StepResponse {
+    /// Whether the ticks were run.
     pub success: bool,
+    /// Why not, when `success` is false.
     pub message: String,
     /// The tick reached.
     pub tick: u64,
@@ -352,7 +379,9 @@ ros2_message!(StepResponse);
 /// `std_msgs/msg/MultiArrayDimension`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct MultiArrayDimension {
+    /// The dimension's name.
     pub label: String,
+    /// Its number of elements.
     pub size: u32,
     pub(crate) stride: u32,
 }
@@ -360,14 +389,18 @@ pub struct MultiArrayDimension {
 /// `std_msgs/msg/MultiArrayLayout`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct MultiArrayLayout {
+    /// The dimensions, outermost first.
     pub dim: Vec<MultiArrayDimension>,
+    /// Elements of `data` before the first one of the array.
     pub data_offset: u32,
 }
 
 /// `std_msgs/msg/Float64MultiArray`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Float64MultiArray {
+    /// The shape of `data`.
     pub layout: MultiArrayLayout,
+    /// The values, row-major.
     pub data: Vec<f64>,
 }
 ros2_message!(Float64MultiArray);
@@ -375,7 +408,9 @@ ros2_message!(Float64MultiArray);
 /// `diagnostic_msgs/msg/KeyValue`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct KeyValue {
+    /// The value's name.
     pub key: String,
+    /// The value, as text.
     pub value: String,
 }
 ros2_message!(KeyValue);
@@ -385,23 +420,32 @@ ros2_message!(KeyValue);
 pub struct DiagnosticStatus {
     /// OK = 0, WARN = 1, ERROR = 2, STALE = 3.
     pub level: u8,
+    /// The name of what is reported on.
     pub name: String,
+    /// The status in one line.
     pub message: String,
+    /// The hardware reported on (the node puts its fully qualified name).
     pub hardware_id: String,
+    /// The figures behind the status, by name.
     pub values: Vec<KeyValue>,
 }
 ros2_message!(DiagnosticStatus);
 
 impl DiagnosticStatus {
+    /// [`level`](Self::level): all is well.
     pub const OK: u8 = 0;
+    /// [`level`](Self::level): a warning.
     pub const WARN: u8 = 1;
+    /// [`level`](Self::level): an error.
     pub const ERROR: u8 = 2;
 }
 
 /// `diagnostic_msgs/msg/DiagnosticArray`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct DiagnosticArray {
+    /// Stamp: when the statuses were gathered.
     pub header: Header,
+    /// One status per thing reported on.
     pub status: Vec<DiagnosticStatus>,
 }
 ros2_message!(DiagnosticArray);
@@ -409,13 +453,19 @@ ros2_message!(DiagnosticArray);
 /// `rcl_interfaces/msg/Log`: a `/rosout` line.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Log {
+    /// When the line was logged.
     pub stamp: Time,
     /// DEBUG = 10, INFO = 20, WARN = 30, ERROR = 40, FATAL = 50.
     pub level: u8,
+    /// The logger's name.
     pub name: String,
+    /// The line's text.
     pub msg: String,
+    /// The source file that logged it.
     pub file: String,
+    /// The function that logged it.
     pub function: String,
+    /// The line in `file`.
     pub line: u32,
 }
 ros2_message!(Log);
@@ -424,6 +474,7 @@ ros2_message!(Log);
 /// placeholder byte.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct TriggerRequest {
+    /// The placeholder byte, 0.
     pub structure_needs_at_least_one_member: u8,
 }
 ros2_message!(TriggerRequest);
@@ -431,7 +482,9 @@ ros2_message!(TriggerRequest);
 /// `std_srvs/srv/Trigger` response.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct TriggerResponse {
+    /// Whether the service did what it was asked.
     pub success: bool,
+    /// Informational text (why not, when `success` is false).
     pub message: String,
 }
 ros2_message!(TriggerResponse);
@@ -506,7 +559,7 @@ pub(crate) const DEFINITIONS: &[(&str, &str)] = &[
     ),
 ];
 
-/// The `.msg` text of `pkg/msg/Type`, if it is one of [`DEFINITIONS`].
+/// The `.msg` text of `pkg/msg/Type`, if it is one of `DEFINITIONS`.
 pub fn definition(type_name: &str) -> Option<&'static str> {
     DEFINITIONS
         .iter()
@@ -514,7 +567,7 @@ pub fn definition(type_name: &str) -> Option<&'static str> {
         .map(|(_, t)| *t)
 }
 
-/// The REP-2016 type hash (`RIHS01_...`) of `pkg/msg/Type`, computed from [`DEFINITIONS`]
+/// The REP-2016 type hash (`RIHS01_...`) of `pkg/msg/Type`, computed from `DEFINITIONS`
 /// (once per process), if it is one of them: the `topic_type_hash` of recordings.
 /// `tests/python/test_recording.py` checks it against the hash `rosbags` computes from the
 /// schemas embedded in a recording.

@@ -22,6 +22,7 @@ struct Wire {
 const NS_PER_S: i64 = 1_000_000_000;
 
 impl Time {
+    /// The epoch itself, 0 ns.
     pub const ZERO: Time = Time { nanos: 0 };
 
     /// The stamp `nanos` ns after the epoch.

@@ -1,5 +1,5 @@
 //! ROS 2 type hashes (REP-2016, "RIHS01"), computed from the `.msg` definitions of
-//! [`super::DEFINITIONS`]: the SHA-256 of the type description as JSON, the way
+//! `super::DEFINITIONS`: the SHA-256 of the type description as JSON, the way
 //! `rosidl_generator_type_description` writes it (`json.dumps` with `", "` and `": "`, no
 //! default values, the referenced types sorted by name).
 

@@ -80,7 +80,7 @@ pub enum ReadError {
          hold in memory"
     )]
     TooLarge {
-        /// The limit, MiB ([`super::reader::MAX_MESSAGE_BYTES`]).
+        /// The limit, MiB (`reader::MAX_MESSAGE_BYTES`).
         limit_mib: usize,
     },
 }

@@ -1,13 +1,13 @@
 //! Reading a recording back: every message (raw CDR) with its topic and times, and the metadata
 //! records.
 //!
-//! Nothing in the file is trusted. Only a regular file of at most [`MAX_RECORDING_BYTES`] is
+//! Nothing in the file is trusted. Only a regular file of at most `MAX_RECORDING_BYTES` is
 //! read; every record's strings are checked to fit in it before the `mcap` crate parses it
 //! (`lengths.rs`); no record, and no chunk once decompressed, may be larger than the file; the
-//! messages held may total at most [`MAX_MESSAGE_BYTES`] (a small file of compressed zeros
+//! messages held may total at most `MAX_MESSAGE_BYTES` (a small file of compressed zeros
 //! cannot fill the memory).
 //!
-//! [`read_run_file`] is what `replay`, `compare` and `recover` use: a file that ends in the MCAP
+//! `read_run_file` is what `replay`, `compare` and `recover` use: a file that ends in the MCAP
 //! magic is read strictly (damage is an error), any other (a recording cut by a crash, without
 //! its summary) is read record by record up to the cut, under the same checks, and accepted if
 //! it holds at least one message.
@@ -47,6 +47,7 @@ pub struct RawMessage {
     pub channel_id: u16,
     /// The message's sequence number as recorded.
     pub sequence: u32,
+    /// The channel's topic.
     pub topic: String,
     /// Schema name `pkg/msg/Type` ("" without a schema).
     pub type_name: String,
@@ -54,7 +55,9 @@ pub struct RawMessage {
     pub encoding: String,
     /// The schema's encoding (`ros2msg` for ROS 2; "" without a schema).
     pub schema_encoding: String,
+    /// Log time, ns (in the recording's time base).
     pub log_time: u64,
+    /// Publish time, ns (in the recording's time base).
     pub publish_time: u64,
     /// CDR with its encapsulation header.
     pub data: Vec<u8>,

@@ -3,10 +3,11 @@
 //! their metadata), the metadata records written, and every readable message, each with its
 //! sequence number, times and bytes unchanged, in file order.
 //!
-//! The input is read as `replay` and `compare` read it ([`read_run_file`]), under every check of
-//! the reader; a file with no readable message is refused. The output is written beside `OUT`
-//! under a temporary name and renamed into place once complete ([`muscle_actuator_core::files::AtomicFile`]),
-//! so a failure leaves no partial file; `OUT` may not be `IN`.
+//! The input is read as `replay` and `compare` read it (`reader::read_run_file`), under every
+//! check of the reader; a file with no readable message is refused. The output is written beside
+//! `OUT` under a temporary name and renamed into place once complete
+//! ([`muscle_actuator_core::files::AtomicFile`]), so a failure leaves no partial file; `OUT` may
+//! not be `IN`.
 
 use super::error::{RecordingError, RewriteError};
 use super::reader::{read_run_file, Recording};
@@ -18,8 +19,11 @@ use std::path::Path;
 /// What `recover` wrote.
 #[derive(Debug, Clone)]
 pub struct Recovered {
+    /// Messages written.
     pub messages: usize,
+    /// Channels written.
     pub channels: usize,
+    /// Metadata records written.
     pub metadata_records: usize,
     /// First and last log times of the messages, s.
     pub(crate) range_s: (f64, f64),

@@ -67,6 +67,7 @@ impl Default for RecorderOptions {
 /// Where the recording stands.
 #[derive(Debug, Clone, PartialEq)]
 pub enum RecorderState {
+    /// Writing.
     Recording,
     /// Finished cleanly.
     Finished,
@@ -77,6 +78,7 @@ pub enum RecorderState {
 /// Counters shared between the recorder thread and its handle.
 #[derive(Debug)]
 pub struct RecorderStats {
+    /// The file recorded to.
     pub path: PathBuf,
     /// Messages handed to the writer.
     pub written: AtomicU64,
@@ -91,6 +93,7 @@ pub struct RecorderStats {
 }
 
 impl RecorderStats {
+    /// Where the recording stands now.
     pub fn state(&self) -> RecorderState {
         self.state
             .lock()
@@ -330,6 +333,8 @@ impl RecordSender {
             }
         }
     }
+
+    /// The recorder's counters.
     pub fn stats(&self) -> &Arc<RecorderStats> {
         &self.stats
     }

@@ -17,29 +17,45 @@ pub fn channel(topic: &str, type_name: &str) -> Result<ChannelSpec, SchemaError>
     })
 }
 
-/// Topics of an offline run (`simulate --out`, `replay --out`): the node's names under its
-/// default name.
+// Topics of an offline run (`simulate --out`, `replay --out`): the node's names under its
+// default name.
+
+/// The state topic of an offline run (the node's `~/state`).
 pub const STATE_TOPIC: &str = "/muscle_actuator/state";
+/// The joint states topic of an offline run (the node's `joint_states`).
 pub const JOINT_STATES_TOPIC: &str = "/joint_states";
+/// The excitation commands of an offline run (the node's `~/activation`).
 pub const ACTIVATION_TOPIC: &str = "/muscle_actuator/activation";
+/// The load commands of an offline run (the node's `~/external_load`).
 pub const LOAD_TOPIC: &str = "/muscle_actuator/external_load";
-/// Suffixes (after the node's name) of the node's applied-input topics.
+/// Suffix (after the node's name) of the node's applied excitations.
 pub const APPLIED_ACTIVATION_SUFFIX: &str = "/applied/activation";
+/// Suffix (after the node's name) of the node's applied loads.
 pub const APPLIED_LOAD_SUFFIX: &str = "/applied/external_load";
 /// Suffix of the driven joints' motion as applied (node and offline runs alike).
 pub const APPLIED_JOINT_MOTION_SUFFIX: &str = "/applied/joint_motion";
 /// The driven joints' motion of an offline run, as applied: the node's name for it.
 pub const APPLIED_JOINT_MOTION_TOPIC: &str = "/muscle_actuator/applied/joint_motion";
+/// The node's diagnostics topic.
 pub const DIAGNOSTICS_TOPIC: &str = "/diagnostics";
+/// The node's log topic.
 pub const ROSOUT_TOPIC: &str = "/rosout";
 
+/// Type of the state ([`Channel::State`]).
 pub const STATE_TYPE: &str = "muscle_actuator_msgs/msg/ActuatorState";
+/// Type of joint states ([`Channel::JointStates`], the driven joints' motion).
 pub const JOINT_STATE_TYPE: &str = "sensor_msgs/msg/JointState";
+/// Type of excitation commands.
 pub const ACTIVATION_TYPE: &str = "muscle_actuator_msgs/msg/ActivationCommand";
+/// Type of load commands.
 pub const LOAD_TYPE: &str = "muscle_actuator_msgs/msg/ExternalLoad";
+/// Type of one muscle's excitation ([`Channel::MuscleCommand`]).
 pub const FLOAT64_TYPE: &str = "std_msgs/msg/Float64";
+/// Type of arrays of values ([`Channel::ActivationArray`], [`Channel::JointEfforts`]).
 pub const FLOAT64_ARRAY_TYPE: &str = "std_msgs/msg/Float64MultiArray";
+/// Type of diagnostics ([`Channel::Diagnostics`]).
 pub const DIAGNOSTICS_TYPE: &str = "diagnostic_msgs/msg/DiagnosticArray";
+/// Type of log lines ([`Channel::Rosout`]).
 pub const LOG_TYPE: &str = "rcl_interfaces/msg/Log";
 
 /// What a channel carries.
@@ -82,6 +98,7 @@ pub struct Layout {
 }
 
 impl Layout {
+    /// No channels yet.
     pub fn new() -> Self {
         Self::default()
     }

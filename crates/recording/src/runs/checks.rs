@@ -119,7 +119,7 @@ pub enum CheckError {
         /// The value.
         value: f64,
     },
-    /// The last state lies beyond [`MAX_RECORDED_TICKS`].
+    /// The last state lies beyond `MAX_RECORDED_TICKS`.
     #[error("its last state is at tick {last}: a run may span at most {MAX_RECORDED_TICKS} ticks")]
     TooManyTicks {
         /// The last state's tick.

@@ -10,10 +10,13 @@ use std::path::Path;
 pub struct SignalDiff {
     /// `muscle.force`, `joint.position`, ...
     pub signal: String,
+    /// Root mean square of B − A over the compared samples, in the signal's unit.
     pub rms_diff: f64,
+    /// Largest |B − A|, in the signal's unit.
     pub max_abs_diff: f64,
     /// Time of the largest difference, s.
     pub(crate) max_diff_time: f64,
+    /// Run A's peak: its value of largest magnitude (signed), in the signal's unit.
     pub peak_a: f64,
     pub(crate) peak_b: f64,
     /// Time of the peak (largest absolute value), s.
@@ -21,6 +24,7 @@ pub struct SignalDiff {
     pub(crate) peak_time_b: f64,
     /// 10 %–90 % rise time of the first rise towards the peak, s (None: no rise).
     pub rise_time_a: Option<f64>,
+    /// The same in run B, s.
     pub rise_time_b: Option<f64>,
 }
 
@@ -31,9 +35,11 @@ pub struct EnergyFigures {
     pub muscle: String,
     /// Metabolic energy over the span (the rise of `metabolic_energy`), J.
     pub energy_a_j: f64,
+    /// The same in run B, J.
     pub energy_b_j: f64,
     /// Root mean square of `metabolic_power` over the span's samples, W.
     pub rms_power_a_w: f64,
+    /// The same in run B, W.
     pub rms_power_b_w: f64,
     /// The phenomenological model's energy over the span, J.
     pub(crate) phenomenological_energy_a_j: f64,
@@ -43,13 +49,17 @@ pub struct EnergyFigures {
 /// The comparison.
 #[derive(Debug, Clone, Serialize)]
 pub struct Comparison {
+    /// Run A's model (`hill`, `huxley`, `huxley-pde`).
     pub model_a: String,
+    /// Run B's model.
     pub model_b: String,
-    /// The compared time span, s.
+    /// Start of the compared time span, s.
     pub start: f64,
+    /// End of the compared time span, s.
     pub end: f64,
     /// Samples compared.
     pub samples: usize,
+    /// Differences of each signal of every muscle and joint.
     pub signals: Vec<SignalDiff>,
     /// What each muscle spent in the common span, in each run.
     pub energies: Vec<EnergyFigures>,

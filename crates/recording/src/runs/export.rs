@@ -52,6 +52,7 @@ pub fn run_of(loaded: &LoadedRun) -> Result<Run, ExportError> {
 pub struct ExportSummary {
     /// Recorded states (one row each per muscle).
     pub states: usize,
+    /// Muscles in each state.
     pub muscles: usize,
 }
 

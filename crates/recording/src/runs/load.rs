@@ -121,7 +121,9 @@ pub type InputsAt = (u64, Vec<String>, Vec<f64>);
 
 /// A recorded run, decoded: metadata, states by tick, inputs by the tick they take effect.
 pub struct LoadedRun {
+    /// The run's metadata record.
     pub meta: RunMeta,
+    /// The recorded states, by tick.
     pub states: Vec<ActuatorState>,
     /// (tick, muscle names, excitations), in order.
     pub activations: Vec<InputsAt>,
@@ -134,7 +136,7 @@ pub struct LoadedRun {
 }
 
 /// Reads a run file: a complete one strictly (damage is an error), one cut by a crash up to the
-/// cut, with a warning ([`crate::recording::reader::read_run_file`]).
+/// cut, with a warning (`recording::reader::read_run_file`).
 pub fn load_run(path: &Path) -> Result<LoadedRun, LoadError> {
     let rec = read_run_file(path)?;
     let mut run = load_from(&rec).map_err(|source| LoadError::Invalid {

@@ -102,11 +102,16 @@ pub enum MetadataError {
 /// How the muscles were attached in a run.
 #[derive(Debug, Clone, PartialEq)]
 pub enum AttachmentMeta {
+    /// The configuration's whole limb.
     Joint,
+    /// The configuration's first muscle alone, held at a total length.
     Clamped {
+        /// The muscle–tendon unit's length, m.
         length: f64,
     },
+    /// The configuration's first muscle alone, its tendon pulled by an external force.
     Force {
+        /// The tendon force at the start, N.
         initial_force: f64,
     },
     /// The configuration's limb with driven joints (those marked in `config`), their motion
@@ -119,10 +124,15 @@ pub enum AttachmentMeta {
 pub struct RunMeta {
     /// What made the run (`simulate pulse`, `node /muscle_actuator`, `replay ...`).
     pub source: String,
+    /// The contractile-element model.
     pub model: ModelKind,
+    /// The tick rate, Hz.
     pub rate_hz: f64,
+    /// How each tick was divided into sub-steps.
     pub stepping: Stepping,
+    /// How the muscles were attached.
     pub attachment: AttachmentMeta,
+    /// The actuator's configuration.
     pub config: ActuatorConfig,
     /// The node's parameters (JSON), for node runs.
     pub parameters_json: Option<String>,
@@ -133,7 +143,9 @@ pub struct RunMeta {
     /// The driven joints' motion the run started from, (angle rad, velocity rad/s) per driven
     /// joint in configuration order; empty: their initial angles, at rest (as the node starts).
     pub initial_joint_motion: Vec<(f64, f64)>,
+    /// The run's muscle names, in the order of every recorded state's muscles.
     pub muscles: Vec<String>,
+    /// The run's joint names, in the order of every recorded state's joints.
     pub joints: Vec<String>,
 }
 

@@ -20,8 +20,8 @@ pub mod replay;
 pub mod simulate;
 pub mod writer;
 
-/// The channels of a run, for the node ([`crate::ros`]) and the tests, which name them from here;
-/// the time base is [`muscle_actuator_core::time`]'s.
+/// The channels of a run, for the node (`muscle_actuator::ros`) and the tests, which name them
+/// from here; the time base is [`muscle_actuator_core::time`]'s.
 pub use channels::{
     channel, Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
     APPLIED_JOINT_MOTION_SUFFIX, APPLIED_JOINT_MOTION_TOPIC, APPLIED_LOAD_SUFFIX,

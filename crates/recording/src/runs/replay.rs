@@ -18,6 +18,7 @@ use std::path::Path;
 /// What a replay did.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReplaySummary {
+    /// The model the inputs were fed through.
     pub model: ModelKind,
     /// Ticks simulated.
     pub ticks: u64,
