@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test of the project, on a fresh machine or an old one (idempotent, reuses what is built):
-#   0. lint: rustfmt's check and clippy with every warning an error, on every crate and target;
+#   0. lint: rustfmt's check and clippy with every warning an error, on every crate and target,
+#      and the core's and recording crate's documentation built without a warning;
 #   1. the Rust tests of every crate of the workspace (crates/core, crates/recording, the node's
 #      and the CLI's): unit, integration (physics against closed forms, the adaptive reference
 #      solver, conservation laws; the CLI), and the benchmarks compiled and run once in test mode;
@@ -19,6 +20,9 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 echo "== Lint: cargo fmt --check, cargo clippy -D warnings (every crate, every target)" >&2
 cargo fmt --all --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
+# The core's and the recording crate's API documentation, every link resolved (their
+# missing_docs lint, part of clippy above, asks for a doc on every public item).
+RUSTDOCFLAGS="-D warnings" cargo doc --quiet --no-deps -p muscle_actuator_core -p muscle_actuator_recording
 echo "== Rust tests" >&2
 cargo test --workspace --exclude muscle_actuator_python --all-targets
 echo "== The fourth model (a model only the tests know, reached by name everywhere)" >&2
