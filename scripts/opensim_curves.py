@@ -5,12 +5,11 @@ against. Writes tests/reference/opensim_curves.csv: a comment line naming the Op
 this command, then `set,curve,x,value`, one row per point, numbers in Python's shortest
 round-trip form (exact doubles).
 
-Needs OpenSim's Python package (PyPI `opensim`, CPython 3.11), which the project's set-up scripts
-do not install:
+Needs OpenSim's Python package (PyPI `opensim` 4.6), which scripts/py-env.sh installs in .venv:
 
-    python3.11 -m venv /work/venv-osim
-    /work/venv-osim/bin/pip install opensim==4.6 numpy
-    /work/venv-osim/bin/python scripts/opensim_curves.py [--out tests/reference/opensim_curves.csv]
+    .venv/bin/python scripts/opensim_curves.py [--out tests/reference/opensim_curves.csv]
+
+python/tests/test_opensim_curves.py runs it in the test command and requires the committed table.
 
 DeGrooteFregly2016Muscle exposes its curves (`calc...` methods; the force-velocity pair is
 static): they are called directly, on a default muscle after `finalizeFromProperties()` (which
@@ -165,7 +164,7 @@ def main():
     rows = degroote_rows() + thelen_rows()
     with open(args.out, "w") as f:
         f.write(f"# OpenSim {osim.GetVersionAndDate()} (PyPI opensim==4.6); written by "
-                f"`python scripts/opensim_curves.py` in a venv with opensim\n")
+                f"`.venv/bin/python scripts/opensim_curves.py`\n")
         f.write("set,curve,x,value\n")
         for set_name, curve, x, value in rows:
             f.write(f"{set_name},{curve},{x!r},{value!r}\n")

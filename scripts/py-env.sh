@@ -4,7 +4,8 @@
 # PyPI, the tools to build msg/ (muscle_actuator_msgs) for rclpy with plain cmake, pytest, the
 # MCAP readers, colcon with colcon-ros-cargo (tests/python/test_colcon.py builds a colcon
 # workspace), and maturin with the Python package's optional dependencies (gymnasium,
-# matplotlib, pandas, ray) for scripts/test-python.sh.
+# matplotlib, pandas, ray) for scripts/test-python.sh, and OpenSim 4.6, the reference its
+# OpenSim tests compare with.
 #
 # Idempotent: each step leaves a stamp in .venv and is skipped when its inputs did not change.
 # Usage: scripts/py-env.sh            (prints the venv path on its last line)
@@ -32,6 +33,7 @@ PACKAGES=(
   mcap
   mcap-ros2-support
   mypy  # stubtest: python/muscle_actuator/_core.pyi against the built extension
+  opensim==4.6  # the reference the muscles are checked against (python/tests/test_opensim_*.py)
   pandas
   pymcap-cli  # GPL: a test tool only (`doctor`), never a dependency of the product
   pytest
