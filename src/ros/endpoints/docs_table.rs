@@ -53,28 +53,8 @@ fn the_docs_list_every_endpoint() {
 #[test]
 fn every_endpoint_has_one_entry() {
     use super::table::{spec_of, Endpoint as E};
-    let all = [
-        E::State,
-        E::JointStates,
-        E::Activation,
-        E::Load,
-        E::AppliedActivation,
-        E::AppliedLoad,
-        E::Diagnostics,
-        E::Rosout,
-        E::ActivationArray,
-        E::MuscleCommand,
-        E::ClockOut,
-        E::ClockIn,
-        E::JointStatesIn,
-        E::JointEfforts,
-        E::AppliedJointMotion,
-        E::Reset,
-        E::Step,
-        E::StepTopic,
-    ];
-    assert_eq!(all.len(), ENDPOINTS.len());
-    for e in all {
+    assert_eq!(E::ALL.len(), ENDPOINTS.len());
+    for &e in E::ALL {
         assert_eq!(ENDPOINTS.iter().filter(|s| s.endpoint == e).count(), 1);
         assert_eq!(spec_of(e).endpoint, e);
     }

@@ -15,9 +15,25 @@ use crate::runs::channels::{
     LOAD_TYPE, LOG_TYPE, STATE_TYPE,
 };
 
-/// A topic or service of the node.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(crate) enum Endpoint {
+/// Declares [`Endpoint`] and, for the tests, [`Endpoint::ALL`] (every variant in order) from
+/// one list, so that a new endpoint is one line here and its entry in [`ENDPOINTS`].
+macro_rules! endpoints {
+    ($($(#[$doc:meta])* $variant:ident,)*) => {
+        /// A topic or service of the node.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub(crate) enum Endpoint {
+            $($(#[$doc])* $variant,)*
+        }
+
+        #[cfg(test)]
+        impl Endpoint {
+            /// Every endpoint, in declaration order.
+            pub(crate) const ALL: &'static [Endpoint] = &[$(Endpoint::$variant,)*];
+        }
+    };
+}
+
+endpoints! {
     State,
     JointStates,
     Activation,
