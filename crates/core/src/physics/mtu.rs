@@ -2,7 +2,7 @@
 //! contractile element, parallel spring and damper act between the origin and the mass, the
 //! tendon between the mass and the load. Written once for every contractile model.
 
-use crate::physics::contractile::force_length::{force_length, force_length_slope};
+use crate::physics::curves::overlap::ActiveForceLength;
 use crate::physics::energetics::bridge_power::atp_mol_per_j;
 use crate::physics::energetics::metabolic::{
     mechanism_rates, MetabolicRates, MetabolicSample, MuscleProbe,
@@ -11,22 +11,24 @@ use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
 use crate::physics::models::{CeInputs, ContractileModel};
 use crate::physics::models::{ModelBuildError, ModelKind};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
-use crate::physics::parallel_element::{damper_force, parallel_spring};
+use crate::physics::parallel_element::{damper_force, ParallelElement};
 use crate::physics::params::MuscleParams;
-use crate::physics::spring::ExpLinearSpring;
 use crate::physics::stiffness::{fibre_stiffness, series_stiffness};
-use crate::physics::tendon::tendon;
+use crate::physics::tendon::Tendon;
 
 /// The constants of one muscle–tendon unit, derived once from its parameters, and its
-/// contractile element.
+/// contractile element; its tendon, parallel element and overlap factor are those of its curve
+/// set (docs/model.md §4b).
 #[derive(Debug, Clone)]
 pub struct Mtu {
     /// The parameters.
     pub params: MuscleParams,
     /// Series element.
-    pub tendon: ExpLinearSpring,
+    pub tendon: Tendon,
     /// Parallel element.
-    pub parallel: ExpLinearSpring,
+    pub parallel: ParallelElement,
+    /// Active force–length relation, the overlap factor λ(l_m).
+    pub active_force_length: ActiveForceLength,
     /// The contractile element.
     pub(crate) ce: Box<dyn ContractileModel>,
     /// Its phenomenological energy model (docs/model.md §11.4).
@@ -38,8 +40,9 @@ impl Mtu {
     pub fn new(params: &MuscleParams, model: ModelKind) -> Result<Self, ModelBuildError> {
         Ok(Self {
             params: params.clone(),
-            tendon: tendon(params),
-            parallel: parallel_spring(params),
+            tendon: Tendon::new(params),
+            parallel: ParallelElement::new(params),
+            active_force_length: ActiveForceLength::new(params),
             ce: model.build(params)?,
             probe: MuscleProbe {
                 model: params.energetics.energy_model.phenomenological(),
@@ -57,15 +60,14 @@ impl Mtu {
     }
 
     /// Filament-overlap factor λ(l_m) = f(l_m).
+    #[inline]
     pub fn overlap(&self, l_m: f64) -> f64 {
-        let p = &self.params;
-        force_length(l_m, p.l_opt, p.fl_width, p.fl_shape)
+        self.active_force_length.at(l_m)
     }
 
     /// Slope of the overlap factor, 1/m.
     pub fn overlap_slope(&self, l_m: f64) -> f64 {
-        let p = &self.params;
-        force_length_slope(l_m, p.l_opt, p.fl_width, p.fl_shape)
+        self.active_force_length.slope(l_m)
     }
 
     /// What the contractile element sees.
@@ -202,7 +204,11 @@ impl Mtu {
     }
 
     /// Fibre length at rest with the MTU held at total length `length` (a = 0, no bonds): where
-    /// the tendon force equals the parallel force, by bisection (both are monotone).
+    /// the tendon force equals the parallel force, by bisection. The residual
+    /// `F_T(length - l_m) - F_PE(l_m)` never rises with l_m for every curve set: DeGroote's
+    /// tendon, negative when slack, still rises with its length, and so does its passive curve
+    /// below 0.2 l_opt; where both forces are flat at zero (a slack tendon and fibre, the
+    /// paper's and Thelen's curves) the shortest such fibre is taken.
     pub(crate) fn resting_fibre_length(&self, length: f64) -> f64 {
         let residual = |l_m: f64| self.tendon.force(length - l_m) - self.parallel.force(l_m);
         let (mut lo, mut hi) = (0.0, length);

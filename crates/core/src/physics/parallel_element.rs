@@ -1,5 +1,7 @@
-//! The parallel elastic element and its damper (docs/model.md §4, paper eqs. 6–7).
+//! The parallel elastic element and its damper (docs/model.md §4, paper eqs. 6–7), with the
+//! curves of the muscle's set (§4b).
 
+use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
 
@@ -12,6 +14,156 @@ pub fn parallel_spring(p: &MuscleParams) -> ExpLinearSpring {
         l_c: p.l_mc,
         f_c: p.f_mc,
         k: p.k_m,
+    }
+}
+
+/// The passive fibre strain at one normalised force in force: the configured `passive_strain`,
+/// else the curve set's default (0.6 for both OpenSim sets; NaN for the paper's set, whose
+/// spring has none).
+pub fn passive_strain(p: &MuscleParams) -> f64 {
+    let default = match p.curves {
+        CurveSet::Paper => f64::NAN,
+        CurveSet::DeGroote2016 => degroote2016::DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE,
+        CurveSet::Thelen2003 => thelen2003::DEFAULT_FMAX_MUSCLE_STRAIN,
+    };
+    p.passive_strain.unwrap_or(default)
+}
+
+/// A muscle's parallel elastic element: the paper's spring, or an OpenSim set's normalised
+/// passive curve scaled by Fmax and l_opt, `F_PE = Fmax f_PE(l_m / l_opt)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ParallelElement {
+    /// The paper's exponential-then-linear spring (§4).
+    Paper(ExpLinearSpring),
+    /// DeGroote 2016's exponential: zero at 0.2 l_opt, negative below.
+    DeGroote2016 {
+        /// Fmax, N.
+        f_max: f64,
+        /// Optimal fibre length l_opt, m.
+        l_opt: f64,
+        /// Passive strain at one normalised force e0.
+        strain: f64,
+    },
+    /// Thelen 2003's exponential: zero up to l_opt.
+    Thelen2003 {
+        /// Fmax, N.
+        f_max: f64,
+        /// Optimal fibre length l_opt, m.
+        l_opt: f64,
+        /// Passive strain at one normalised force ε₀M.
+        strain: f64,
+    },
+}
+
+/// Thelen's passive shape k_PE (OpenSim's `KshapePassive`, not configurable here).
+const THELEN_KSHAPE_PASSIVE: f64 = thelen2003::DEFAULT_KSHAPE_PASSIVE;
+
+impl ParallelElement {
+    /// The parallel element of the muscle's curve set.
+    pub fn new(p: &MuscleParams) -> Self {
+        let (f_max, l_opt) = (p.f_max, p.l_opt);
+        match p.curves {
+            CurveSet::Paper => ParallelElement::Paper(parallel_spring(p)),
+            CurveSet::DeGroote2016 => ParallelElement::DeGroote2016 {
+                f_max,
+                l_opt,
+                strain: passive_strain(p),
+            },
+            CurveSet::Thelen2003 => ParallelElement::Thelen2003 {
+                f_max,
+                l_opt,
+                strain: passive_strain(p),
+            },
+        }
+    }
+
+    /// Tension at fibre length `l_m`, N.
+    #[inline]
+    pub fn force(&self, l_m: f64) -> f64 {
+        match *self {
+            ParallelElement::Paper(ref s) => s.force(l_m),
+            ParallelElement::DeGroote2016 {
+                f_max,
+                l_opt,
+                strain,
+            } => f_max * degroote2016::passive_force_length(l_m / l_opt, strain),
+            ParallelElement::Thelen2003 {
+                f_max,
+                l_opt,
+                strain,
+            } => {
+                f_max * thelen2003::passive_force_length(l_m / l_opt, strain, THELEN_KSHAPE_PASSIVE)
+            }
+        }
+    }
+
+    /// Stiffness dF/dl_m, N/m.
+    #[inline]
+    pub fn stiffness(&self, l_m: f64) -> f64 {
+        match *self {
+            ParallelElement::Paper(ref s) => s.stiffness(l_m),
+            ParallelElement::DeGroote2016 {
+                f_max,
+                l_opt,
+                strain,
+            } => f_max / l_opt * degroote2016::passive_force_length_derivative(l_m / l_opt, strain),
+            ParallelElement::Thelen2003 {
+                f_max,
+                l_opt,
+                strain,
+            } => {
+                let x = l_m / l_opt;
+                f_max / l_opt
+                    * thelen2003::passive_force_length_derivative(x, strain, THELEN_KSHAPE_PASSIVE)
+            }
+        }
+    }
+
+    /// Strain energy, J: `∫ F` from the length where the force is zero (the paper's and
+    /// Thelen's slack length, l_ms and l_opt; DeGroote's 0.2 l_opt, as OpenSim has it).
+    pub fn energy(&self, l_m: f64) -> f64 {
+        match *self {
+            ParallelElement::Paper(ref s) => s.energy(l_m),
+            ParallelElement::DeGroote2016 {
+                f_max,
+                l_opt,
+                strain,
+            } => f_max * l_opt * degroote2016::passive_force_length_integral(l_m / l_opt, strain),
+            ParallelElement::Thelen2003 {
+                f_max,
+                l_opt,
+                strain,
+            } => {
+                let x = l_m / l_opt;
+                f_max
+                    * l_opt
+                    * thelen2003::passive_force_length_integral(x, strain, THELEN_KSHAPE_PASSIVE)
+            }
+        }
+    }
+
+    /// Fibre length at which the element carries `force`, m; for a force <= 0 the length where
+    /// its force is zero (l_ms, 0.2 l_opt for DeGroote's, l_opt for Thelen's).
+    pub fn length_at_force(&self, force: f64) -> f64 {
+        match *self {
+            ParallelElement::Paper(ref s) => s.length_at_force(force),
+            ParallelElement::DeGroote2016 {
+                f_max,
+                l_opt,
+                strain,
+            } => {
+                let f = force.max(0.0) / f_max;
+                l_opt * degroote2016::passive_force_length_inverse(f, strain)
+            }
+            ParallelElement::Thelen2003 {
+                f_max,
+                l_opt,
+                strain,
+            } => {
+                let f = force / f_max;
+                l_opt * thelen2003::passive_force_length_inverse(f, strain, THELEN_KSHAPE_PASSIVE)
+            }
+        }
     }
 }
 

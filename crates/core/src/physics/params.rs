@@ -5,7 +5,10 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod curve_set;
 pub mod energetics;
+
+use curve_set::CurveSet;
 
 pub use energetics::{EnergeticsParams, EnergyModel};
 
@@ -68,6 +71,19 @@ pub struct MuscleParams {
     pub(crate) f_mc: f64,
     /// Parallel damping B_m, N s/m.
     pub b_m: f64,
+    /// The curve set of the tendon, the parallel element, the active force–length relation and
+    /// the Hill force–velocity relation (docs/model.md §4b); written out only when not the
+    /// paper's.
+    #[serde(skip_serializing_if = "CurveSet::is_paper")]
+    pub curves: CurveSet,
+    /// Tendon strain at one normalised force of an OpenSim curve set (OpenSim's
+    /// `tendon_strain_at_one_norm_force`, `FmaxTendonStrain`); `None`: the set's default.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tendon_strain: Option<f64>,
+    /// Fibre strain at one normalised passive force of an OpenSim curve set (OpenSim's
+    /// `passive_fiber_strain_at_one_norm_force`, `FmaxMuscleStrain`); `None`: the set's default.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub passive_strain: Option<f64>,
     /// Cross-bridge parameters of the Huxley models.
     pub crossbridge: CrossBridgeParams,
     /// Energetics: the phenomenological heat-rate model and the energy constants (§11).
@@ -99,6 +115,9 @@ impl Default for MuscleParams {
             l_mc: 0.125,
             f_mc: 69.4723,
             b_m: 257.1,
+            curves: CurveSet::Paper,
+            tendon_strain: None,
+            passive_strain: None,
             crossbridge: CrossBridgeParams::default(),
             energetics: EnergeticsParams::default(),
         }
@@ -253,6 +272,33 @@ impl MuscleParams {
         self.l_tc.unwrap_or_else(|| self.derived_l_tc())
     }
 
+    /// The curve-set rules: `tendon_strain` and `passive_strain` only with an OpenSim set, and
+    /// positive.
+    fn validate_curves(&self, c: &mut Checker<'_>) {
+        let strains = [
+            (
+                "tendon_strain",
+                self.tendon_strain,
+                "applies to curves = \"degroote2016\" or \"thelen2003\" only (the paper's \
+                 tendon is set by k_te, k_tl, k_t)",
+            ),
+            (
+                "passive_strain",
+                self.passive_strain,
+                "applies to curves = \"degroote2016\" or \"thelen2003\" only (the paper's \
+                 parallel element is set by k_me, k_ml, k_m)",
+            ),
+        ];
+        for (name, value, paper_rule) in strains {
+            let Some(v) = value else { continue };
+            if self.curves.is_paper() {
+                c.fail(name, v, paper_rule);
+            } else {
+                c.positive(name, v);
+            }
+        }
+    }
+
     /// Appends one error per broken rule; `prefix` names the muscle (e.g. `muscle.flexor.`).
     pub fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
         let mut c = Checker { prefix, errors };
@@ -292,6 +338,7 @@ impl MuscleParams {
                 c.fail("l_tc", l_tc, "must be >= l_ts");
             }
         }
+        self.validate_curves(&mut c);
         let x = &self.crossbridge;
         let mut c = Checker {
             prefix: &format!("{prefix}crossbridge."),

@@ -1,5 +1,7 @@
-//! The series elastic element, the tendon (docs/model.md §4, paper eqs. 4–5).
+//! The series elastic element, the tendon (docs/model.md §4, paper eqs. 4–5), with the curves of
+//! the muscle's set (§4b).
 
+use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
 
@@ -12,5 +14,122 @@ pub fn tendon(p: &MuscleParams) -> ExpLinearSpring {
         l_c: p.l_tc(),
         f_c: p.f_tc,
         k: p.k_t,
+    }
+}
+
+/// The tendon strain at one normalised force in force: the configured `tendon_strain`, else
+/// the curve set's default (DeGroote 2016: 0.049, Thelen 2003: 0.04; NaN for the paper's set,
+/// whose tendon has none).
+pub fn tendon_strain(p: &MuscleParams) -> f64 {
+    let default = match p.curves {
+        CurveSet::Paper => f64::NAN,
+        CurveSet::DeGroote2016 => degroote2016::DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE,
+        CurveSet::Thelen2003 => thelen2003::DEFAULT_FMAX_TENDON_STRAIN,
+    };
+    p.tendon_strain.unwrap_or(default)
+}
+
+/// A muscle's tendon: the paper's spring, or an OpenSim set's normalised curve scaled by Fmax and
+/// the slack length, `F_T = Fmax f_T(l_T / l_s)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tendon {
+    /// The paper's exponential-then-linear spring (§4).
+    Paper(ExpLinearSpring),
+    /// DeGroote 2016's exponential, not clipped: slightly negative when slack.
+    DeGroote2016 {
+        /// Fmax, N.
+        f_max: f64,
+        /// Slack length l_s, m.
+        l_s: f64,
+        /// Shape kT from the tendon strain ([`degroote2016::tendon_shape`]).
+        k_t: f64,
+    },
+    /// Thelen 2003's toe and linear part, zero when slack.
+    Thelen2003 {
+        /// Fmax, N.
+        f_max: f64,
+        /// Slack length l_s, m.
+        l_s: f64,
+        /// Strain at one normalised force ε₀T.
+        strain: f64,
+    },
+}
+
+impl Tendon {
+    /// The tendon of the muscle's curve set.
+    pub fn new(p: &MuscleParams) -> Self {
+        let (f_max, l_s) = (p.f_max, p.l_ts);
+        match p.curves {
+            CurveSet::Paper => Tendon::Paper(tendon(p)),
+            CurveSet::DeGroote2016 => Tendon::DeGroote2016 {
+                f_max,
+                l_s,
+                k_t: degroote2016::tendon_shape(tendon_strain(p)),
+            },
+            CurveSet::Thelen2003 => Tendon::Thelen2003 {
+                f_max,
+                l_s,
+                strain: tendon_strain(p),
+            },
+        }
+    }
+
+    /// Tension at tendon length `l`, N.
+    #[inline]
+    pub fn force(&self, l: f64) -> f64 {
+        match *self {
+            Tendon::Paper(ref s) => s.force(l),
+            Tendon::DeGroote2016 { f_max, l_s, k_t } => {
+                f_max * degroote2016::tendon_force_length(l / l_s, k_t)
+            }
+            Tendon::Thelen2003 { f_max, l_s, strain } => {
+                f_max * thelen2003::tendon_force_length(l / l_s, strain)
+            }
+        }
+    }
+
+    /// Stiffness dF/dl, N/m.
+    #[inline]
+    pub fn stiffness(&self, l: f64) -> f64 {
+        match *self {
+            Tendon::Paper(ref s) => s.stiffness(l),
+            Tendon::DeGroote2016 { f_max, l_s, k_t } => {
+                f_max / l_s * degroote2016::tendon_force_length_derivative(l / l_s, k_t)
+            }
+            Tendon::Thelen2003 { f_max, l_s, strain } => {
+                f_max / l_s * thelen2003::tendon_force_length_derivative(l / l_s, strain)
+            }
+        }
+    }
+
+    /// Strain energy `∫_{l_s}^{l} F(x) dx`, J (for DeGroote's negative force below slack length
+    /// also positive, as OpenSim has it).
+    pub fn energy(&self, l: f64) -> f64 {
+        match *self {
+            Tendon::Paper(ref s) => s.energy(l),
+            Tendon::DeGroote2016 { f_max, l_s, k_t } => {
+                f_max * l_s * degroote2016::tendon_force_length_integral(l / l_s, k_t)
+            }
+            Tendon::Thelen2003 { f_max, l_s, strain } => {
+                f_max * l_s * thelen2003::tendon_force_length_integral(l / l_s, strain)
+            }
+        }
+    }
+
+    /// Length at which the tendon carries `force`, m; the slack length for a force <= 0 (a
+    /// force-driven tendon transmits no push, docs/model.md §5).
+    pub fn length_at_force(&self, force: f64) -> f64 {
+        match *self {
+            Tendon::Paper(ref s) => s.length_at_force(force),
+            Tendon::DeGroote2016 { l_s, .. } | Tendon::Thelen2003 { l_s, .. } if force <= 0.0 => {
+                l_s
+            }
+            Tendon::DeGroote2016 { f_max, l_s, k_t } => {
+                l_s * degroote2016::tendon_force_length_inverse(force / f_max, k_t)
+            }
+            Tendon::Thelen2003 { f_max, l_s, strain } => {
+                l_s * thelen2003::tendon_force_length_inverse(force / f_max, strain)
+            }
+        }
     }
 }

@@ -139,6 +139,29 @@ pub fn passive_force_length_derivative(
     (KPE * ((KPE * (norm_fiber_length - 1.0)) / e0).exp()) / (e0 * (KPE.exp() - offset))
 }
 
+/// The normalised fibre length at which the passive curve is `f`:
+/// `l̃ = 1 + (e0/kPE) ln(f (exp(kPE) - o) + o)` (the inverse of [`passive_force_length`]; 0.2 at
+/// f = 0, NaN below `-o/(exp(kPE) - o)`).
+pub fn passive_force_length_inverse(norm_passive_force: f64, strain_at_one_norm_force: f64) -> f64 {
+    let e0 = strain_at_one_norm_force;
+    let offset = passive_offset(e0);
+    1.0 + e0 / KPE * (norm_passive_force * (KPE.exp() - offset) + offset).ln()
+}
+
+/// `∫_{0.2}^{l̃} f_PE(x) dx`, the passive curve's integral from [`MIN_NORM_FIBER_LENGTH`], where
+/// it is zero, as OpenSim writes it (`calcPassiveForceMultiplierIntegral`; the fibre's potential
+/// energy is this times l_opt Fmax): with `t1 = e0 + kPE (l̃ - 0.2)`,
+/// `t1/kPE + (exp(kPE) t1 - e0 exp(kPE (l̃ - 1)/e0)) / (kPE (o - exp(kPE)))`.
+pub fn passive_force_length_integral(norm_fiber_length: f64, strain_at_one_norm_force: f64) -> f64 {
+    let e0 = strain_at_one_norm_force;
+    let temp1 = e0 + KPE * norm_fiber_length - KPE * MIN_NORM_FIBER_LENGTH;
+    let temp2 = (KPE * (norm_fiber_length - 1.0) / e0).exp();
+    let temp3 = passive_offset(e0);
+    let numer = KPE.exp() * temp1 - e0 * temp2;
+    let denom = KPE * (temp3 - KPE.exp());
+    temp1 / KPE + numer / denom
+}
+
 /// Force–velocity multiplier `f_V(ṽ) = d1 ln(d2 ṽ + d3 + sqrt((d2 ṽ + d3)² + 1)) + d4`
 /// (d1 asinh(d2 ṽ + d3) + d4): 0 at ṽ = -1, 1 at ṽ = 0, about 1.794 at ṽ = 1. OpenSim states
 /// the domain [-1, 1] and evaluates the formula outside it too (negative below -1).
@@ -176,6 +199,15 @@ pub fn tendon_force_length_derivative(norm_tendon_length: f64, k_t: f64) -> f64 
 /// `l̃_T = ln((f + c3)/c1)/kT + c2` (NaN for f <= -c3).
 pub fn tendon_force_length_inverse(norm_tendon_force: f64, k_t: f64) -> f64 {
     ((1.0 / C1) * (norm_tendon_force + C3)).ln() / k_t + C2
+}
+
+/// `∫_1^{l̃_T} f_T(x) dx`, the tendon curve's integral from slack length (the tendon's potential
+/// energy is this times l_s Fmax, as OpenSim's `calcTendonForceMultiplierIntegral` gives it):
+/// `(c1/kT)(exp(kT (l̃_T - c2)) - exp(kT (1 - c2))) - c3 (l̃_T - 1)`. Positive on both sides of
+/// slack length, where the force is negative.
+pub fn tendon_force_length_integral(norm_tendon_length: f64, k_t: f64) -> f64 {
+    C1 / k_t * ((k_t * (norm_tendon_length - C2)).exp() - (k_t * (1.0 - C2)).exp())
+        - C3 * (norm_tendon_length - 1.0)
 }
 
 #[cfg(test)]
@@ -258,6 +290,34 @@ mod tests {
                 "at {v}"
             );
         }
+    }
+
+    #[test]
+    fn integrals_differentiate_to_the_curves_and_inverses_undo_them() {
+        for i in 0..=32 {
+            let l = 0.25 + 1.5 * i as f64 / 32.0;
+            let fd = central_difference(|x| passive_force_length_integral(x, E0), l);
+            assert!(
+                (fd - passive_force_length(l, E0)).abs() < 1e-8,
+                "∫f_PE' at {l}"
+            );
+            let f = passive_force_length(l, E0);
+            assert!(
+                (passive_force_length_inverse(f, E0) - l).abs() < 1e-12,
+                "f_PE⁻¹ at {l}"
+            );
+            let lt = 0.97 + 0.12 * i as f64 / 32.0;
+            let fd = central_difference(|x| tendon_force_length_integral(x, kt()), lt);
+            let f = tendon_force_length(lt, kt());
+            assert!((fd - f).abs() < 1e-8 * f.abs().max(1.0), "∫f_T' at {lt}");
+            assert!(
+                tendon_force_length_integral(lt, kt()) >= 0.0,
+                "∫f_T at {lt}"
+            );
+        }
+        assert!(passive_force_length_integral(MIN_NORM_FIBER_LENGTH, E0).abs() < 1e-15);
+        assert_eq!(tendon_force_length_integral(1.0, kt()), 0.0);
+        assert!((passive_force_length_inverse(0.0, E0) - MIN_NORM_FIBER_LENGTH).abs() < 1e-15);
     }
 
     #[test]

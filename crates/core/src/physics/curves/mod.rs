@@ -3,7 +3,12 @@
 //!
 //! - [`paper`]: the paper's force–length and force–velocity curves (§3), the default;
 //! - [`degroote2016`]: DeGrooteFregly2016Muscle's curves as OpenSim 4.6 computes them;
-//! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them.
+//! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them;
+//! - [`overlap`], [`force_velocity`]: a muscle's active force–length and Hill force–velocity
+//!   relations of its set, in SI units (the tendon's and the parallel element's are
+//!   [`crate::physics::tendon::Tendon`] and [`crate::physics::parallel_element::ParallelElement`]).
+//!
+//! A muscle names its set by the parameter `curves` ([`CurveSet`], defined with the parameters).
 //!
 //! [`CurveSet::evaluate`] evaluates one [`Curve`] of a set, with the set's default constants, at
 //! a normalised argument: fibre length `l̃ = l_M/l_opt`, fibre velocity `ṽ` (lengthening
@@ -11,27 +16,14 @@
 //! as fractions of the maximum isometric force. tests/reference/opensim_curves.csv holds
 //! OpenSim's own values of the two OpenSim sets (scripts/opensim_curves.py).
 
-use serde::{Deserialize, Serialize};
-use std::str::FromStr;
-
 pub mod degroote2016;
+pub mod force_velocity;
+pub mod overlap;
 pub mod paper;
 pub mod thelen2003;
 
+pub use crate::physics::params::curve_set::{CurveSet, UnknownCurveSet};
 use crate::physics::params::MuscleParams;
-
-/// Which curves a Hill-type muscle uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum CurveSet {
-    /// The paper's curves (docs/model.md §3–§4).
-    #[default]
-    Paper,
-    /// De Groote et al. (2016), Ann Biomed Eng 44(10), as OpenSim's DeGrooteFregly2016Muscle.
-    DeGroote2016,
-    /// Thelen (2003), J Biomech Eng 125(1), as OpenSim's Thelen2003Muscle.
-    Thelen2003,
-}
 
 /// One normalised curve of a set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -68,27 +60,6 @@ impl Curve {
 }
 
 impl CurveSet {
-    /// Every curve set.
-    pub const ALL: [CurveSet; 3] = [
-        CurveSet::Paper,
-        CurveSet::DeGroote2016,
-        CurveSet::Thelen2003,
-    ];
-
-    /// Its name in configurations.
-    pub fn name(self) -> &'static str {
-        match self {
-            CurveSet::Paper => "paper",
-            CurveSet::DeGroote2016 => "degroote2016",
-            CurveSet::Thelen2003 => "thelen2003",
-        }
-    }
-
-    /// The names, comma-separated (for messages and help).
-    pub fn names() -> String {
-        Self::ALL.map(|s| s.name()).join(", ")
-    }
-
     /// `curve` of this set at the normalised argument `x`, with the set's default constants
     /// (the paper's: `MuscleParams::default()`'s width, shape and eccentric asymptote). `None`
     /// for the paper's passive and tendon curves, which are not normalised (docs/model.md §4).
@@ -137,30 +108,10 @@ fn evaluate_thelen2003(curve: Curve, x: f64) -> f64 {
     }
 }
 
-impl std::fmt::Display for CurveSet {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// An unknown curve set name (quoted as a short excerpt).
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown curve set {0:?}: expected one of {names}", names = CurveSet::names())]
-pub struct UnknownCurveSet(pub String);
-
-impl FromStr for CurveSet {
-    type Err = UnknownCurveSet;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| UnknownCurveSet(s.chars().take(64).collect()))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use serde::{Deserialize, Serialize};
 
     #[derive(Debug, Deserialize, Serialize, PartialEq)]
     struct Muscle {

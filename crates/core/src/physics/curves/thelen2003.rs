@@ -129,6 +129,77 @@ pub fn tendon_force_length_derivative(norm_tendon_length: f64, fmax_tendon_strai
     }
 }
 
+/// The toe's scale `FToe/(exp(kToe) - 1)`.
+fn toe_scale() -> f64 {
+    TOE_FORCE / (TOE_SHAPE.exp() - 1.0)
+}
+
+/// The normalised tendon length at which the tendon carries `f` (the inverse of
+/// [`tendon_force_length`]): `1 + (ε_toe/kToe) ln(1 + f/(FToe/(exp(kToe) - 1)))` up to FToe,
+/// `1 + ε_toe + (f - FToe)/k_lin` beyond; 1 (slack) for f <= 0.
+pub fn tendon_force_length_inverse(norm_tendon_force: f64, fmax_tendon_strain: f64) -> f64 {
+    let f = norm_tendon_force;
+    let e_toe = tendon_toe_strain(fmax_tendon_strain);
+    if f <= 0.0 {
+        1.0
+    } else if f <= TOE_FORCE {
+        1.0 + e_toe / TOE_SHAPE * (f / toe_scale()).ln_1p()
+    } else {
+        1.0 + e_toe + (f - TOE_FORCE) / tendon_linear_stiffness(fmax_tendon_strain)
+    }
+}
+
+/// `∫_1^{l̃_T} f_T(x) dx`, the tendon curve's integral from slack length (the tendon's strain
+/// energy is this times l_s Fmax): 0 for a slack tendon;
+/// `(FToe/(exp(kToe) - 1)) ((ε_toe/kToe)(exp(kToe d/ε_toe) - 1) - d)`, `d = min(ε, ε_toe)`, plus
+/// `FToe y + k_lin y²/2`, `y = ε - ε_toe`, beyond the toe.
+pub fn tendon_force_length_integral(norm_tendon_length: f64, fmax_tendon_strain: f64) -> f64 {
+    let x = norm_tendon_length - 1.0;
+    if x <= 0.0 {
+        return 0.0;
+    }
+    let e_toe = tendon_toe_strain(fmax_tendon_strain);
+    let d = x.min(e_toe);
+    let toe = toe_scale() * (e_toe / TOE_SHAPE * (TOE_SHAPE * d / e_toe).exp_m1() - d);
+    if x <= e_toe {
+        toe
+    } else {
+        let y = x - e_toe;
+        toe + TOE_FORCE * y + 0.5 * tendon_linear_stiffness(fmax_tendon_strain) * y * y
+    }
+}
+
+/// The normalised fibre length at which the passive curve is `f` (the inverse of
+/// [`passive_force_length`]): `1 + (ε₀/k_PE) ln(1 + f (exp(k_PE) - 1))`; 1 for f <= 0.
+pub fn passive_force_length_inverse(
+    norm_passive_force: f64,
+    fmax_muscle_strain: f64,
+    kshape_passive: f64,
+) -> f64 {
+    if norm_passive_force <= 0.0 {
+        1.0
+    } else {
+        let rise = norm_passive_force * kshape_passive.exp_m1();
+        1.0 + fmax_muscle_strain / kshape_passive * rise.ln_1p()
+    }
+}
+
+/// `∫_1^{l̃} f_PE(x) dx`, the passive curve's integral from optimal length, where it starts (the
+/// fibre's strain energy is this times l_opt Fmax):
+/// `((ε₀/k_PE)(exp(k_PE (l̃ - 1)/ε₀) - 1) - (l̃ - 1))/(exp(k_PE) - 1)` for l̃ > 1, else 0.
+pub fn passive_force_length_integral(
+    norm_fiber_length: f64,
+    fmax_muscle_strain: f64,
+    kshape_passive: f64,
+) -> f64 {
+    let x = norm_fiber_length - 1.0;
+    if x <= 0.0 {
+        return 0.0;
+    }
+    let rise = (kshape_passive * x / fmax_muscle_strain).exp_m1();
+    (fmax_muscle_strain / kshape_passive * rise - x) / kshape_passive.exp_m1()
+}
+
 /// The force–velocity relation's properties: `Af`, `Flen` and `fv_linear_extrap_threshold`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ForceVelocityShape {
@@ -300,6 +371,31 @@ mod tests {
             "{d_below} {d_above}"
         );
         assert!((tendon_toe_strain(ET) / ET - 0.609).abs() < 1e-3);
+    }
+
+    #[test]
+    fn integrals_differentiate_to_the_curves_and_inverses_undo_them() {
+        for i in 0..=40 {
+            let lt = 0.99 + 0.07 * i as f64 / 40.0;
+            let f = tendon_force_length(lt, ET);
+            let fd = central_difference(|x| tendon_force_length_integral(x, ET), lt);
+            assert!((fd - f).abs() < 1e-8 * f.max(1.0), "∫f_T' at {lt}");
+            if f > 0.0 {
+                let back = tendon_force_length_inverse(f, ET);
+                assert!((back - lt).abs() < 1e-13, "f_T⁻¹ at {lt}");
+            }
+            // Off optimal length, where the passive curve's slope jumps.
+            let l = 0.9 + 0.8 * (i as f64 + 0.37) / 40.0;
+            let f = passive_force_length(l, EM, KP);
+            let fd = central_difference(|x| passive_force_length_integral(x, EM, KP), l);
+            assert!((fd - f).abs() < 1e-8 * f.max(1.0), "∫f_PE' at {l}");
+            if f > 0.0 {
+                let back = passive_force_length_inverse(f, EM, KP);
+                assert!((back - l).abs() < 1e-13, "f_PE⁻¹ at {l}");
+            }
+        }
+        assert_eq!(tendon_force_length_inverse(0.0, ET), 1.0);
+        assert_eq!(passive_force_length_inverse(-1.0, EM, KP), 1.0);
     }
 
     #[test]

@@ -6,8 +6,9 @@
 use crate::physics::contractile::calibration::CrossBridgeScale;
 use crate::physics::contractile::crossbridge::Rates;
 use crate::physics::contractile::distribution_moment::{self as dm, SteadyStateError};
-use crate::physics::contractile::hill_equation::{force_velocity, hill_force};
+use crate::physics::contractile::hill_equation::hill_force;
 use crate::physics::contractile::huxley_exact;
+use crate::physics::curves::force_velocity::HillForceVelocity;
 use crate::physics::energetics::bridge_flux::{gaussian_fluxes, EnergyFluxes};
 use crate::physics::energetics::bridge_power::{
     activation_heat_w, atp_mol_per_j, bridge_powers, BridgeEnergyScale,
@@ -167,12 +168,8 @@ pub(crate) fn probe_point(
     }
 }
 
-/// The Hill model's steady force at v_s: `Fmax g(v_s)` (docs/model.md §3), N.
+/// The Hill model's steady force at v_s: `Fmax g(v_s)` (docs/model.md §3), with the muscle's
+/// curve set's g at a = 1 (§4b), N.
 pub(crate) fn hill_steady_force(p: &MuscleParams, v_s: f64) -> f64 {
-    hill_force(
-        p.f_max,
-        1.0,
-        1.0,
-        force_velocity(v_s, p.v_max, p.eccentric_asymptote),
-    )
+    hill_force(p.f_max, 1.0, 1.0, HillForceVelocity::new(p).at(-v_s, 1.0))
 }

@@ -1,10 +1,12 @@
 //! The Hill-type contractile element (docs/model.md §3, paper eqs. 1–3):
-//! `F_CE = Fmax a f(l_m) g(v_s)`, no state of its own. Its short-range stiffness is that of the
+//! `F_CE = Fmax a f(l_m) g(v_s)`, no state of its own; f and g from the muscle's curve set
+//! (§4b). Its short-range stiffness is that of the
 //! attached bridges implied by the Distribution-Moment calibration, `k_CE = a f(l_m) k_iso`
 //! (§8).
 
 use crate::physics::contractile::calibration;
-use crate::physics::contractile::hill_equation::{force_velocity, hill_force};
+use crate::physics::contractile::hill_equation::hill_force;
+use crate::physics::curves::force_velocity::HillForceVelocity;
 use crate::physics::models::contractile_model::{
     CeInputs, ContractileModel, ModelBuildError, ModelSpec,
 };
@@ -34,8 +36,8 @@ pub static SPEC: ModelSpec = ModelSpec {
 #[derive(Debug, Clone)]
 pub struct Hill {
     f_max: f64,
-    v_max: f64,
-    eccentric_asymptote: f64,
+    /// The force–velocity relation of its curve set.
+    force_velocity: HillForceVelocity,
     /// Short-range stiffness at full activation and optimal length, N/m.
     k_iso: f64,
 }
@@ -44,8 +46,7 @@ fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError>
     let dm = calibration::calibrate_distribution_moment(p)?;
     Ok(Box::new(Hill {
         f_max: p.f_max,
-        v_max: p.v_max,
-        eccentric_asymptote: p.eccentric_asymptote,
+        force_velocity: HillForceVelocity::new(p),
         k_iso: calibration::hill_isometric_stiffness(&dm),
     }))
 }
@@ -59,7 +60,7 @@ impl ContractileModel for Hill {
     }
     fn state_scales(&self, _out: &mut [f64]) {}
     fn force(&self, ce: &CeInputs, _x: &[f64]) -> f64 {
-        let g = force_velocity(-ce.fibre_velocity, self.v_max, self.eccentric_asymptote);
+        let g = self.force_velocity.at(ce.fibre_velocity, ce.activation);
         hill_force(self.f_max, ce.activation, ce.overlap, g)
     }
     fn rates(&self, _t: f64, _ce: &CeInputs, _x: &[f64], _dx: &mut [f64]) {}

@@ -1,0 +1,89 @@
+//! A muscle's active force–length relation of its curve set (docs/model.md §3, §4b): the
+//! overlap factor λ(l_m) that every contractile model reads, of the fibre length in m.
+
+use crate::physics::contractile::force_length::{force_length, force_length_slope};
+use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
+use crate::physics::params::{ForceLengthShape, MuscleParams};
+
+/// A muscle's active force–length relation, the filament-overlap factor λ(l_m) every contractile
+/// model reads (docs/model.md §3, §4b): the paper's eq. (3), or an OpenSim set's curve at
+/// `l_m / l_opt`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ActiveForceLength {
+    /// The paper's parabola or Gaussian ([`force_length`]).
+    Paper {
+        /// Optimal fibre length, m.
+        l_opt: f64,
+        /// Width w.
+        width: f64,
+        /// Shape.
+        shape: ForceLengthShape,
+    },
+    /// DeGroote 2016's three Gaussian-like terms (width scale 1).
+    DeGroote2016 {
+        /// Optimal fibre length, m.
+        l_opt: f64,
+    },
+    /// Thelen 2003's Gaussian (γ = 0.45).
+    Thelen2003 {
+        /// Optimal fibre length, m.
+        l_opt: f64,
+    },
+}
+
+impl ActiveForceLength {
+    /// The relation of the muscle's curve set.
+    pub fn new(p: &MuscleParams) -> Self {
+        let l_opt = p.l_opt;
+        match p.curves {
+            CurveSet::Paper => ActiveForceLength::Paper {
+                l_opt,
+                width: p.fl_width,
+                shape: p.fl_shape,
+            },
+            CurveSet::DeGroote2016 => ActiveForceLength::DeGroote2016 { l_opt },
+            CurveSet::Thelen2003 => ActiveForceLength::Thelen2003 { l_opt },
+        }
+    }
+
+    /// λ(l_m), dimensionless.
+    #[inline]
+    pub fn at(&self, l_m: f64) -> f64 {
+        match *self {
+            ActiveForceLength::Paper {
+                l_opt,
+                width,
+                shape,
+            } => force_length(l_m, l_opt, width, shape),
+            ActiveForceLength::DeGroote2016 { l_opt } => {
+                degroote2016::active_force_length(l_m / l_opt, DGF_WIDTH_SCALE)
+            }
+            ActiveForceLength::Thelen2003 { l_opt } => {
+                thelen2003::active_force_length(l_m / l_opt, THELEN_KSHAPE_ACTIVE)
+            }
+        }
+    }
+
+    /// dλ/dl_m, 1/m.
+    pub fn slope(&self, l_m: f64) -> f64 {
+        match *self {
+            ActiveForceLength::Paper {
+                l_opt,
+                width,
+                shape,
+            } => force_length_slope(l_m, l_opt, width, shape),
+            ActiveForceLength::DeGroote2016 { l_opt } => {
+                degroote2016::active_force_length_derivative(l_m / l_opt, DGF_WIDTH_SCALE) / l_opt
+            }
+            ActiveForceLength::Thelen2003 { l_opt } => {
+                thelen2003::active_force_length_derivative(l_m / l_opt, THELEN_KSHAPE_ACTIVE)
+                    / l_opt
+            }
+        }
+    }
+}
+
+/// DeGroote 2016's active width scale (OpenSim's default, not configurable here).
+const DGF_WIDTH_SCALE: f64 = degroote2016::DEFAULT_ACTIVE_FORCE_WIDTH_SCALE;
+/// Thelen 2003's active shape γ (OpenSim's default, not configurable here).
+const THELEN_KSHAPE_ACTIVE: f64 = thelen2003::DEFAULT_KSHAPE_ACTIVE;
