@@ -154,7 +154,8 @@ fn substeps_help() -> String {
         }
     }
     format!(
-        "Fixed number of implicit (TR-BDF2) sub-steps per tick (default: {})",
+        "Fixed number of implicit (TR-BDF2) sub-steps per tick (default: {}; a configuration's \
+         [stepper] table sets the adaptive ones' tolerance, and is refused with --substeps)",
         defaults.join(", ")
     )
 }

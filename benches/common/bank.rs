@@ -10,6 +10,7 @@ pub fn bank(k: usize) -> ActuatorConfig {
     let mut cfg = ActuatorConfig {
         joints: vec![],
         muscles: vec![],
+        stepper: Default::default(),
     };
     for j in 0..k {
         let name = format!("joint{j}");

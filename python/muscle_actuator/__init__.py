@@ -80,6 +80,7 @@ def rollout(
     overrides: Sequence[Mapping[str, Any]] | None = None,
     outputs: Sequence[str] | None = None,
     threads: int | None = None,
+    tolerance: float | None = None,
 ) -> dict[str, np.ndarray]:
     """Steps B independent actuators over T ticks on ``threads`` threads (default: one per core)
     with the GIL released, and returns the chosen outputs after each tick as arrays
@@ -91,13 +92,22 @@ def rollout(
     :class:`Actuator` objects, advanced in place from their current state. ``excitation`` is
     ``(B, T, muscles)``, ``external_torque`` ``(B, T, joints)`` or None (held as it is). Each
     actuator is stepped alone by one thread: the results equal stepping each by itself, bit for
-    bit, in any thread count.
+    bit, in any thread count. ``tolerance`` is the adaptive sub-steps' relative tolerance (the
+    override ``"stepper.tolerance"`` for every instance; default: the configuration's, else the
+    model's).
     """
     if excitation is None:
         raise InputError("excitation is required: an array (instances, ticks, muscles)")
     if isinstance(config, (list, tuple)) and all(isinstance(a, Actuator) for a in config) and config:
-        if overrides is not None or energy_model is not None or substeps is not None:
-            raise ConfigError("overrides, energy_model and substeps apply to new actuators only")
+        if (
+            overrides is not None
+            or energy_model is not None
+            or substeps is not None
+            or tolerance is not None
+        ):
+            raise ConfigError(
+                "overrides, energy_model, substeps and tolerance apply to new actuators only"
+            )
         return _core._rollout_actuators(
             list(config), excitation, external_torque, outputs=outputs, threads=threads
         )
@@ -112,6 +122,7 @@ def rollout(
         overrides=list(overrides) if overrides is not None else None,
         outputs=list(outputs) if outputs is not None else None,
         threads=threads,
+        tolerance=tolerance,
     )
 
 
@@ -124,12 +135,14 @@ def simulate(
     substeps: int | None = None,
     energy_model: str | None = None,
     out: str | os.PathLike[str] | None = None,
+    tolerance: float | None = None,
 ) -> Run:
     """``muscle_actuator simulate``: a built-in scenario (``pulse``, ``energy-10hz``,
     ``energy-100hz``) or a scenario file, run offline; recorded to ``out`` (MCAP) if given. The
-    numbers are those of ``simulate --csv``, bit for bit."""
+    numbers are those of ``simulate --csv``, bit for bit. ``tolerance`` sets the configuration's
+    ``stepper.tolerance`` (the adaptive sub-steps' relative tolerance)."""
     return Run._from_dict(
-        _core._simulate(scenario, model, config, rate_hz, substeps, energy_model, out)
+        _core._simulate(scenario, model, config, rate_hz, substeps, energy_model, out, tolerance)
     )
 
 

@@ -78,6 +78,7 @@ class Actuator:
         energy_model: str | None = None,
         substeps: int | None = None,
         overrides: Mapping[str, Any] | None = None,
+        tolerance: float | None = None,
     ) -> Actuator: ...
     @property
     def muscles(self) -> list[str]: ...
@@ -133,6 +134,7 @@ def _rollout_new(
     overrides: list[Mapping[str, Any]] | None = None,
     outputs: list[str] | None = None,
     threads: int | None = None,
+    tolerance: float | None = None,
 ) -> dict[str, np.ndarray]: ...
 def _rollout_actuators(
     actuators: list[Actuator],
@@ -150,6 +152,7 @@ def _simulate(
     substeps: int | None = None,
     energy_model: str | None = None,
     out: str | os.PathLike[str] | None = None,
+    tolerance: float | None = None,
 ) -> dict[str, Any]: ...
 def _read_recording(path: str | os.PathLike[str]) -> dict[str, Any]: ...
 def _compare(

@@ -2,7 +2,7 @@
 //! follow them (zero-order hold, as in the node); one call may advance many ticks, with the GIL
 //! released, and record a trajectory of any outputs.
 
-use crate::config::build;
+use crate::config::{build, BuildArgs};
 use crate::error_kinds::py_err;
 use crate::errors::{config_error, input_error, step_error, unknown_name, ErrorKind, CHUNK_TICKS};
 use crate::inputs::{checked, float_array, per_name, Kind, Values};
@@ -140,7 +140,8 @@ fn ticks_of(ticks: i64) -> PyResult<u64> {
 #[pymethods]
 impl PyActuator {
     #[new]
-    #[pyo3(signature = (config=None, model="huxley", rate_hz=1000.0, *, energy_model=None, substeps=None, overrides=None))]
+    #[pyo3(signature = (config=None, model="huxley", rate_hz=1000.0, *, energy_model=None, substeps=None, overrides=None, tolerance=None))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         config: Option<&Bound<'_, PyAny>>,
@@ -149,16 +150,16 @@ impl PyActuator {
         energy_model: Option<&str>,
         substeps: Option<i64>,
         overrides: Option<&Bound<'_, PyAny>>,
+        tolerance: Option<f64>,
     ) -> PyResult<Self> {
-        Ok(Self::wrap(build(
-            py,
-            config,
+        let args = BuildArgs {
             model,
             rate_hz,
             energy_model,
             substeps,
-            overrides,
-        )?))
+            tolerance,
+        };
+        Ok(Self::wrap(build(py, config, &args, overrides)?))
     }
 
     /// Muscle names, in configuration order.

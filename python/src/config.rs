@@ -9,8 +9,6 @@ use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::{ModelKind, UnknownModel};
 use muscle_actuator_core::physics::params::energetics::UnknownEnergyModel;
 use muscle_actuator_core::physics::params::EnergyModel;
-use muscle_actuator_core::physics::stepping::Stepping;
-use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::sim::Actuator;
 use muscle_actuator_recording::runs::limits;
 use pyo3::exceptions::PyUserWarning;
@@ -120,39 +118,64 @@ pub fn check_rate(rate_hz: f64) -> PyResult<()> {
     limits::check_rate_hz("rate_hz", rate_hz).map_err(py_err)
 }
 
-/// Fixed sub-steps per tick, or the model's default stepping.
 /// A count from Python (an int may be negative), refused below 0 with its name.
 pub fn count(name: &str, v: i64) -> PyResult<usize> {
     usize::try_from(v).map_err(|_| config_error(format!("{name} = {v} must be >= 1")))
 }
 
-pub fn stepping(model: ModelKind, substeps: Option<i64>) -> PyResult<Stepping> {
-    match substeps.map(|n| count("substeps", n)).transpose()? {
-        Some(n) => {
-            limits::check_substeps("substeps", n).map_err(py_err)?;
-            Ok(Stepping::Fixed(n))
-        }
-        None => Ok(default_stepping(model)),
+/// The overrides with the `tolerance=` keyword as one more, `stepper.tolerance` (set last, so
+/// it wins over an override of the same key).
+pub fn with_tolerance(
+    mut overrides: Vec<(String, toml::Value)>,
+    tolerance: Option<f64>,
+) -> Vec<(String, toml::Value)> {
+    if let Some(t) = tolerance {
+        overrides.push(("stepper.tolerance".into(), toml::Value::Float(t)));
     }
+    overrides
+}
+
+/// Fixed sub-steps per tick from Python, checked as `--substeps` is.
+pub fn substeps_of(substeps: Option<i64>) -> PyResult<Option<usize>> {
+    let substeps = substeps.map(|n| count("substeps", n)).transpose()?;
+    if let Some(n) = substeps {
+        limits::check_substeps("substeps", n).map_err(py_err)?;
+    }
+    Ok(substeps)
+}
+
+/// What `Actuator(...)` and `rollout(...)` take besides the configuration: the model, the
+/// rate, the energy model, fixed sub-steps and the tolerance.
+pub struct BuildArgs<'a> {
+    /// The model's name.
+    pub model: &'a str,
+    /// The tick rate, Hz.
+    pub rate_hz: f64,
+    /// Every muscle's energy model, by name.
+    pub energy_model: Option<&'a str>,
+    /// Fixed sub-steps per tick.
+    pub substeps: Option<i64>,
+    /// The adaptive sub-steps' tolerance (`stepper.tolerance`).
+    pub tolerance: Option<f64>,
 }
 
 /// Builds an actuator from the arguments `Actuator(...)` and `rollout(...)` take.
 pub fn build(
     py: Python<'_>,
     config: Option<&Bound<'_, PyAny>>,
-    model: &str,
-    rate_hz: f64,
-    energy_model: Option<&str>,
-    substeps: Option<i64>,
+    args: &BuildArgs<'_>,
     overrides: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Actuator> {
-    let model = parse_model(model)?;
-    check_rate(rate_hz)?;
-    let stepping = stepping(model, substeps)?;
+    let model = parse_model(args.model)?;
+    check_rate(args.rate_hz)?;
+    let substeps = substeps_of(args.substeps)?;
     let cfg = configured(
         &resolve_config(py, config)?,
-        &overrides_of(overrides)?,
-        energy_model,
+        &with_tolerance(overrides_of(overrides)?, args.tolerance),
+        args.energy_model,
     )?;
-    Actuator::with_stepping(&cfg, model, rate_hz, stepping).map_err(py_err)
+    // Fixed sub-steps, or the `[stepper]` table's stepping (by default the model's); a
+    // `[stepper]` value with fixed sub-steps is refused.
+    let stepping = cfg.stepping(model, substeps).map_err(py_err)?;
+    Actuator::with_stepping(&cfg, model, args.rate_hz, stepping).map_err(py_err)
 }

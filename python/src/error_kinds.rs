@@ -11,7 +11,7 @@
 //! - a failed tick: `StepError`, with its `tick` and `reason`.
 
 use crate::errors::{with_step_attributes, ErrorKind};
-use muscle_actuator_core::config::ConfigError;
+use muscle_actuator_core::config::{ConfigError, StepperError};
 use muscle_actuator_core::files::OverwritesInput;
 use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
 use muscle_actuator_core::physics::models::UnknownModel;
@@ -58,6 +58,12 @@ impl ToPyErr for ConfigError {
             _ if self.is_unknown_name() => ErrorKind::UnknownName.err(self.to_string()),
             _ => ErrorKind::Config.err(self.to_string()),
         }
+    }
+}
+
+impl ToPyErr for StepperError {
+    fn to_py(&self, _py: Python<'_>) -> PyErr {
+        ErrorKind::Config.err(self.to_string())
     }
 }
 
@@ -161,6 +167,7 @@ impl ToPyErr for RunError {
                 failed_tick(py, e, msg())
             }
             RunError::Limit(e) => e.to_py(py),
+            RunError::Stepper(e) => e.to_py(py),
             RunError::OutputIsInput(e) => e.to_py(py),
             RunError::Output { source, .. } => io_error(source.kind(), msg()),
             RunError::Csv(e) => io_error(e.io_kind(), msg()),

@@ -3,7 +3,7 @@
 //! by one thread, so the results are those of stepping it by itself, whatever the thread count.
 
 use crate::actuator::PyActuator;
-use crate::config::build;
+use crate::config::{build, BuildArgs};
 use crate::errors::{config_error, input_error, step_error, ErrorKind};
 use crate::inputs::{checked, float_array};
 use crate::outputs;
@@ -141,7 +141,7 @@ fn with_instance(py: Python<'_>, err: PyErr, k: usize) -> PyErr {
 
 /// `rollout` of new actuators: B built from one configuration, each with its own overrides.
 #[pyfunction]
-#[pyo3(signature = (config, model, excitation, external_torque=None, *, rate_hz=1000.0, energy_model=None, substeps=None, overrides=None, outputs=None, threads=None))]
+#[pyo3(signature = (config, model, excitation, external_torque=None, *, rate_hz=1000.0, energy_model=None, substeps=None, overrides=None, outputs=None, threads=None, tolerance=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _rollout_new<'py>(
     py: Python<'py>,
@@ -155,6 +155,7 @@ pub fn _rollout_new<'py>(
     overrides: Option<&Bound<'py, PyAny>>,
     outputs: Option<Vec<String>>,
     threads: Option<i64>,
+    tolerance: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let b = batch_size(excitation)?;
     let per_instance: Vec<Option<Bound<'py, PyAny>>> = match overrides.filter(|o| !o.is_none()) {
@@ -172,18 +173,16 @@ pub fn _rollout_new<'py>(
             list.iter().map(Some).collect()
         }
     };
+    let args = BuildArgs {
+        model,
+        rate_hz,
+        energy_model,
+        substeps,
+        tolerance,
+    };
     let mut built = Vec::with_capacity(b);
     for (k, o) in per_instance.iter().enumerate() {
-        let a = build(
-            py,
-            config,
-            model,
-            rate_hz,
-            energy_model,
-            substeps,
-            o.as_ref(),
-        )
-        .map_err(|e| with_instance(py, e, k))?;
+        let a = build(py, config, &args, o.as_ref()).map_err(|e| with_instance(py, e, k))?;
         built.push(a);
     }
     if built

@@ -3,7 +3,7 @@
 //! `export` (`runs::load_run`, `runs::export::run_of`), and `compare` returns the `compare`
 //! command's figures as its `--json` prints them. `muscle_actuator/run.py` wraps the dicts.
 
-use crate::config::{configured, parse_model, resolve_config};
+use crate::config::{configured, parse_model, resolve_config, with_tolerance};
 use crate::error_kinds::{py_err, ToPyErr};
 use crate::errors::{input_error, ErrorKind};
 use crate::outputs::{self, Outputs};
@@ -59,7 +59,7 @@ fn run_dict<'py>(py: Python<'py>, run: Run) -> PyResult<Bound<'py, PyDict>> {
 
 /// `muscle_actuator simulate`: the scenario run offline (and recorded to `out`, if given).
 #[pyfunction]
-#[pyo3(signature = (scenario, model="huxley", config=None, rate_hz=1000.0, substeps=None, energy_model=None, out=None))]
+#[pyo3(signature = (scenario, model="huxley", config=None, rate_hz=1000.0, substeps=None, energy_model=None, out=None, tolerance=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _simulate<'py>(
     py: Python<'py>,
@@ -70,6 +70,7 @@ pub fn _simulate<'py>(
     substeps: Option<i64>,
     energy_model: Option<&str>,
     out: Option<&Bound<'py, PyAny>>,
+    tolerance: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scenario = path_of(py, scenario, "scenario")?;
     let substeps = substeps
@@ -80,7 +81,11 @@ pub fn _simulate<'py>(
         Some(c) if !c.is_instance_of::<PyDict>() => Some(path_of(py, c, "config")?),
         _ => None,
     };
-    let cfg = configured(&resolve_config(py, config)?, &[], energy_model)?;
+    let cfg = configured(
+        &resolve_config(py, config)?,
+        &with_tolerance(Vec::new(), tolerance),
+        energy_model,
+    )?;
     check_scenario(&scenario, &cfg)?;
     let out = out
         .map(|o| path_of(py, o, "out"))

@@ -20,19 +20,25 @@
 //! `radius` (and optional common `path_length`), and two muscles without spans, the first
 //! pulling towards positive angles; or one, which replaces the default muscle of its name.
 //!
+//! An optional `[stepper]` table sets the accuracy of the adaptive sub-steps for every model
+//! ([`stepper`]).
+//!
 //! Built-in configurations by name: `elbow` (the default) and `arm` (after OpenSim's arm26).
 //!
 //! - [`schema`]: the structs, the default and the topology a configuration describes.
 //! - [`pair`]: the antagonistic-pair form.
 //! - [`parse`]: built-in names, files and TOML text; [`parse_error`]: why TOML does not fit.
 //! - [`validate`]: the rules and the warnings.
-//! - [`overrides`]: single values set by dotted keys (`muscle.flexor.k_t`).
+//! - [`overrides`]: single values set by dotted keys (`muscle.flexor.k_t`, `stepper.tolerance`).
+//! - [`stepper`]: the `[stepper]` table, the adaptive sub-steps' accuracy, and the stepping of a
+//!   run.
 
 pub mod overrides;
 pub mod pair;
 pub mod parse;
 pub mod parse_error;
 pub mod schema;
+pub mod stepper;
 pub mod validate;
 
 use crate::physics::params::ParamError;
@@ -43,6 +49,7 @@ pub use parse_error::ParseError;
 pub use schema::{
     ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_PATH_PRESTRETCH, DEFAULT_RADIUS,
 };
+pub use stepper::{StepperConfig, StepperError};
 
 /// Why a configuration could not be used.
 #[derive(Debug, thiserror::Error)]

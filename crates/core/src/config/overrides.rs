@@ -4,7 +4,8 @@
 //! - `muscle.NAME.KEY` (a muscle parameter, `path_length`), `muscle.NAME.energetics.KEY`,
 //!   `muscle.NAME.span.JOINT.KEY` (`moment_arm`, `changes_sign`);
 //! - `muscle.*.…`: the same key on every muscle;
-//! - `joint.NAME.KEY` (a joint parameter), `joint.*.KEY`.
+//! - `joint.NAME.KEY` (a joint parameter), `joint.*.KEY`;
+//! - `stepper.KEY` (`tolerance`, `max_substeps`: the `[stepper]` table).
 //!
 //! The configuration is written out as its TOML table, the values set there, and the table read
 //! back as a file is: every override meets the rules and messages of the configuration file.
@@ -64,8 +65,8 @@ impl OverridesError {
 /// Why one override (a dotted key and its value) cannot be set in the configuration's table.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum OverrideKeyError {
-    /// The key does not start with `muscle.NAME.` or `joint.NAME.`.
-    #[error("expected muscle.NAME.KEY or joint.NAME.KEY (NAME may be *)")]
+    /// The key does not start with `muscle.NAME.` or `joint.NAME.`, nor is `stepper.KEY`.
+    #[error("expected muscle.NAME.KEY, joint.NAME.KEY (NAME may be *) or stepper.KEY")]
     BadKey,
     /// No muscle or joint of that name.
     #[error("no {kind} named {:?}", excerpt(.name))]
@@ -133,6 +134,16 @@ pub fn with_overrides(
 /// Sets `key` = `value` in the configuration's table.
 fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), OverrideKeyError> {
     let parts: Vec<&str> = key.split('.').collect();
+    if let ["stepper", key] = parts.as_slice() {
+        // The `[stepper]` table (made if absent); its keys are checked as it is read back.
+        let stepper = table
+            .entry("stepper")
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        if let Some(t) = stepper.as_table_mut() {
+            t.insert((*key).to_string(), value);
+        }
+        return Ok(());
+    }
     let (kind, name, rest) = match parts.as_slice() {
         ["muscle", name, rest @ ..] if !rest.is_empty() => ("muscle", *name, rest),
         ["joint", name, rest @ ..] if !rest.is_empty() => ("joint", *name, rest),
@@ -282,6 +293,59 @@ mod tests {
             toml::Value::Float(0.1)
         )
         .contains("no span over joint"));
+    }
+
+    /// `stepper.tolerance` and `stepper.max_substeps` set the `[stepper]` table; bad values and
+    /// unknown keys are refused on one line naming them.
+    #[test]
+    fn sets_the_stepper_table() {
+        let c = over("stepper.tolerance", toml::Value::Float(1e-6)).unwrap();
+        assert_eq!(c.stepper.tolerance, Some(1e-6));
+        assert_eq!(c.stepper.max_substeps, None);
+        assert_eq!(c.muscles, ActuatorConfig::default().muscles);
+        let c = with_overrides(
+            &c,
+            &[("stepper.max_substeps".into(), toml::Value::Integer(200))],
+        )
+        .unwrap();
+        assert_eq!(
+            (c.stepper.tolerance, c.stepper.max_substeps),
+            (Some(1e-6), Some(200))
+        );
+        for (key, v, needle) in [
+            (
+                "stepper.tolerance",
+                toml::Value::Float(0.0),
+                "stepper.tolerance = 0",
+            ),
+            (
+                "stepper.tolerance",
+                toml::Value::Float(1.0),
+                "stepper.tolerance = 1",
+            ),
+            (
+                "stepper.tolerance",
+                toml::Value::String("x".into()),
+                "stepper",
+            ),
+            (
+                "stepper.max_substeps",
+                toml::Value::Integer(0),
+                "stepper.max_substeps",
+            ),
+            ("stepper.tol", toml::Value::Float(1e-6), "tol"),
+            (
+                "stepper.tolerance.x",
+                toml::Value::Float(1e-6),
+                "stepper.KEY",
+            ),
+        ] {
+            let e = over(key, v).unwrap_err().to_string();
+            assert!(
+                e.starts_with("overrides: ") && e.contains(needle) && !e.contains('\n'),
+                "{key}: {e}"
+            );
+        }
     }
 
     /// An unknown muscle, joint or span is told apart from other refusals.

@@ -3,6 +3,7 @@
 
 use super::pair::{pair_config, single_joint, PairJoint};
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig};
+use super::stepper::StepperConfig;
 use super::{ConfigError, ParseError};
 use crate::files::{read_regular_file, MAX_FILE_BYTES};
 use crate::physics::params::{JointParams, MuscleParams};
@@ -80,9 +81,20 @@ impl ActuatorConfig {
         };
         let mut raw: toml::Table =
             toml::from_str(text).map_err(|e| parse_err(ParseError::Toml(toml_error(&e, text))))?;
-        if let Some(k) = raw.keys().find(|k| *k != "joint" && *k != "muscle") {
+        if let Some(k) = raw
+            .keys()
+            .find(|k| !["joint", "muscle", "stepper"].contains(&k.as_str()))
+        {
             return Err(parse_err(ParseError::UnknownKey(k.clone())));
         }
+        let stepper = match raw.remove("stepper") {
+            None => StepperConfig::default(),
+            Some(v) => StepperConfig::deserialize(v).map_err(|e| {
+                parse_err(ParseError::Stepper {
+                    reason: e.to_string().trim().to_string(),
+                })
+            })?,
+        };
         let muscles = muscles_from(raw.remove("muscle")).map_err(parse_err)?;
         let joints = match raw.remove("joint") {
             Some(toml::Value::Array(a)) => a
@@ -108,12 +120,21 @@ impl ActuatorConfig {
                     Some(_) => return Err(parse_err(ParseError::JointNotATable)),
                 };
                 if muscles.is_empty() || muscles.iter().all(|m| m.spans.is_empty()) {
-                    return pair_config(pair, muscles);
+                    let mut cfg = pair_config(pair, muscles)?;
+                    if !stepper.is_empty() {
+                        cfg.stepper = stepper;
+                        cfg.validate()?;
+                    }
+                    return Ok(cfg);
                 }
                 single_joint(pair).map_err(parse_err)?
             }
         };
-        let cfg = ActuatorConfig { joints, muscles };
+        let cfg = ActuatorConfig {
+            joints,
+            muscles,
+            stepper,
+        };
         cfg.validate()?;
         Ok(cfg)
     }

@@ -12,12 +12,19 @@ pub enum ParseError {
         /// The parser's message, with its line and column.
         String,
     ),
-    /// A top-level key other than `joint` and `muscle`.
-    #[error("unknown key {:?}: expected `joint` and `muscle`", excerpt(.0))]
+    /// A top-level key other than `joint`, `muscle` and `stepper`.
+    #[error("unknown key {:?}: expected `joint`, `muscle` and `stepper`", excerpt(.0))]
     UnknownKey(
         /// The key.
         String,
     ),
+    /// The `[stepper]` table does not read (not a table, an unknown key, a value of the wrong
+    /// type).
+    #[error("stepper: {reason}")]
+    Stepper {
+        /// The parser's reason.
+        reason: String,
+    },
     /// An entry of the `[[joint]]` array is not a joint.
     #[error("joint[{index}]: {reason}")]
     Joint {

@@ -2,8 +2,11 @@
 //! the embedded default (the `elbow`, docs/model.md §8) and the topology a configuration
 //! describes.
 
+use super::stepper::{StepperConfig, StepperError};
+use crate::physics::models::ModelKind;
 use crate::physics::moment_arm::MomentArm;
 use crate::physics::params::{EnergyModel, JointParams, MuscleParams};
+use crate::physics::stepping::Stepping;
 use crate::physics::topology::{Anchor, MuscleSpec, Span, Topology};
 use serde::{Deserialize, Serialize};
 
@@ -51,6 +54,10 @@ pub struct ActuatorConfig {
     /// The muscles.
     #[serde(rename = "muscle")]
     pub muscles: Vec<MuscleConfig>,
+    /// The `[stepper]` table: the adaptive sub-steps' accuracy (empty: each model's own; then
+    /// not written out).
+    #[serde(default, skip_serializing_if = "StepperConfig::is_empty")]
+    pub stepper: StepperConfig,
 }
 
 impl Default for ActuatorConfig {
@@ -73,6 +80,7 @@ impl Default for ActuatorConfig {
                 muscle("flexor", DEFAULT_RADIUS),
                 muscle("extensor", -DEFAULT_RADIUS),
             ],
+            stepper: StepperConfig::default(),
         }
     }
 }
@@ -103,6 +111,17 @@ impl ActuatorConfig {
             muscle.params.energetics.energy_model = m;
         }
         self
+    }
+
+    /// The stepping of a run of `model` on this configuration: `substeps` fixed sub-steps if
+    /// given, else the model's own with the `[stepper]` table's values
+    /// ([`StepperConfig::stepping`]; a table set with fixed sub-steps is refused).
+    pub fn stepping(
+        &self,
+        model: ModelKind,
+        substeps: Option<usize>,
+    ) -> Result<Stepping, StepperError> {
+        self.stepper.stepping(model, substeps)
     }
 
     /// The topology this configuration describes (validate first: unknown joints are skipped).

@@ -1,6 +1,7 @@
 //! The configuration's rules: every joint named uniquely and spanned, every muscle named
 //! uniquely with valid parameters and path, every span on a joint of the configuration with a
-//! usable moment arm (one sign over the joint's range unless `changes_sign`).
+//! usable moment arm (one sign over the joint's range unless `changes_sign`); the `[stepper]`
+//! table's values within their bounds.
 
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig};
 use super::{rule, ConfigError};
@@ -37,6 +38,7 @@ impl ActuatorConfig {
         for (i, m) in self.muscles.iter().enumerate() {
             self.validate_muscle(i, m, &joint_names, &mut errors);
         }
+        self.stepper.validate(&mut errors);
         if errors.is_empty() {
             Ok(())
         } else {

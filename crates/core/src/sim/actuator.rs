@@ -12,7 +12,7 @@
 use crate::config::ActuatorConfig;
 use crate::physics::models::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
-use crate::sim::simulation::{default_stepping, SetupError, Simulation, StepError, Stepping};
+use crate::sim::simulation::{SetupError, Simulation, StepError, Stepping};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 
 /// A simulated limb: the joints and muscles of a configuration.
@@ -28,16 +28,18 @@ pub struct Actuator {
 
 impl Actuator {
     /// Builds the actuator in its initial state (joints at their initial angles, at rest, a = 0).
-    /// `rate_hz` is the tick rate (> 0, finite).
+    /// `rate_hz` is the tick rate (> 0, finite). It steps as the configuration's `[stepper]`
+    /// table says ([`ActuatorConfig::stepping`]), by default as the model does.
     pub fn new(
         config: &ActuatorConfig,
         model: ModelKind,
         rate_hz: f64,
     ) -> Result<Self, SetupError> {
-        Self::with_stepping(config, model, rate_hz, default_stepping(model))
+        Self::with_stepping(config, model, rate_hz, config.stepping(model, None)?)
     }
 
-    /// As `new`, with a chosen sub-stepping.
+    /// As `new`, with a chosen sub-stepping (the configuration's `[stepper]` table is not
+    /// consulted).
     pub fn with_stepping(
         config: &ActuatorConfig,
         model: ModelKind,

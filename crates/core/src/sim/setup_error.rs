@@ -2,7 +2,7 @@
 //! sub-stepping, its inputs' sizes, its threads ([`crate::sim::Simulation::new`],
 //! [`crate::sim::Actuator::new`], `set_threads`).
 
-use crate::config::ConfigError;
+use crate::config::{ConfigError, StepperError};
 use crate::physics::models::ModelKind;
 use crate::physics::plant::PlantError;
 use crate::physics::stepping::SteppingError;
@@ -25,6 +25,9 @@ pub enum SetupError {
     /// A sub-stepping that breaks its rules.
     #[error(transparent)]
     Stepping(#[from] SteppingError),
+    /// The configuration's `[stepper]` table with a stepping that has no tolerance.
+    #[error(transparent)]
+    Stepper(#[from] StepperError),
     /// Adaptive sub-steps for a model with state outside the ODE.
     #[error("the {0} model needs a fixed number of sub-steps")]
     NeedsFixedSubsteps(

@@ -8,6 +8,7 @@ use super::load::LoadError;
 use super::metadata::{BuildError, MetadataError};
 use crate::recording::schema::SchemaError;
 use crate::recording::{CdrError, RecordingError};
+use muscle_actuator_core::config::StepperError;
 use muscle_actuator_core::csv::CsvWriteError;
 use muscle_actuator_core::files::OverwritesInput;
 use muscle_actuator_core::physics::models::ModelKind;
@@ -152,6 +153,10 @@ pub enum RunError {
     /// The simulation of the recorded run could not be built.
     #[error(transparent)]
     Build(#[from] BuildError),
+    /// The configuration's `[stepper]` table with fixed sub-steps (`--substeps`, or a model
+    /// that steps only so).
+    #[error(transparent)]
+    Stepper(#[from] StepperError),
     /// A rate or sub-steps out of their limits.
     #[error(transparent)]
     Limit(#[from] LimitError),

@@ -8,7 +8,7 @@ use super::writer::RunWriter;
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
 use crate::msgs::state_messages;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::simulation::{default_stepping, Simulation, Stepping};
+use muscle_actuator_core::sim::simulation::{Simulation, Stepping};
 use muscle_actuator_core::sim::snapshot::StateSnapshot;
 use muscle_actuator_core::text::excerpt;
 use muscle_actuator_core::time::{now_ns, TimeBase};
@@ -120,8 +120,9 @@ fn replay_meta(input: &Path, meta: &RunMeta, model: ModelKind, stepping: Steppin
 }
 
 /// Feeds the recorded inputs of `input` at their ticks through `model` (default: the recorded
-/// one) and records the result to `out`. With the recorded model every recorded state comes back
-/// bit for bit (the summary says how many were compared and matched).
+/// one) and records the result to `out`. With the recorded model (and its recorded stepping)
+/// every recorded state comes back bit for bit (the summary says how many were compared and
+/// matched); another model steps as the recorded configuration's `[stepper]` table says.
 pub fn replay(
     input: &Path,
     model: Option<ModelKind>,
@@ -142,7 +143,7 @@ pub fn replay(
     let stepping = if model == meta.model {
         meta.stepping
     } else {
-        default_stepping(model)
+        meta.config.stepping(model, None)?
     };
     let mut sim = meta.build(model, stepping)?;
     let mut w = RunWriter::start(out, &replay_meta(input, meta, model, stepping))?;

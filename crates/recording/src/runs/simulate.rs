@@ -7,13 +7,15 @@ use super::writer::RunWriter;
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
 use muscle_actuator_core::sim::scenario::{Run, Scenario, SetupKind};
-use muscle_actuator_core::sim::simulation::{default_stepping, Stepping};
+use muscle_actuator_core::sim::simulation::Stepping;
 use muscle_actuator_core::time::{now_ns, TimeBase};
 use std::path::Path;
 
 /// `simulate`'s run: the scenario (a built-in name or a file) with `model` at `rate_hz`, fixed
-/// `substeps` per tick or the model's default stepping, recorded to `out` if given. The command
-/// line and the Python package both run this, so their numbers are the same.
+/// `substeps` per tick or the stepping of the configuration's `[stepper]` table (by default the
+/// model's; [`ActuatorConfig::stepping`]: a `[stepper]` value with fixed sub-steps is refused),
+/// recorded to `out` if given. The command line and the Python package both run this, so their
+/// numbers are the same.
 pub fn run_scenario(
     scenario: &str,
     cfg: &ActuatorConfig,
@@ -27,9 +29,7 @@ pub fn run_scenario(
         limits::check_substeps("--substeps", n)?;
     }
     let sc = Scenario::resolve(scenario, &cfg.muscles[0].params)?;
-    let stepping = substeps
-        .map(Stepping::Fixed)
-        .unwrap_or(default_stepping(model));
+    let stepping = cfg.stepping(model, substeps)?;
     match out {
         Some(path) => simulate_to_mcap(&sc, cfg, model, rate_hz, stepping, path),
         None => Ok(sc.run(cfg, model, rate_hz, stepping)?),
