@@ -54,7 +54,10 @@ fn failed_tick(py: Python<'_>, e: &StepError, msg: String) -> PyErr {
 impl ToPyErr for ConfigError {
     fn to_py(&self, _py: Python<'_>) -> PyErr {
         match self {
-            ConfigError::Io { kind, .. } => io_error(*kind, self.to_string()),
+            // Bytes that are not UTF-8 are the file's content, not its access.
+            ConfigError::Io { kind, .. } if *kind != std::io::ErrorKind::InvalidData => {
+                io_error(*kind, self.to_string())
+            }
             _ if self.is_unknown_name() => ErrorKind::UnknownName.err(self.to_string()),
             _ => ErrorKind::Config.err(self.to_string()),
         }

@@ -142,6 +142,11 @@ def test_a_bad_scenario_file_is_a_configuration_error(cli, tmp_path):
     sc.write_text("duration = -1.0\n")
     e = raised(ma.simulate, sc)
     assert type(e) is ma.ConfigError and str(e) == cli_error(cli, "simulate", str(sc))
+    # a configuration file that is not UTF-8 text: its content is wrong, not its access
+    cfg = tmp_path / "latin1.toml"
+    cfg.write_bytes(b"[[joint]]\nname = \"\xe9\"\n")
+    e = raised(ma.Actuator, cfg)
+    assert type(e) is ma.ConfigError and str(e) == cli_error(cli, "simulate", "pulse", "--config", str(cfg))
 
 
 def test_errors_pickle_with_their_class_and_attributes():
