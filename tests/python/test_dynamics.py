@@ -116,16 +116,19 @@ def test_co_contraction_raises_joint_stiffness(fresh):
 
 def test_reset_returns_to_the_initial_state(peer, node, watch):
     w = watch
+    # The clock starts before the request: the node may publish its first ticks after the
+    # reset before the answer reaches us (a loaded machine), and those states count.
+    t_reset = time.monotonic()
     r = peer.reset(node)
     assert r.success, r.message
-    initial = w.next_state(lambda s: s.tick <= 20, what="a state just after reset")
+    initial = w.state.wait(lambda s: s.tick <= 20, since=t_reset, what="a state just after reset")
     w.activation(flexor=0.9, extensor=0.2)
     w.load(1.0)
     moved = settled(w, 0.4)
     assert abs(moved.position[0] - initial.position[0]) > 0.05
+    t_reset = time.monotonic()
     r = peer.reset(node)
     assert r.success and "reset" in r.message
-    t_reset = time.monotonic()
     after = w.state.wait(lambda s: s.tick <= 20, since=t_reset, what="a state after reset")
     assert after.tick < moved.tick
     assert abs(after.position[0] - initial.position[0]) < 1e-6

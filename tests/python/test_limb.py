@@ -108,12 +108,14 @@ def run_from_reset(peer, node, w, ticks, **excitation):
     """Resets the node, optionally commands `excitation`, and collects the states (by tick) until
     `ticks` ticks after the command took effect (after the reset if none). Returns (the state
     in force when the command was first seen or None, {tick: state})."""
+    # The clock starts before the request: the node may publish its first ticks after the
+    # reset before the answer reaches us (a loaded machine), and those states count.
+    t = time.monotonic()
     r = peer.reset(node)
     assert r.success, r.message
-    t = time.monotonic()
     marker = w.state.wait(lambda s: s.tick <= 20, since=t, what="a state just after reset")
     # States come in order from one writer: everything received from the marker on is after
-    # the reset (a state of before the reset can still arrive just after `t`).
+    # the reset (states of before the reset, received after `t`, have larger ticks).
     t_marker = next(tt for (tt, m) in w.state.timed(t) if m is marker)
     on = w.activation(**excitation) if excitation else None
     end = (on.tick if on else 0) + ticks
