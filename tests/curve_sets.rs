@@ -7,7 +7,7 @@
 use muscle_actuator::config::{ActuatorConfig, ConfigError};
 use muscle_actuator::physics::curves::{degroote2016 as dgf, thelen2003, CurveSet};
 use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::physics::mtu::Mtu;
+use muscle_actuator::physics::mtu::{Mtu, TendonEnd};
 use muscle_actuator::physics::observables::EnergeticsOutputs;
 use muscle_actuator::physics::parallel_element::passive_strain;
 use muscle_actuator::physics::params::MuscleParams;
@@ -234,7 +234,11 @@ fn the_hill_element_uses_the_sets_force_length_and_force_velocity() {
                 _ => thelen2003::force_velocity(v / p.v_max, a, &Default::default()),
             };
             assert_eq!(mtu.overlap(l_m), f_l(l));
-            let out = mtu.outputs(a, a, &[l_m, v], p.l_ts, &EnergeticsOutputs::default());
+            let end = TendonEnd::Path {
+                length: l_m + p.l_ts,
+                velocity: 0.0,
+            };
+            let out = mtu.outputs(a, a, &[l_m, v], end, &EnergeticsOutputs::default());
             let want = p.f_max * a * f_l(l) * f_v;
             assert!(
                 close(out.ce_force, want, p.f_max, 1e-14),

@@ -174,10 +174,9 @@ fn published_rates_and_energies_are_those_of_a_fresh_evaluation() {
                 let sim = a.simulation();
                 for (i, mtu) in sim.plant().mtus.iter().enumerate() {
                     let terms = mtu.probe.excitation_terms(u[i]);
-                    let start = mtu.metabolic(&terms, a0[i], sim.plant().muscle_state(&y0, i));
-                    let y = sim.state();
-                    let end =
-                        mtu.metabolic(&terms, sim.activations()[i], sim.plant().muscle_state(y, i));
+                    let (plant, inputs) = (sim.plant(), sim.inputs());
+                    let start = plant.metabolic(&y0, i, a0[i], inputs, &terms);
+                    let end = plant.metabolic(sim.state(), i, sim.activations()[i], inputs, &terms);
                     let m = &a.muscles()[i];
                     let r = &end.rates;
                     let published = [

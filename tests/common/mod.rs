@@ -49,8 +49,8 @@ pub fn worst_deviation_from_reference(
         runner.step().unwrap();
         let rec: Record<'_> = runner.record();
         for i in 0..n_mus {
-            let f_ref = plant.tendon_force(&y[..dim], i, &inputs);
-            let l_ref = y[plant.offset(i)];
+            let state = plant.fibre_state(&y[..dim], i, y[dim + i], &inputs);
+            let (f_ref, l_ref) = (state.tendon_force, state.ce.fibre_length);
             worst_f = worst_f.max((rec.muscles[i].force - f_ref).abs());
             worst_l = worst_l.max((rec.muscles[i].fiber_length - l_ref).abs());
         }

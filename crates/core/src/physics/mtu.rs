@@ -1,6 +1,14 @@
-//! One muscle–tendon unit (docs/model.md §5, paper eq. 8): the fibre carries the muscle mass; the
-//! contractile element, parallel spring and damper act between the origin and the mass, the
-//! tendon between the mass and the load. Written once for every contractile model.
+//! One muscle–tendon unit (docs/model.md §5, paper eq. 8): the contractile element, parallel
+//! spring and damper act between the origin and the fibre's end, the tendon between that end and
+//! the load. Written once for every contractile model, in three formulations (§5b):
+//!
+//! | formulation                  | its state            | fibre velocity v               | tendon force            |
+//! |------------------------------|----------------------|--------------------------------|-------------------------|
+//! | massed fibre, elastic tendon | `[l_m, v, x...]`     | a state (eq. 8, mass M)        | `F_T(L - l_m)`          |
+//! | equilibrium, elastic tendon  | `[l_m, x...]`        | balances `F_CE + F_P + B v = F_T` | `F_T(L - l_m)`       |
+//! | equilibrium, rigid tendon    | `[x...]`             | the path's, `dL/dt`            | `F_CE + F_P + B v`      |
+//!
+//! (L: path length; x: the contractile model's own state.)
 
 use crate::physics::curves::overlap::ActiveForceLength;
 use crate::physics::energetics::bridge_power::atp_mol_per_j;
@@ -12,9 +20,69 @@ use crate::physics::models::{CeInputs, ContractileModel};
 use crate::physics::models::{ModelBuildError, ModelKind};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::parallel_element::{damper_force, ParallelElement};
+use crate::physics::params::formulation::{FibreKind, TendonKind};
 use crate::physics::params::MuscleParams;
 use crate::physics::stiffness::{fibre_stiffness, series_stiffness};
 use crate::physics::tendon::Tendon;
+
+/// An MTU's mechanical formulation (docs/model.md §5b), from its fibre and tendon kinds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mechanics {
+    /// A fibre with mass on an elastic tendon (the paper's eq. 8): state `[l_m, v]`.
+    Massed,
+    /// A massless fibre on an elastic tendon: state `[l_m]`.
+    Equilibrium,
+    /// A massless fibre on a rigid tendon: no state of its own.
+    Rigid,
+}
+
+impl Mechanics {
+    /// The formulation of these parameters (a rigid tendon with a massed fibre is refused by the
+    /// parameters' validation and taken as rigid here).
+    pub fn of(p: &MuscleParams) -> Self {
+        match (p.tendon, p.fibre) {
+            (TendonKind::Rigid, _) => Mechanics::Rigid,
+            (TendonKind::Elastic, FibreKind::Massed) => Mechanics::Massed,
+            (TendonKind::Elastic, FibreKind::Equilibrium) => Mechanics::Equilibrium,
+        }
+    }
+
+    /// Number of its state variables before the contractile model's.
+    #[inline]
+    pub fn dim(self) -> usize {
+        match self {
+            Mechanics::Massed => 2,
+            Mechanics::Equilibrium => 1,
+            Mechanics::Rigid => 0,
+        }
+    }
+}
+
+/// What holds the tendon's far end at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TendonEnd {
+    /// A path over joints: its length L (m) and lengthening velocity dL/dt (m/s; read only by a
+    /// rigid tendon, 0 otherwise).
+    Path {
+        /// L, m.
+        length: f64,
+        /// dL/dt, m/s.
+        velocity: f64,
+    },
+    /// An external pull, N (docs/model.md §5: a force-driven tendon transmits no push).
+    Force(f64),
+}
+
+/// The fibre and tendon at one instant, as every reader of an MTU's state sees them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FibreState {
+    /// What the contractile element sees (activation, l_m, v, overlap).
+    pub ce: CeInputs,
+    /// Tendon length l_T, m.
+    pub tendon_length: f64,
+    /// Tendon force F_SE, N.
+    pub tendon_force: f64,
+}
 
 /// The constants of one muscle–tendon unit, derived once from its parameters, and its
 /// contractile element; its tendon, parallel element and overlap factor are those of its curve
@@ -33,17 +101,30 @@ pub struct Mtu {
     pub(crate) ce: Box<dyn ContractileModel>,
     /// Its phenomenological energy model (docs/model.md §11.4).
     pub probe: MuscleProbe,
+    /// Its formulation.
+    pub mechanics: Mechanics,
 }
 
 impl Mtu {
     /// Derives the constants and calibrates the contractile model.
     pub fn new(params: &MuscleParams, model: ModelKind) -> Result<Self, ModelBuildError> {
+        let ce = model.build(params)?;
+        let mechanics = Mechanics::of(params);
+        if mechanics == Mechanics::Equilibrium
+            && !ce.force_depends_on_velocity()
+            && params.b_m <= 0.0
+        {
+            return Err(ModelBuildError::EquilibriumWithoutDamper {
+                model: model.name(),
+            });
+        }
         Ok(Self {
+            mechanics,
             params: params.clone(),
             tendon: Tendon::new(params),
             parallel: ParallelElement::new(params),
             active_force_length: ActiveForceLength::new(params),
-            ce: model.build(params)?,
+            ce,
             probe: MuscleProbe {
                 model: params.energetics.energy_model.phenomenological(),
                 muscle: params
@@ -54,9 +135,10 @@ impl Mtu {
         })
     }
 
-    /// Number of state variables: l_m, v, then the contractile model's.
+    /// Number of state variables: the formulation's (l_m, v; l_m; none), then the contractile
+    /// model's.
     pub(crate) fn state_dim(&self) -> usize {
-        2 + self.ce.state_dim()
+        self.mechanics.dim() + self.ce.state_dim()
     }
 
     /// Filament-overlap factor λ(l_m) = f(l_m).
@@ -92,55 +174,152 @@ impl Mtu {
         (tendon_force - ce_force - self.parallel.force(l_m) - damper_force(p.b_m, v)) / p.mass
     }
 
-    /// `d/dt` of this muscle's state `s = [l_m, v, x...]` under tendon force `f_se`, written to
-    /// `ds`; `t` is the time within the tick.
-    pub fn derivatives(&self, t: f64, activation: f64, s: &[f64], f_se: f64, ds: &mut [f64]) {
-        let (l_m, v) = (s[0], s[1]);
-        let ce = self.ce_inputs(activation, l_m, v);
-        let f_ce = self.ce.force(&ce, &s[2..]);
-        ds[0] = v;
-        ds[1] = self.fibre_acceleration(f_se, f_ce, l_m, v);
-        self.ce.rates(t, &ce, &s[2..], &mut ds[2..]);
+    /// The fibre length at muscle state `s` and tendon end `end`, m.
+    #[inline]
+    pub fn fibre_length(&self, s: &[f64], end: TendonEnd) -> f64 {
+        match (self.mechanics, end) {
+            (Mechanics::Rigid, TendonEnd::Path { length, .. }) => length - self.params.l_ts,
+            // A rigid tendon on a force-driven anchor is refused by the plant.
+            (Mechanics::Rigid, TendonEnd::Force(_)) => self.params.l_opt,
+            _ => s[0],
+        }
+    }
+
+    /// The tendon's length and force with the fibre at `l_m` (an elastic tendon).
+    #[inline]
+    fn elastic_tendon(&self, l_m: f64, end: TendonEnd) -> (f64, f64) {
+        match end {
+            TendonEnd::Path { length, .. } => {
+                let l_t = length - l_m;
+                (l_t, self.tendon.force(l_t))
+            }
+            TendonEnd::Force(f) => (self.tendon.length_at_force(f), f.max(0.0)),
+        }
+    }
+
+    /// The fibre and tendon at muscle state `s`, activation a and tendon end `end`
+    /// (docs/model.md §5b).
+    pub fn fibre_state(&self, activation: f64, s: &[f64], end: TendonEnd) -> FibreState {
+        match self.mechanics {
+            Mechanics::Massed => {
+                let (tendon_length, tendon_force) = self.elastic_tendon(s[0], end);
+                FibreState {
+                    ce: self.ce_inputs(activation, s[0], s[1]),
+                    tendon_length,
+                    tendon_force,
+                }
+            }
+            Mechanics::Equilibrium => {
+                let l_m = s[0];
+                let (tendon_length, tendon_force) = self.elastic_tendon(l_m, end);
+                let mut ce = self.ce_inputs(activation, l_m, 0.0);
+                let carried = tendon_force - self.parallel.force(l_m);
+                ce.fibre_velocity =
+                    self.ce
+                        .balance_velocity(&ce, &s[1..], self.params.b_m, carried);
+                FibreState {
+                    ce,
+                    tendon_length,
+                    tendon_force,
+                }
+            }
+            Mechanics::Rigid => {
+                let velocity = match end {
+                    TendonEnd::Path { velocity, .. } => velocity,
+                    TendonEnd::Force(_) => 0.0,
+                };
+                let l_m = self.fibre_length(s, end);
+                let ce = self.ce_inputs(activation, l_m, velocity);
+                let tendon_force = self.ce.force(&ce, s)
+                    + self.parallel.force(l_m)
+                    + damper_force(self.params.b_m, velocity);
+                FibreState {
+                    ce,
+                    tendon_length: self.params.l_ts,
+                    tendon_force,
+                }
+            }
+        }
+    }
+
+    /// `d/dt` of this muscle's state `s` (its formulation's, then the contractile model's) with
+    /// its tendon's far end at `end`, written to `ds`; `t` is the time within the tick. Returns
+    /// the tendon force, N.
+    pub fn derivatives(
+        &self,
+        t: f64,
+        activation: f64,
+        s: &[f64],
+        end: TendonEnd,
+        ds: &mut [f64],
+    ) -> f64 {
+        let f = self.fibre_state(activation, s, end);
+        let m = self.mechanics.dim();
+        match self.mechanics {
+            Mechanics::Massed => {
+                let (l_m, v) = (s[0], s[1]);
+                let f_ce = self.ce.force(&f.ce, &s[2..]);
+                ds[0] = v;
+                ds[1] = self.fibre_acceleration(f.tendon_force, f_ce, l_m, v);
+            }
+            Mechanics::Equilibrium => ds[0] = f.ce.fibre_velocity,
+            Mechanics::Rigid => {}
+        }
+        self.ce.rates(t, &f.ce, &s[m..], &mut ds[m..]);
+        f.tendon_force
     }
 
     /// Typical magnitudes of this muscle's state variables.
     pub fn scales(&self, out: &mut [f64]) {
-        out[0] = self.params.l_opt;
-        out[1] = self.params.v_max;
-        self.ce.state_scales(&mut out[2..]);
+        let m = self.mechanics.dim();
+        out[..m].copy_from_slice(&[self.params.l_opt, self.params.v_max][..m]);
+        self.ce.state_scales(&mut out[m..]);
     }
 
-    /// Everything observable about this MTU at muscle state `s = [l_m, v, x...]`, tendon length
-    /// l_t, excitation u and activation a, with the energetics `e` the stepping computed; the
-    /// force is the tendon's, F_SE(l_t).
+    /// Everything observable about this MTU at muscle state `s` with its tendon's far end at
+    /// `end`, excitation u and activation a, with the energetics `e` the stepping computed; the
+    /// force is the tendon's.
     pub fn outputs(
         &self,
         excitation: f64,
         activation: f64,
         s: &[f64],
-        l_t: f64,
+        end: TendonEnd,
         e: &EnergeticsOutputs,
     ) -> MuscleSnapshot {
-        let (l_m, v, x) = (s[0], s[1], &s[2..]);
-        let ce = self.ce_inputs(activation, l_m, v);
+        let f = self.fibre_state(activation, s, end);
+        let (ce, l_t) = (f.ce, f.tendon_length);
+        let (l_m, v, x) = (
+            ce.fibre_length,
+            ce.fibre_velocity,
+            &s[self.mechanics.dim()..],
+        );
         let ce_stiffness = self.ce.stiffness(&ce, x);
         let k_m = fibre_stiffness(ce_stiffness, self.parallel.stiffness(l_m));
         let [q0, q1, q2] = self.ce.moments(x);
         MuscleSnapshot {
             excitation,
             activation,
-            force: self.tendon.force(l_t),
+            force: f.tendon_force,
             ce_force: self.ce.force(&ce, x),
             pe_force: self.parallel.force(l_m),
             fiber_length: l_m,
             fiber_velocity: v,
             tendon_length: l_t,
             stiffness: ce_stiffness,
-            mtu_stiffness: series_stiffness(k_m, self.tendon.stiffness(l_t)),
+            mtu_stiffness: match self.mechanics {
+                Mechanics::Rigid => k_m,
+                Mechanics::Massed | Mechanics::Equilibrium => {
+                    series_stiffness(k_m, self.tendon.stiffness(l_t))
+                }
+            },
             q0,
             q1,
             q2,
-            tendon_energy: self.tendon.energy(l_t),
+            tendon_energy: match self.mechanics {
+                Mechanics::Rigid => 0.0,
+                Mechanics::Massed | Mechanics::Equilibrium => self.tendon.energy(l_t),
+            },
             fiber_energy: self.parallel.energy(l_m),
             crossbridge_energy: self.ce.energy(x),
             metabolic_power: e.metabolic_power,
@@ -156,16 +335,16 @@ impl Mtu {
     }
 
     /// What the phenomenological energy model reads under excitation u, with the contractile
-    /// element's inputs `ce` at muscle state `s = [l_m, v, x...]` (the passive force only if it
-    /// reads it, else 0).
-    fn probe_inputs(&self, excitation: f64, ce: &CeInputs, s: &[f64]) -> ProbeInputs {
+    /// element's inputs `ce` and its own state `x` (the passive force only if it reads it, else
+    /// 0).
+    fn probe_inputs(&self, excitation: f64, ce: &CeInputs, x: &[f64]) -> ProbeInputs {
         ProbeInputs {
             excitation,
             activation: ce.activation,
             fibre_length_norm: ce.fibre_length / self.params.l_opt,
             force_length: ce.overlap,
             fibre_velocity_m_s: ce.fibre_velocity,
-            active_force_n: self.ce.force(ce, &s[2..]),
+            active_force_n: self.ce.force(ce, x),
             passive_force_n: if self.probe.model.reads_passive_force() {
                 self.parallel.force(ce.fibre_length)
             } else {
@@ -174,19 +353,21 @@ impl Mtu {
         }
     }
 
-    /// The metabolic rates at muscle state `s`, the excitation of `terms` (the probe's
-    /// [`MuscleProbe::excitation_terms`]) and activation a (docs/model.md §11.6), with the
-    /// probe's inputs they came from. Models with state outside the ODE must be asked after the
-    /// sub-step hooks have brought it in step with `s`.
+    /// The metabolic rates at muscle state `s` with its tendon's far end at `end`, the
+    /// excitation of `terms` (the probe's [`MuscleProbe::excitation_terms`]) and activation a
+    /// (docs/model.md §11.6), with the probe's inputs they came from. Models with state outside
+    /// the ODE must be asked after the sub-step hooks have brought it in step with `s`.
     pub fn metabolic(
         &self,
         terms: &ExcitationTerms,
         activation: f64,
         s: &[f64],
+        end: TendonEnd,
     ) -> MetabolicSample {
-        let ce = self.ce_inputs(activation, s[0], s[1]);
-        let x = self.probe_inputs(terms.excitation, &ce, s);
-        let mechanism = self.ce.bridge_energy(&ce, &s[2..]).map(|(fluxes, b)| {
+        let ce = self.fibre_state(activation, s, end).ce;
+        let own = &s[self.mechanics.dim()..];
+        let x = self.probe_inputs(terms.excitation, &ce, own);
+        let mechanism = self.ce.bridge_energy(&ce, own).map(|(fluxes, b)| {
             mechanism_rates(
                 b,
                 &fluxes,

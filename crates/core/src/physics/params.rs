@@ -7,8 +7,10 @@ use serde::{Deserialize, Serialize};
 
 pub mod curve_set;
 pub mod energetics;
+pub mod formulation;
 
 use curve_set::CurveSet;
+use formulation::{FibreKind, TendonKind};
 
 pub use energetics::{EnergeticsParams, EnergyModel};
 
@@ -84,6 +86,14 @@ pub struct MuscleParams {
     /// `passive_fiber_strain_at_one_norm_force`, `FmaxMuscleStrain`); `None`: the set's default.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub passive_strain: Option<f64>,
+    /// How the fibre moves: with mass (the paper's, the default) or in equilibrium with the
+    /// tendon (docs/model.md §5b); written out only when not the default.
+    #[serde(skip_serializing_if = "FibreKind::is_massed")]
+    pub fibre: FibreKind,
+    /// Whether the tendon stretches (the default) or is rigid (docs/model.md §5b); written out
+    /// only when not the default.
+    #[serde(skip_serializing_if = "TendonKind::is_elastic")]
+    pub tendon: TendonKind,
     /// Cross-bridge parameters of the Huxley models.
     pub crossbridge: CrossBridgeParams,
     /// Energetics: the phenomenological heat-rate model and the energy constants (§11).
@@ -118,6 +128,8 @@ impl Default for MuscleParams {
             curves: CurveSet::Paper,
             tendon_strain: None,
             passive_strain: None,
+            fibre: FibreKind::Massed,
+            tendon: TendonKind::Elastic,
             crossbridge: CrossBridgeParams::default(),
             energetics: EnergeticsParams::default(),
         }
@@ -299,6 +311,25 @@ impl MuscleParams {
         }
     }
 
+    /// The formulation rules (docs/model.md §5b): a rigid tendon needs an equilibrium fibre (a
+    /// fibre with mass on it would ride on the joint) and has no strain to set.
+    fn validate_formulation(&self, c: &mut Checker<'_>) {
+        if self.tendon != TendonKind::Rigid {
+            return;
+        }
+        if self.fibre == FibreKind::Massed {
+            c.fail(
+                "tendon",
+                "rigid",
+                "needs fibre = \"equilibrium\" (a rigid tendon leaves a fibre with mass no \
+                 motion of its own)",
+            );
+        }
+        if let Some(v) = self.tendon_strain {
+            c.fail("tendon_strain", v, "does not apply to a rigid tendon");
+        }
+    }
+
     /// Appends one error per broken rule; `prefix` names the muscle (e.g. `muscle.flexor.`).
     pub fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
         let mut c = Checker { prefix, errors };
@@ -339,6 +370,7 @@ impl MuscleParams {
             }
         }
         self.validate_curves(&mut c);
+        self.validate_formulation(&mut c);
         let x = &self.crossbridge;
         let mut c = Checker {
             prefix: &format!("{prefix}crossbridge."),

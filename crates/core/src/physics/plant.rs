@@ -1,8 +1,10 @@
 //! The mechanical plant: a topology of joints and muscle–tendon units (docs/model.md §5, §8b) as
 //! a first-order system over a flat state vector, for any contractile model.
 //!
-//! State layout: `[θ_j, ω_j]` for each joint j, then for each muscle i `[l_m, v]` followed by its
-//! contractile model's own state (none for Hill, Q0..Q2 for the Huxley models). Activations are
+//! State layout: `[θ_j, ω_j]` for each joint j, then for each muscle i its formulation's state
+//! (`[l_m, v]` for a fibre with mass, `[l_m]` for an equilibrium fibre, none on a rigid tendon:
+//! `physics::mtu`) followed by its contractile model's own state (none for Hill, Q0..Q2 for the
+//! Huxley models). Activations are
 //! not part of the state: within a tick they are known in closed form (physics::activation), and
 //! the caller passes them in.
 //!
@@ -16,9 +18,11 @@
 //! Jacobian is therefore block-arrowhead (a block per muscle, a joint block), which
 //! [`crate::integrator::arrowhead`] exploits.
 
+use crate::physics::energetics::metabolic::MetabolicSample;
+use crate::physics::energetics::probe::ExcitationTerms;
 use crate::physics::joint;
 use crate::physics::models::{ModelBuildError, ModelKind};
-use crate::physics::mtu::Mtu;
+use crate::physics::mtu::{FibreState, Mechanics, Mtu, TendonEnd};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::params::JointParams;
 use crate::physics::stiffness::add_muscle_joint_stiffness;
@@ -108,6 +112,12 @@ pub enum PlantError {
         /// The number of joints.
         joints: usize,
     },
+    /// A rigid tendon pulled by an external force: nothing would set its fibre's length.
+    #[error(
+        "muscle {0:?}: a rigid tendon needs a path over joints (a force-driven tendon must be \
+         elastic)"
+    )]
+    RigidForceDriven(String),
     /// A muscle's contractile model cannot be built.
     #[error(transparent)]
     Model(#[from] ModelBuildError),
@@ -145,6 +155,11 @@ impl Plant {
                     });
                 }
             }
+        }
+        if let Some(m) = topology.muscles.iter().find(|m| {
+            matches!(m.anchor, Anchor::ForceDriven) && Mechanics::of(&m.params) == Mechanics::Rigid
+        }) {
+            return Err(PlantError::RigidForceDriven(m.name.clone()));
         }
         let mtus = topology
             .muscles
@@ -187,7 +202,7 @@ impl Plant {
         self.offsets[i]
     }
 
-    /// Muscle i's state `[l_m, v, x...]`.
+    /// Muscle i's state: its formulation's, then its contractile model's.
     pub fn muscle_state<'a>(&self, y: &'a [f64], i: usize) -> &'a [f64] {
         let o = self.offsets[i];
         &y[o..o + self.mtus[i].state_dim()]
@@ -212,21 +227,53 @@ impl Plant {
         }
     }
 
-    /// Muscle i's tendon length, m.
-    pub fn tendon_length(&self, y: &[f64], i: usize, inputs: &Inputs) -> f64 {
-        let l_m = y[self.offsets[i]];
+    /// Muscle i's path lengthening velocity `dL/dt = -Σ_j r_ij(θ_j) ω_j`, m/s (0 for a
+    /// force-driven tendon).
+    pub fn path_velocity(&self, y: &[f64], i: usize) -> f64 {
+        self.spans(i).iter().fold(0.0, |v, s| {
+            v - s.moment_arm.at(y[2 * s.joint]) * y[2 * s.joint + 1]
+        })
+    }
+
+    /// What holds muscle i's tendon at state y: its path (the velocity only where a rigid
+    /// tendon reads it) or the external pull.
+    #[inline]
+    pub fn tendon_end(&self, y: &[f64], i: usize, inputs: &Inputs) -> TendonEnd {
         match self.path_length(y, i) {
-            Some(path) => path - l_m,
-            None => self.mtus[i].tendon.length_at_force(inputs.tendon_force[i]),
+            Some(length) => TendonEnd::Path {
+                length,
+                velocity: match self.mtus[i].mechanics {
+                    Mechanics::Rigid => self.path_velocity(y, i),
+                    Mechanics::Massed | Mechanics::Equilibrium => 0.0,
+                },
+            },
+            None => TendonEnd::Force(inputs.tendon_force[i]),
         }
     }
 
-    /// Muscle i's tendon force, N.
-    pub fn tendon_force(&self, y: &[f64], i: usize, inputs: &Inputs) -> f64 {
-        match self.anchors[i] {
-            Anchor::ForceDriven => inputs.tendon_force[i].max(0.0),
-            Anchor::Path { .. } => self.mtus[i].tendon.force(self.tendon_length(y, i, inputs)),
-        }
+    /// Muscle i's fibre length at state y, m.
+    pub fn fibre_length(&self, y: &[f64], i: usize, inputs: &Inputs) -> f64 {
+        let end = self.tendon_end(y, i, inputs);
+        self.mtus[i].fibre_length(self.muscle_state(y, i), end)
+    }
+
+    /// Muscle i's fibre and tendon at state y under activation a (docs/model.md §5b).
+    pub fn fibre_state(&self, y: &[f64], i: usize, activation: f64, inputs: &Inputs) -> FibreState {
+        let end = self.tendon_end(y, i, inputs);
+        self.mtus[i].fibre_state(activation, self.muscle_state(y, i), end)
+    }
+
+    /// Muscle i's metabolic rates at state y (see [`Mtu::metabolic`]).
+    pub fn metabolic(
+        &self,
+        y: &[f64],
+        i: usize,
+        activation: f64,
+        inputs: &Inputs,
+        terms: &ExcitationTerms,
+    ) -> MetabolicSample {
+        let end = self.tendon_end(y, i, inputs);
+        self.mtus[i].metabolic(terms, activation, self.muscle_state(y, i), end)
     }
 
     /// `dy/dt` at state y with activations `act`; `t` is the time within the tick (it only
@@ -240,8 +287,8 @@ impl Plant {
         for (i, mtu) in self.mtus.iter().enumerate() {
             let o = self.offsets[i];
             let n = mtu.state_dim();
-            let f_se = self.tendon_force(y, i, inputs);
-            mtu.derivatives(t, act[i], &y[o..o + n], f_se, &mut dy[o..o + n]);
+            let end = self.tendon_end(y, i, inputs);
+            let f_se = mtu.derivatives(t, act[i], &y[o..o + n], end, &mut dy[o..o + n]);
             for s in self.spans(i) {
                 dy[2 * s.joint + 1] += s.moment_arm.at(y[2 * s.joint]) * f_se;
             }
@@ -283,6 +330,9 @@ impl Plant {
         }
         self.set_driven_motion(inputs, y);
         for (i, mtu) in self.mtus.iter().enumerate() {
+            if mtu.mechanics == Mechanics::Rigid {
+                continue;
+            }
             let o = self.offsets[i];
             y[o] = match self.path_length(y, i) {
                 Some(path) => mtu.resting_fibre_length(path),
@@ -339,13 +389,9 @@ impl Plant {
         i: usize,
         e: &EnergeticsOutputs,
     ) -> MuscleSnapshot {
-        let l_t = self.tendon_length(y, i, inputs);
+        let end = self.tendon_end(y, i, inputs);
         let u = inputs.excitation[i];
-        let mut out = self.mtus[i].outputs(u, act[i], self.muscle_state(y, i), l_t, e);
-        if matches!(self.anchors[i], Anchor::ForceDriven) {
-            out.force = inputs.tendon_force[i].max(0.0);
-        }
-        out
+        self.mtus[i].outputs(u, act[i], self.muscle_state(y, i), end, e)
     }
 
     /// The joints' net muscle torques `τ_j = Σ_i r_ij(θ_j) F_SE,i` from the muscles' tendon
@@ -478,13 +524,15 @@ impl Plant {
         }
     }
 
-    /// Kinetic energy of the fibre masses and the free joints, J (a driven joint's inertia is
+    /// Kinetic energy of the fibre masses (fibres with mass only) and the free joints, J (a driven joint's inertia is
     /// the robot simulator's).
     pub fn kinetic_energy(&self, y: &[f64]) -> f64 {
         let mut e = 0.0;
         for (i, mtu) in self.mtus.iter().enumerate() {
-            let v = y[self.offsets[i] + 1];
-            e += 0.5 * mtu.params.mass * v * v;
+            if mtu.mechanics == Mechanics::Massed {
+                let v = y[self.offsets[i] + 1];
+                e += 0.5 * mtu.params.mass * v * v;
+            }
         }
         for (j, p) in self.joints.iter().enumerate().filter(|(_, p)| !p.driven) {
             e += joint::kinetic_energy(p, y[2 * j + 1]);

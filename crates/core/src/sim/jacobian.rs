@@ -10,11 +10,16 @@
 //!   muscles still see its angle but do not feed back into it.
 //! - A muscle's own block: forward differences of its equations alone, its path held (so the
 //!   tendon force follows the fibre length), a few evaluations of one muscle each.
+//! - An equilibrium fibre or a rigid tendon (docs/model.md §5b): the muscle's coupling to the
+//!   joints it spans, both ways, by forward differences too, of its equations and its tendon
+//!   force against the joints' angles and velocities (a rigid tendon's force depends on both).
+//!   The analytic rows above are those of a fibre with mass.
 //!
 //! The cost is linear in the number of muscles; the full right-hand side is never evaluated.
 
 use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadSystem};
 use crate::physics::joint;
+use crate::physics::mtu::Mechanics;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Anchor;
 
@@ -24,6 +29,8 @@ pub(crate) struct JacobianScratch {
     s: Vec<f64>,
     ds: Vec<f64>,
     scales: Vec<f64>,
+    /// A copy of the state whose joint entries are perturbed (muscles without mass).
+    y: Vec<f64>,
 }
 
 impl JacobianScratch {
@@ -33,6 +40,7 @@ impl JacobianScratch {
             s: vec![0.0; n],
             ds: vec![0.0; n],
             scales: vec![0.0; n],
+            y: Vec::new(),
         }
     }
 }
@@ -76,14 +84,12 @@ pub(crate) fn eval_jacobian(
         let leaf = &mut jac.leaves[i];
         leaf.to_core.clear();
         leaf.from_core.clear();
-        let l_m = y[o];
-        // The tendon force as a function of this muscle's own state, its path held.
+        let end = plant.tendon_end(y, i, inputs);
         let path = plant.path_length(y, i);
-        let tendon_force = |l_m: f64| match path {
-            Some(l) => mtu.tendon.force(l - l_m),
-            None => inputs.tendon_force[i].max(0.0),
-        };
-        if let (Some(l), Anchor::Path { spans, .. }) = (path, &plant.anchors[i]) {
+        if mtu.mechanics != Mechanics::Massed {
+            coupling_by_differences(plant, t, y, act, inputs, f0, i, core, scratch, leaf);
+        } else if let (Some(l), Anchor::Path { spans, .. }) = (path, &plant.anchors[i]) {
+            let l_m = y[o];
             let l_t = l - l_m;
             let (f_se, k_se) = (mtu.tendon.force(l_t), mtu.tendon.stiffness(l_t));
             for s in spans {
@@ -110,19 +116,90 @@ pub(crate) fn eval_jacobian(
         );
         s.copy_from_slice(&y[o..o + n]);
         mtu.scales(scales);
+        // A massless muscle's tendon force follows its own state: the joint rows see that.
+        let force_rows = mtu.mechanics != Mechanics::Massed;
+        let f_se = if force_rows {
+            mtu.derivatives(t, act[i], s, end, ds)
+        } else {
+            0.0
+        };
         for c in 0..n {
             let h = 1e-7 * s[c].abs().max(scales[c]);
             let keep = s[c];
             s[c] = keep + h;
             let h_exact = s[c] - keep;
-            mtu.derivatives(t, act[i], s, tendon_force(s[0]), ds);
+            let f = mtu.derivatives(t, act[i], s, end, ds);
             s[c] = keep;
             for r in 0..n {
                 leaf.block[r * n + c] = (ds[r] - f0[o + r]) / h_exact;
             }
+            if force_rows {
+                let df = (f - f_se) / h_exact;
+                for sp in plant.spans(i) {
+                    let j = sp.joint;
+                    if !plant.joints[j].driven {
+                        let r = sp.moment_arm.at(y[2 * j]);
+                        leaf.to_core
+                            .push((2 * j + 1, c, r * df / plant.joints[j].inertia));
+                    }
+                }
+            }
         }
     }
     widest as u64
+}
+
+/// Muscle i's coupling to the joints it spans, for a muscle without mass (docs/model.md §5b),
+/// by forward differences in each spanned joint's angle and velocity: its rows' dependence on
+/// them (`from_core`) and the joints' torque rows' (`core`). Its own rows' dependence on its
+/// state, and the torque rows' on it, are left to the own block.
+#[allow(clippy::too_many_arguments)]
+fn coupling_by_differences(
+    plant: &Plant,
+    t: f64,
+    y: &[f64],
+    act: &[f64],
+    inputs: &Inputs,
+    f0: &[f64],
+    i: usize,
+    core: &mut [f64],
+    scratch: &mut JacobianScratch,
+    leaf: &mut crate::integrator::arrowhead::LeafJacobian,
+) {
+    let nc = 2 * plant.joint_count();
+    let (mtu, o, n) = (&plant.mtus[i], plant.offset(i), plant.mtus[i].state_dim());
+    let JacobianScratch { s, ds, y: yp, .. } = scratch;
+    let (s, ds) = (&mut s[..n], &mut ds[..n]);
+    s.copy_from_slice(&y[o..o + n]);
+    yp.clear();
+    yp.extend_from_slice(y);
+    let spans = plant.spans(i);
+    // The muscle's torque on each joint it spans at the unperturbed state.
+    let f_se = mtu.derivatives(t, act[i], s, plant.tendon_end(y, i, inputs), ds);
+    for sp in spans {
+        for c in [2 * sp.joint, 2 * sp.joint + 1] {
+            let keep = yp[c];
+            let scale = if c % 2 == 0 { 1e-1 } else { 1.0 };
+            yp[c] = keep + 1e-7 * keep.abs().max(scale);
+            let h = yp[c] - keep;
+            let f = mtu.derivatives(t, act[i], s, plant.tendon_end(yp, i, inputs), ds);
+            for r in 0..n {
+                let d = (ds[r] - f0[o + r]) / h;
+                if d != 0.0 {
+                    leaf.from_core.push((r, c, d));
+                }
+            }
+            for sk in spans {
+                let k = sk.joint;
+                if plant.joints[k].driven {
+                    continue;
+                }
+                let torque = sk.moment_arm.at(yp[2 * k]) * f - sk.moment_arm.at(y[2 * k]) * f_se;
+                core[(2 * k + 1) * nc + c] += torque / h / plant.joints[k].inertia;
+            }
+            yp[c] = keep;
+        }
+    }
 }
 
 /// Anything that can lend the plant and the tick's inputs gets the arrowhead structure.

@@ -184,8 +184,7 @@ impl Part {
     /// stepped).
     pub fn metabolic(&self, k: usize, terms: &ExcitationTerms) -> MetabolicSample {
         let a = self.memo.borrow().a[k];
-        let s = self.plant.muscle_state(&self.y, k);
-        self.plant.mtus[k].metabolic(terms, a, s)
+        self.plant.metabolic(&self.y, k, a, &self.inputs, terms)
     }
 
     /// Local muscle k's energetics over the tick just stepped ([`MuscleEnergy::tick`]), from
@@ -264,7 +263,7 @@ impl Part {
         for k in 0..substeps {
             let t = k as f64 * h;
             for i in 0..self.plant.mtus.len() {
-                self.lm_before[i] = self.y[self.plant.offset(i)];
+                self.lm_before[i] = self.plant.fibre_length(&self.y, i, &self.inputs);
                 self.plant.mtus[i].ce.before_substep(t, h);
             }
             let ode = TickOde {
@@ -279,7 +278,8 @@ impl Part {
             for i in 0..self.plant.mtus.len() {
                 let o = self.plant.offset(i);
                 let n = self.plant.mtus[i].state_dim();
-                let l_m = self.y[o];
+                let l_m = self.plant.fibre_length(&self.y, i, &self.inputs);
+                let own = o + self.plant.mtus[i].mechanics.dim();
                 let mtu = &mut self.plant.mtus[i];
                 let motion = SubstepMotion {
                     dt: h,
@@ -287,7 +287,7 @@ impl Part {
                     overlap_mid: mtu.overlap(0.5 * (l_m + self.lm_before[i])),
                     fibre_length_change: l_m - self.lm_before[i],
                 };
-                mtu.ce.after_substep(&motion, &mut self.y[o + 2..o + n]);
+                mtu.ce.after_substep(&motion, &mut self.y[own..o + n]);
             }
             drop(memo);
             if !ok {

@@ -118,9 +118,8 @@ impl Simulation {
             p.reset();
         }
         for (i, mtu) in self.plant.mtus.iter().enumerate() {
-            let s = self.plant.muscle_state(&self.y, i);
             let terms = mtu.probe.excitation_terms(self.inputs.excitation[i]);
-            let rest = mtu.metabolic(&terms, 0.0, s);
+            let rest = self.plant.metabolic(&self.y, i, 0.0, &self.inputs, &terms);
             self.energy[i] = MuscleEnergy::at_rest(rest, terms);
         }
         self.tick = 0;

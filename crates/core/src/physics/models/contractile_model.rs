@@ -27,9 +27,9 @@ pub struct CeInputs {
     /// Activation a, [0, 1].
     pub activation: f64,
     /// Fibre length l_m, m.
-    pub(crate) fibre_length: f64,
+    pub fibre_length: f64,
     /// Fibre lengthening velocity v = dl_m/dt, m/s.
-    pub(crate) fibre_velocity: f64,
+    pub fibre_velocity: f64,
     /// Filament overlap factor λ(l_m) = f(l_m) (the force–length curve), dimensionless.
     pub overlap: f64,
 }
@@ -59,6 +59,19 @@ pub trait ContractileModel: fmt::Debug + Send + Sync {
     fn force(&self, ce: &CeInputs, x: &[f64]) -> f64;
     /// `dx/dt` of its state; `t` is the time within the tick, s.
     fn rates(&self, t: f64, ce: &CeInputs, x: &[f64], dx: &mut [f64]);
+    /// The fibre's lengthening velocity (m/s) at which this element and a parallel damper
+    /// `damping` (N s/m) together carry `force` (N): an equilibrium fibre's balance (docs/model.md
+    /// §5b); `ce.fibre_velocity` is not read. An element whose force does not depend on the
+    /// velocity (the bridge models: theirs is in their state) leaves the yielding to the damper,
+    /// `(force - F_CE)/B`, which needs B > 0 ([`ContractileModel::force_depends_on_velocity`]).
+    fn balance_velocity(&self, ce: &CeInputs, x: &[f64], damping: f64, force: f64) -> f64 {
+        (force - self.force(ce, x)) / damping
+    }
+    /// Whether F_CE depends on the fibre's velocity at the instant (Hill: through g(v)); if not,
+    /// an equilibrium fibre on an elastic tendon needs a damper.
+    fn force_depends_on_velocity(&self) -> bool {
+        false
+    }
     /// Contractile stiffness k_CE, N/m.
     fn stiffness(&self, ce: &CeInputs, x: &[f64]) -> f64;
     /// Cross-bridge elastic energy, J (0 for models without bonds).
@@ -108,6 +121,16 @@ pub enum ModelBuildError {
     /// Its calibration from its own steady states failed.
     #[error(transparent)]
     Calibration(#[from] SteadyStateError),
+    /// An equilibrium fibre on an elastic tendon whose force does not depend on velocity, with
+    /// no damper: nothing sets the fibre's velocity (docs/model.md §5b).
+    #[error(
+        "the {model} model's force does not depend on the fibre's velocity, so an equilibrium \
+         fibre on an elastic tendon needs a damper: b_m must be > 0"
+    )]
+    EquilibriumWithoutDamper {
+        /// The model's name.
+        model: &'static str,
+    },
 }
 
 /// A model as the program names it: its name, what it is, how it is built and stepped.

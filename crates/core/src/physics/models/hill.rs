@@ -63,6 +63,14 @@ impl ContractileModel for Hill {
         let g = self.force_velocity.at(ce.fibre_velocity, ce.activation);
         hill_force(self.f_max, ce.activation, ce.overlap, g)
     }
+    fn balance_velocity(&self, ce: &CeInputs, _x: &[f64], damping: f64, force: f64) -> f64 {
+        let active = self.f_max * ce.activation * ce.overlap;
+        self.force_velocity
+            .balance_velocity(active, ce.activation, damping, force)
+    }
+    fn force_depends_on_velocity(&self) -> bool {
+        true
+    }
     fn rates(&self, _t: f64, _ce: &CeInputs, _x: &[f64], _dx: &mut [f64]) {}
     fn stiffness(&self, ce: &CeInputs, _x: &[f64]) -> f64 {
         ce.activation * ce.overlap * self.k_iso
