@@ -4,7 +4,9 @@
 //! instead of one limb of k joints, the only way a program limited to one joint can run k).
 //!
 //! Limbs: a bank of k independent antagonistic elbows (2k muscles: 2, 6, 20, 50) and the
-//! built-in `arm` (2 joints, 6 muscles, 3 biarticular). Loads, at 1 kHz:
+//! built-in `arm` (2 joints, 6 muscles, 3 biarticular); the elbow and the arm again with
+//! equilibrium fibres (`-eq`) and with rigid tendons (`-rigid`, docs/model.md §5b). Loads, at
+//! 1 kHz:
 //! - steady: co-contracted and moving, the flexor command varying slowly;
 //! - step: the 20 ticks after a full flexor excitation step from rest on every joint;
 //! - realistic: every joint's two muscles get new random excitations every 100 ms, the joints'
@@ -20,6 +22,7 @@ mod bank;
 use bank::{bank, Lcg};
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::models::ModelKind;
+use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;
@@ -232,6 +235,21 @@ fn main() {
         .collect();
     if !separate {
         cases.push(("arm".into(), ActuatorConfig::resolve("arm").unwrap(), 3));
+        // The formulations of docs/model.md §5b: the elbow and the arm with massless fibres, on
+        // elastic and on rigid tendons.
+        for (base, cfg, k) in [
+            ("bank1", bank(1), 1),
+            ("arm", ActuatorConfig::resolve("arm").unwrap(), 3),
+        ] {
+            for (kind, tendon) in [("eq", TendonKind::Elastic), ("rigid", TendonKind::Rigid)] {
+                let mut c = cfg.clone();
+                for m in &mut c.muscles {
+                    m.params.fibre = FibreKind::Equilibrium;
+                    m.params.tendon = tendon;
+                }
+                cases.push((format!("{base}-{kind}"), c, k));
+            }
+        }
     }
     // LIMB_CASES=bank1,arm and LIMB_MODELS=hill restrict the table (for profiling).
     let only = |var: &str, name: &str| {

@@ -170,6 +170,12 @@ pub fn force_velocity(norm_fiber_velocity: f64) -> f64 {
     D1 * (t + (t * t + 1.0).sqrt()).ln() + D4
 }
 
+/// `df_V/dṽ = d1 d2 / sqrt((d2 ṽ + d3)² + 1)`.
+pub fn force_velocity_derivative(norm_fiber_velocity: f64) -> f64 {
+    let t = D2 * norm_fiber_velocity + D3;
+    D1 * D2 / (t * t + 1.0).sqrt()
+}
+
 /// The velocity at which the multiplier is `f`, `ṽ = (sinh((f - d4)/d1) - d3)/d2` (the inverse
 /// of [`force_velocity`]; the supplement omits the `- d3`).
 pub fn force_velocity_inverse(force_velocity_multiplier: f64) -> f64 {

@@ -1,7 +1,7 @@
 //! A Hill element's force–velocity relation of its curve set (docs/model.md §3, §4b), in m/s,
 //! and the velocity at which it balances a force (an equilibrium fibre, §5b).
 
-use crate::physics::contractile::hill_equation::force_velocity;
+use crate::physics::contractile::hill_equation::{force_velocity, force_velocity_derivative};
 use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 
@@ -64,29 +64,77 @@ impl HillForceVelocity {
         }
     }
 
+    /// `dg/dv` at lengthening velocity `v` (m/s) and activation `a`, per m/s.
+    #[inline]
+    pub fn slope(&self, v: f64, activation: f64) -> f64 {
+        match *self {
+            HillForceVelocity::Paper {
+                v_max,
+                eccentric_asymptote,
+            } => -force_velocity_derivative(-v, v_max, eccentric_asymptote),
+            HillForceVelocity::DeGroote2016 { v_max } => {
+                degroote2016::force_velocity_derivative(v / v_max) / v_max
+            }
+            HillForceVelocity::Thelen2003 { v_max } => {
+                let shape = thelen2003::ForceVelocityShape::default();
+                thelen2003::force_velocity_derivative(v / v_max, activation, &shape) / v_max
+            }
+        }
+    }
+
+    /// The lengthening velocity (m/s) at which the multiplier is `g`, within ±
+    /// [`BALANCE_VELOCITY_BOUND`] vmax: each set's inverse (the paper's branches solved for v_s;
+    /// DeGroote's sinh; Thelen's eq. 6 with its extrapolation). Beyond the paper's range (g <= 0,
+    /// or g >= N) the nearer bound.
+    pub fn inverse(&self, g: f64, activation: f64) -> f64 {
+        let v = match *self {
+            HillForceVelocity::Paper {
+                v_max,
+                eccentric_asymptote: n,
+            } => {
+                // v_s / vmax on each branch of `force_velocity`, lengthening velocity its negative.
+                let vr = if g <= 0.0 {
+                    f64::INFINITY
+                } else if g <= 1.0 {
+                    (1.0 - g) / (1.0 + 4.0 * g)
+                } else if g < n {
+                    (1.0 - (n - 1.0) / (n - g)) / (5.0 / (n - 1.0))
+                } else {
+                    f64::NEG_INFINITY
+                };
+                -vr * v_max
+            }
+            HillForceVelocity::DeGroote2016 { v_max } => {
+                degroote2016::force_velocity_inverse(g) * v_max
+            }
+            HillForceVelocity::Thelen2003 { v_max } => {
+                let shape = thelen2003::ForceVelocityShape::default();
+                thelen2003::force_velocity_inverse(g, activation, &shape) * v_max
+            }
+        };
+        let bound = BALANCE_VELOCITY_BOUND * self.v_max();
+        v.clamp(-bound, bound)
+    }
+
     /// The lengthening velocity v (m/s) at which `active g(v, a) + damping v = force` (`active`
     /// = Fmax a f(l_m), N; `damping` N s/m): the equilibrium fibre's balance (docs/model.md §5b).
     /// The left side never falls as v rises, so the root is bracketed in ±[`BALANCE_VELOCITY_BOUND`]
-    /// vmax and found by Newton's method with a finite-difference slope, a step that leaves the
-    /// bracket replaced by bisection; with no root inside, the bracket's end.
+    /// vmax and found by Newton's method on the relation's own slope ([`Self::slope`]), from the
+    /// undamped balance's velocity ([`Self::inverse`], exact when `damping` is 0), a step that
+    /// leaves the bracket replaced by bisection; with no root inside, the bracket's end.
     ///
     /// Written here rather than taken from a root-finding crate: the residual is one line, the
     /// bracket and its saturation rule are the model's, and the loop must not allocate or fail.
     pub fn balance_velocity(&self, active: f64, activation: f64, damping: f64, force: f64) -> f64 {
         let v_max = self.v_max();
         let residual = |v: f64| active * self.at(v, activation) + damping * v - force;
-        let (mut lo, mut hi) = (
-            -BALANCE_VELOCITY_BOUND * v_max,
-            BALANCE_VELOCITY_BOUND * v_max,
-        );
-        if residual(lo) >= 0.0 {
-            return lo;
-        }
-        if residual(hi) <= 0.0 {
-            return hi;
-        }
-        let h = 1e-7 * v_max;
-        let mut v = 0.0;
+        let bound = BALANCE_VELOCITY_BOUND * v_max;
+        let (mut lo, mut hi) = (-bound, bound);
+        let mut v = if active > 0.0 {
+            self.inverse(force / active, activation)
+        } else {
+            0.0
+        };
         for _ in 0..BALANCE_MAX_ITERATIONS {
             let r = residual(v);
             if r == 0.0 {
@@ -97,15 +145,24 @@ impl HillForceVelocity {
             } else {
                 hi = v;
             }
-            let slope = (residual(v + h) - r) / h;
+            let slope = active * self.slope(v, activation) + damping;
             let newton = v - r / slope;
             let next = if newton > lo && newton < hi {
                 newton
             } else {
+                // A step out of the bracket at a bound not yet evaluated: is there a root inside?
+                if newton >= hi && hi == bound && residual(bound) <= 0.0 {
+                    return bound;
+                }
+                if newton <= lo && lo == -bound && residual(-bound) >= 0.0 {
+                    return -bound;
+                }
                 0.5 * (lo + hi)
             };
-            let ulps = 4.0 * f64::EPSILON * v.abs().max(v_max);
-            if (next - v).abs() <= ulps || hi - lo <= ulps {
+            // Newton's error after a step of δ is of order δ²/vmax (the relation's curvature
+            // scale is vmax): a step below 1e-8 vmax leaves about 1e-16 vmax, rounding.
+            let converged = 1e-8 * v_max;
+            if (next - v).abs() <= converged || hi - lo <= converged {
                 return next;
             }
             v = next;
@@ -126,6 +183,91 @@ impl HillForceVelocity {
                 let shape = thelen2003::ForceVelocityShape::default();
                 thelen2003::force_velocity(v / v_max, activation, &shape)
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::curves::CurveSet;
+
+    fn relations() -> Vec<HillForceVelocity> {
+        CurveSet::ALL
+            .iter()
+            .map(|&curves| {
+                HillForceVelocity::new(&MuscleParams {
+                    curves,
+                    ..MuscleParams::default()
+                })
+            })
+            .collect()
+    }
+
+    /// The slope is the central difference of the relation, on every branch of every set.
+    #[test]
+    fn the_slope_is_the_relations_derivative() {
+        for fv in relations() {
+            let v_max = fv.v_max();
+            for i in 0..=80 {
+                // Off the branch points (0, the paper's vmax, Thelen's extrapolation edges).
+                let v = (-2.0 + 4.0 * (i as f64 + 0.31) / 80.0) * v_max;
+                for a in [0.05, 0.5, 1.0] {
+                    let h = 1e-6 * v_max;
+                    let diff = (fv.at(v + h, a) - fv.at(v - h, a)) / (2.0 * h);
+                    let got = fv.slope(v, a);
+                    assert!(
+                        (got - diff).abs() <= 1e-6 * diff.abs().max(1.0 / v_max),
+                        "{fv:?} at v = {v}, a = {a}: {got} vs {diff}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The inverse undoes the relation inside the paper's range and every other set's.
+    #[test]
+    fn the_inverse_undoes_the_relation() {
+        for fv in relations() {
+            let v_max = fv.v_max();
+            for i in 0..=40 {
+                let v = (-0.95 + 1.9 * (i as f64 + 0.31) / 40.0) * v_max;
+                for a in [0.05, 0.5, 1.0] {
+                    let back = fv.inverse(fv.at(v, a), a);
+                    assert!(
+                        (back - v).abs() <= 1e-9 * v_max,
+                        "{fv:?} at {v}, a = {a}: {back}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The balance's velocity satisfies it to rounding, with and without a damper, and saturates
+    /// at the bracket's end where nothing balances.
+    #[test]
+    fn the_balance_velocity_balances() {
+        for fv in relations() {
+            let v_max = fv.v_max();
+            let bound = BALANCE_VELOCITY_BOUND * v_max;
+            for (active, damping) in [(1000.0, 0.0), (1000.0, 257.0), (20.0, 257.0)] {
+                for target in [-50.0, 0.0, 300.0, 999.0, 1300.0] {
+                    let a = 0.7;
+                    let v = fv.balance_velocity(active, a, damping, target);
+                    let r = active * fv.at(v, a) + damping * v - target;
+                    if v.abs() < bound {
+                        assert!(r.abs() <= 1e-9 * active, "{fv:?}: residual {r} at {v}");
+                    } else {
+                        // Saturated: even the bracket's end does not reach the target.
+                        assert!(
+                            r * v.signum() <= 0.0,
+                            "{fv:?}: saturated at {v}, residual {r}"
+                        );
+                    }
+                }
+            }
+            // No active force and no damper: nothing balances a pull.
+            assert_eq!(fv.balance_velocity(0.0, 0.0, 0.0, 10.0), bound);
         }
     }
 }

@@ -310,6 +310,30 @@ pub fn force_velocity(
     }
 }
 
+/// `df_V/dṽ` of [`force_velocity`], branch by branch: the inverse slopes of the tangent lines
+/// outside, `k (1 + 1/Af)/(k - ṽ/Af)²` shortening, `c k (Flen - 1)/(k + c ṽ)²` lengthening.
+pub fn force_velocity_derivative(
+    norm_fiber_velocity: f64,
+    activation: f64,
+    shape: &ForceVelocityShape,
+) -> f64 {
+    let v = norm_fiber_velocity;
+    let k = velocity_scale(activation);
+    let upper = shape.upper_multiplier();
+    if v <= thelen_velocity(0.0, k, shape) {
+        1.0 / thelen_velocity_slope(0.0, k, shape)
+    } else if v >= thelen_velocity(upper, k, shape) {
+        1.0 / thelen_velocity_slope(upper, k, shape)
+    } else if v <= 0.0 {
+        let d = k - v / shape.af;
+        k * (1.0 + 1.0 / shape.af) / (d * d)
+    } else {
+        let c = shape.eccentric_factor();
+        let d = k + c * v;
+        c * k * (shape.flen - 1.0) / (d * d)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
