@@ -240,6 +240,20 @@ fn impossible_formulations_are_refused_with_the_reason() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("b_m must be > 0"), "{e}");
+    // Hill's force-velocity relation sets it, with the activation held at 0.01 or more (at zero
+    // activation nothing would): the balance still holds at every output.
+    let out = swing()
+        .run(
+            &cfg,
+            ModelKind::HILL,
+            RATE,
+            default_stepping(ModelKind::HILL),
+        )
+        .unwrap_or_else(|e| panic!("hill, b_m = 0: {e}"));
+    for r in out.records() {
+        let m = r.muscles[0];
+        assert!((m.force - (m.ce_force + m.pe_force)).abs() <= 1e-9 * 3913.0);
+    }
     // On a rigid tendon the path sets the velocity: no damper needed.
     let cfg = config("fibre = \"equilibrium\"\ntendon = \"rigid\"\nb_m = 0.0");
     assert!(swing()

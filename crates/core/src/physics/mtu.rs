@@ -25,6 +25,11 @@ use crate::physics::params::MuscleParams;
 use crate::physics::stiffness::{fibre_stiffness, series_stiffness};
 use crate::physics::tendon::Tendon;
 
+/// The least activation an equilibrium fibre without a damper (`b_m = 0`) works with: OpenSim's
+/// `minimum_activation` default (Thelen2003Muscle clamps its activation state to it). At zero
+/// activation nothing would set such a fibre's velocity (docs/model.md §5b).
+pub const UNDAMPED_MIN_ACTIVATION: f64 = 0.01;
+
 /// An MTU's mechanical formulation (docs/model.md §5b), from its fibre and tendon kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mechanics {
@@ -212,6 +217,12 @@ impl Mtu {
             Mechanics::Equilibrium => {
                 let l_m = s[0];
                 let (tendon_length, tendon_force) = self.elastic_tendon(l_m, end);
+                // Without a damper only the active force sets the velocity: it must not vanish.
+                let activation = if self.params.b_m > 0.0 {
+                    activation
+                } else {
+                    activation.max(UNDAMPED_MIN_ACTIVATION)
+                };
                 let mut ce = self.ce_inputs(activation, l_m, 0.0);
                 let carried = tendon_force - self.parallel.force(l_m);
                 ce.fibre_velocity =
