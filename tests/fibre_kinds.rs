@@ -171,8 +171,8 @@ fn a_rigid_tendon_is_the_limit_of_ever_stiffer_elastic_ones() {
 }
 
 /// At every output, an equilibrium fibre's tendon carries exactly its contractile, parallel and
-/// damping forces, `F_T = F_CE + F_P + B_m v`; a rigid tendon's fibre is the path less the slack
-/// length, and the force is the same sum.
+/// damping forces along it, `F_T = (F_CE + F_P + B_m v) cos α`; a rigid tendon's fibre spans the
+/// path less the slack length (its projection, with pennation), and the force is the same sum.
 #[test]
 fn the_balance_holds_at_every_output() {
     for model in MODELS {
@@ -180,6 +180,8 @@ fn the_balance_holds_at_every_output() {
             "fibre = \"equilibrium\"",
             "fibre = \"equilibrium\"\ncurves = \"thelen2003\"",
             "fibre = \"equilibrium\"\ntendon = \"rigid\"\ncurves = \"degroote2016\"",
+            "fibre = \"equilibrium\"\npennation = 0.35",
+            "fibre = \"equilibrium\"\ntendon = \"rigid\"\npennation = 0.35",
         ] {
             let cfg = config(keys);
             let p = cfg.muscles[0].params.clone();
@@ -187,13 +189,17 @@ fn the_balance_holds_at_every_output() {
             let sc = swing();
             let out = sc.run(&cfg, model, RATE, default_stepping(model)).unwrap();
             let mut worst = 0.0f64;
+            // Constant thickness: sin α = l_opt sin α_opt / l_m.
+            let height = p.l_opt * p.pennation.sin();
             for r in out.records() {
                 let m = r.muscles[0];
-                let sum = m.ce_force + m.pe_force + p.b_m * m.fiber_velocity;
+                let cos = (1.0 - (height / m.fiber_length).powi(2)).sqrt();
+                let sum = (m.ce_force + m.pe_force + p.b_m * m.fiber_velocity) * cos;
                 worst = worst.max((m.force - sum).abs() / p.f_max);
                 if rigid {
                     let path = cfg.muscles[0].path_length() - 0.03 * r.joints[0].position;
-                    assert!((m.fiber_length - (path - p.l_ts)).abs() < 1e-12);
+                    let along = path - p.l_ts;
+                    assert!((m.fiber_length - along.hypot(height)).abs() < 1e-12);
                     assert_eq!(m.tendon_length, p.l_ts);
                     assert_eq!(m.tendon_energy, 0.0);
                 }
@@ -226,6 +232,15 @@ fn impossible_formulations_are_refused_with_the_reason() {
         "does not apply to a rigid tendon",
     );
     refused("fibre = \"massles\"", "expected one of massed, equilibrium");
+    refused("pennation = 0.2", "needs fibre = \"equilibrium\"");
+    refused(
+        "fibre = \"equilibrium\"\npennation = 1.5",
+        "must be >= 0 and < 1.4706 rad",
+    );
+    refused(
+        "fibre = \"equilibrium\"\npennation = -0.1",
+        "must be >= 0 and < 1.4706 rad",
+    );
     refused("tendon = \"stiff\"", "expected one of elastic, rigid");
     // The bridge models' force does not depend on velocity: without a damper nothing sets an
     // equilibrium fibre's velocity on an elastic tendon.

@@ -27,6 +27,7 @@ pub mod mtu;
 pub mod observables;
 pub mod parallel_element;
 pub mod params;
+pub mod pennation;
 pub mod plant;
 pub mod spring;
 pub mod stepping;

@@ -22,6 +22,7 @@ use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::parallel_element::{damper_force, ParallelElement};
 use crate::physics::params::formulation::{FibreKind, TendonKind};
 use crate::physics::params::MuscleParams;
+use crate::physics::pennation::Pennation;
 use crate::physics::stiffness::{fibre_stiffness, series_stiffness};
 use crate::physics::tendon::Tendon;
 
@@ -108,6 +109,8 @@ pub struct Mtu {
     pub probe: MuscleProbe,
     /// Its formulation.
     pub mechanics: Mechanics,
+    /// Its pennation (none for a fibre with mass).
+    pub pennation: Pennation,
 }
 
 impl Mtu {
@@ -125,6 +128,7 @@ impl Mtu {
         }
         Ok(Self {
             mechanics,
+            pennation: Pennation::new(params),
             params: params.clone(),
             tendon: Tendon::new(params),
             parallel: ParallelElement::new(params),
@@ -183,19 +187,26 @@ impl Mtu {
     #[inline]
     pub fn fibre_length(&self, s: &[f64], end: TendonEnd) -> f64 {
         match (self.mechanics, end) {
-            (Mechanics::Rigid, TendonEnd::Path { length, .. }) => length - self.params.l_ts,
+            (Mechanics::Rigid, TendonEnd::Path { length, .. }) => {
+                self.pennation.fibre_length(length - self.params.l_ts)
+            }
             // A rigid tendon on a force-driven anchor is refused by the plant.
             (Mechanics::Rigid, TendonEnd::Force(_)) => self.params.l_opt,
             _ => s[0],
         }
     }
 
-    /// The tendon's length and force with the fibre at `l_m` (an elastic tendon).
+    /// The tendon's length and force with the fibre at `l_m` (an elastic tendon): the path less
+    /// the fibre's projection on it.
     #[inline]
     fn elastic_tendon(&self, l_m: f64, end: TendonEnd) -> (f64, f64) {
         match end {
             TendonEnd::Path { length, .. } => {
-                let l_t = length - l_m;
+                let l_t = if self.pennation.is_none() {
+                    length - l_m
+                } else {
+                    length - l_m * self.pennation.cos(l_m)
+                };
                 (l_t, self.tendon.force(l_t))
             }
             TendonEnd::Force(f) => (self.tendon.length_at_force(f), f.max(0.0)),
@@ -224,7 +235,7 @@ impl Mtu {
                     activation.max(UNDAMPED_MIN_ACTIVATION)
                 };
                 let mut ce = self.ce_inputs(activation, l_m, 0.0);
-                let carried = tendon_force - self.parallel.force(l_m);
+                let carried = tendon_force / self.pennation.cos(l_m) - self.parallel.force(l_m);
                 ce.fibre_velocity =
                     self.ce
                         .balance_velocity(&ce, &s[1..], self.params.b_m, carried);
@@ -240,10 +251,13 @@ impl Mtu {
                     TendonEnd::Force(_) => 0.0,
                 };
                 let l_m = self.fibre_length(s, end);
-                let ce = self.ce_inputs(activation, l_m, velocity);
-                let tendon_force = self.ce.force(&ce, s)
+                let cos = self.pennation.cos(l_m);
+                let v = velocity * cos;
+                let ce = self.ce_inputs(activation, l_m, v);
+                let tendon_force = (self.ce.force(&ce, s)
                     + self.parallel.force(l_m)
-                    + damper_force(self.params.b_m, velocity);
+                    + damper_force(self.params.b_m, v))
+                    * cos;
                 FibreState {
                     ce,
                     tendon_length: self.params.l_ts,
@@ -306,7 +320,12 @@ impl Mtu {
             &s[self.mechanics.dim()..],
         );
         let ce_stiffness = self.ce.stiffness(&ce, x);
-        let k_m = fibre_stiffness(ce_stiffness, self.parallel.stiffness(l_m));
+        let mut k_m = fibre_stiffness(ce_stiffness, self.parallel.stiffness(l_m));
+        if !self.pennation.is_none() {
+            let fibre_force =
+                self.ce.force(&ce, x) + self.parallel.force(l_m) + damper_force(self.params.b_m, v);
+            k_m = self.pennation.stiffness_along_tendon(k_m, fibre_force, l_m);
+        }
         let [q0, q1, q2] = self.ce.moments(x);
         MuscleSnapshot {
             excitation,
@@ -396,13 +415,17 @@ impl Mtu {
     }
 
     /// Fibre length at rest with the MTU held at total length `length` (a = 0, no bonds): where
-    /// the tendon force equals the parallel force, by bisection. The residual
-    /// `F_T(length - l_m) - F_PE(l_m)` never rises with l_m for every curve set: DeGroote's
+    /// the tendon force equals the parallel force along it, by bisection. The residual
+    /// `F_T(length - l_m cos α) - F_PE(l_m) cos α` never rises with l_m for every curve set (α = 0
+    /// shown; pennation only scales and shifts it): DeGroote's
     /// tendon, negative when slack, still rises with its length, and so does its passive curve
     /// below 0.2 l_opt; where both forces are flat at zero (a slack tendon and fibre, the
     /// paper's and Thelen's curves) the shortest such fibre is taken.
     pub(crate) fn resting_fibre_length(&self, length: f64) -> f64 {
-        let residual = |l_m: f64| self.tendon.force(length - l_m) - self.parallel.force(l_m);
+        let residual = |l_m: f64| {
+            let cos = self.pennation.cos(l_m);
+            self.tendon.force(length - l_m * cos) - self.parallel.force(l_m) * cos
+        };
         let (mut lo, mut hi) = (0.0, length);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);

@@ -94,6 +94,11 @@ pub struct MuscleParams {
     /// only when not the default.
     #[serde(skip_serializing_if = "TendonKind::is_elastic")]
     pub tendon: TendonKind,
+    /// Pennation angle α_opt at optimal fibre length, rad, the muscle's thickness constant
+    /// (docs/model.md §5b); 0, the default, lays the fibres along the tendon and is not written
+    /// out.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub pennation: f64,
     /// Cross-bridge parameters of the Huxley models.
     pub crossbridge: CrossBridgeParams,
     /// Energetics: the phenomenological heat-rate model and the energy constants (§11).
@@ -130,6 +135,7 @@ impl Default for MuscleParams {
             passive_strain: None,
             fibre: FibreKind::Massed,
             tendon: TendonKind::Elastic,
+            pennation: 0.0,
             crossbridge: CrossBridgeParams::default(),
             energetics: EnergeticsParams::default(),
         }
@@ -269,6 +275,14 @@ impl Checker<'_> {
     }
 }
 
+/// The largest pennation at optimal length, rad: OpenSim's `maximum_pennation_angle`,
+/// acos(0.1), the angle at which [`crate::physics::pennation`] holds shorter fibres.
+pub const MAX_PENNATION: f64 = 1.4706289056333368;
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
 /// Relative force jump at l_tc above which a configured l_tc is reported as discontinuous.
 pub(crate) const TENDON_CONTINUITY_TOLERANCE: f64 = 1e-3;
 
@@ -312,8 +326,23 @@ impl MuscleParams {
     }
 
     /// The formulation rules (docs/model.md §5b): a rigid tendon needs an equilibrium fibre (a
-    /// fibre with mass on it would ride on the joint) and has no strain to set.
+    /// fibre with mass on it would ride on the joint) and has no strain to set; pennation lies in
+    /// [0, acos 0.1) and needs an equilibrium fibre.
     fn validate_formulation(&self, c: &mut Checker<'_>) {
+        let alpha = self.pennation;
+        if !alpha.is_finite() || !(0.0..MAX_PENNATION).contains(&alpha) {
+            c.fail(
+                "pennation",
+                alpha,
+                "must be >= 0 and < 1.4706 rad (84.3°, OpenSim's largest pennation angle)",
+            );
+        } else if alpha > 0.0 && self.fibre == FibreKind::Massed {
+            c.fail(
+                "pennation",
+                alpha,
+                "needs fibre = \"equilibrium\" (the fibre with mass moves along the tendon)",
+            );
+        }
         if self.tendon != TendonKind::Rigid {
             return;
         }
