@@ -4,9 +4,9 @@
 #   benches/python-bench.sh [WHEEL] [-- ARGS...]
 #
 # Installs WHEEL (default: builds one with `.venv/bin/maturin build --release` into
-# target/wheels) with numpy, mujoco and gymnasium into the bench venv ($BENCH_VENV, default
+# target/wheels) with numpy, mujoco, gymnasium and myosuite into the bench venv ($BENCH_VENV, default
 # target/bench-venv; created when missing), builds the `limb` bench binary (release) and runs
-# benches/python_bench.py with it, passing ARGS on (--reps N, --skip overhead,throughput,mujoco,gym).
+# benches/python_bench.py with it, passing ARGS on (--reps N, --skip overhead,throughput,mujoco,gym,myosuite).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../scripts/lib.sh"
 cd "$ROOT"
@@ -31,8 +31,8 @@ fi
 
 VENV="${BENCH_VENV:-$TARGET/bench-venv}"
 [ -x "$VENV/bin/python" ] || python3 -m venv "$VENV"
-if ! "$VENV/bin/python" -c 'import numpy, mujoco, gymnasium' 2>/dev/null; then
-  "$VENV/bin/pip" install --quiet numpy mujoco gymnasium >&2
+if ! "$VENV/bin/python" -c 'import numpy, mujoco, gymnasium, myosuite' 2>/dev/null; then
+  "$VENV/bin/pip" install --quiet numpy mujoco gymnasium myosuite >&2
 fi
 "$VENV/bin/pip" install --quiet --no-deps --force-reinstall "$wheel" >&2
 echo "[python-bench] $(basename "$wheel") in $VENV" >&2

@@ -1,6 +1,6 @@
 """The Python package's speed, beside the Rust it wraps and beside MuJoCo, in one run.
 
-    python benches/python_bench.py [--limb-bin PATH] [--reps N] [--skip overhead,throughput,mujoco,gym]
+    python benches/python_bench.py [--limb-bin PATH] [--reps N] [--skip overhead,throughput,mujoco,gym,myosuite]
 
 (benches/python-bench.sh builds or takes the wheel, installs it with numpy, mujoco and gymnasium
 into a bench venv, builds the `limb` bench binary and runs this with --limb-bin.)
@@ -27,6 +27,10 @@ compared, with the load average before and after each table:
 4. ``muscle_actuator/ArmReach-v0``: the native vector environment (64 instances, random
    actions), DM and Hill, env-steps per second and the share of it inside ``rollout``; and the
    single environment's steps per second.
+5. ``ArmReach-v0`` (DM, Hill) and ``ArmReachFast-v0`` beside MyoSuite's
+   ``myoElbowPose1D6MRandom-v0`` (if MyoSuite is installed), single environments, random
+   actions, interleaved: simulated seconds per wall second, and each environment's own cost per
+   step beyond the stepping.
 """
 
 from __future__ import annotations
@@ -444,11 +448,74 @@ def gym_envs(reps: int) -> None:
     t.show(f"; {steps} vector steps or {steps} steps per repetition, median of {reps}")
 
 
+# 5. Against MyoSuite -----------------------------------------------------------------------------
+
+MYOSUITE_ENV = "myoElbowPose1D6MRandom-v0"
+
+
+def myosuite_vs(reps: int) -> None:
+    """``ArmReach-v0`` (DM, Hill) and ``ArmReachFast-v0`` beside MyoSuite's six-muscle elbow,
+    single environments made with ``gym.make``, random actions, interleaved: simulated seconds
+    per wall second, and the environment's own cost per step (its step less the bare stepping of
+    the same actuator, ``step(u, ticks=frame_skip)``, on a copy)."""
+    import gymnasium as gym
+
+    import muscle_actuator.gym as mgym
+
+    try:
+        import myosuite  # noqa: F401  (registers MyoSuite's environments)
+    except ImportError:
+        print("\n(MyoSuite is not installed: pip install myosuite; its comparison is skipped)")
+        return
+    steps = 400
+    envs = {
+        f"MyoSuite {MYOSUITE_ENV}": gym.make(MYOSUITE_ENV),
+        "`ArmReach-v0`, DM": gym.make(mgym.ENV_ID, model="huxley"),
+        "`ArmReach-v0`, Hill": gym.make(mgym.ENV_ID, model="hill"),
+        "`ArmReachFast-v0`": gym.make(mgym.FAST_ENV_ID),
+    }
+    rng = np.random.default_rng(0)
+    sim: dict[str, list[float]] = {k: [] for k in envs}
+    own: dict[str, list[float]] = {k: [] for k in envs}
+    for rep in range(reps):
+        for name, env in envs.items():
+            acts = rng.uniform(0.0, 1.0, (steps,) + env.action_space.shape)
+            env.reset(seed=rep)
+
+            def run():
+                for a in acts:
+                    _, _, term, trunc, _ = env.step(a)
+                    if term or trunc:
+                        env.reset()
+
+            wall = timed(run)
+            sim[name].append(steps * env.unwrapped.dt / wall)
+            if name.startswith("MyoSuite"):
+                continue
+            inner = env.unwrapped
+            bare = inner.actuator.copy()
+            skip = inner._task.frame_skip
+            stepping = timed(lambda: [bare.step(inner._task.action(a), ticks=skip) for a in acts])
+            own[name].append((wall - stepping) / steps)
+    myo = median(sim[f"MyoSuite {MYOSUITE_ENV}"])
+    t = Table(
+        f"Against MyoSuite {myosuite.__version__} (MuJoCo, rigid tendons), single environments, "
+        "random actions",
+        ["environment", "simulated s per wall s", "against MyoSuite", "step (sim. ms)",
+         "environment's own µs per step"],
+    )
+    for name, env in envs.items():
+        rate = median(sim[name])
+        mine = f"{median(own[name]) * 1e6:.1f}" if own[name] else "—"
+        t.row(name, f"{rate:.1f}", f"{rate / myo:.2f}×", f"{env.unwrapped.dt * 1e3:g}", mine)
+    t.show(f"; {steps} steps per repetition, interleaved, median of {reps}")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--limb-bin", help="the built benches/limb.rs binary (cargo bench --no-run)")
     p.add_argument("--reps", type=int, default=5, help="repetitions per figure (median; >= 3)")
-    p.add_argument("--skip", default="", help="comma-separated: overhead,throughput,mujoco,gym")
+    p.add_argument("--skip", default="", help="comma-separated: overhead,throughput,mujoco,gym,myosuite")
     args = p.parse_args()
     if args.reps < 3:
         raise SystemExit("--reps must be >= 3")
@@ -464,6 +531,8 @@ def main() -> None:
         mujoco_vs(args.reps)
     if "gym" not in skip:
         gym_envs(args.reps)
+    if "myosuite" not in skip:
+        myosuite_vs(args.reps)
     print(f"\nload average {load()} at the end")
 
 

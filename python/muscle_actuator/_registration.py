@@ -10,11 +10,26 @@ from __future__ import annotations
 
 import importlib.util
 
-#: The environments: id -> (entry point, vector entry point).
-ENVS: dict[str, tuple[str, str]] = {
+#: The environments: id -> (entry point, vector entry point, keyword arguments).
+ENVS: dict[str, tuple[str, str, dict[str, object]]] = {
     "muscle_actuator/ArmReach-v0": (
         "muscle_actuator.gym:ArmReachEnv",
         "muscle_actuator.gym:ArmReachVectorEnv",
+        {},
+    ),
+    # The same task (10 ms a step) with the Hill model on equilibrium fibres and rigid tendons,
+    # 2 ms ticks and tolerance 1e-3 (muscle_actuator.gym's docstring says what that costs).
+    "muscle_actuator/ArmReachFast-v0": (
+        "muscle_actuator.gym:ArmReachEnv",
+        "muscle_actuator.gym:ArmReachVectorEnv",
+        {
+            "model": "hill",
+            "fibre": "equilibrium",
+            "tendon": "rigid",
+            "rate_hz": 500.0,
+            "frame_skip": 5,
+            "tolerance": 1e-3,
+        },
     ),
 }
 
@@ -25,6 +40,11 @@ def register_envs() -> None:
         return
     import gymnasium
 
-    for env_id, (entry_point, vector_entry_point) in ENVS.items():
+    for env_id, (entry_point, vector_entry_point, kwargs) in ENVS.items():
         if env_id not in gymnasium.registry:
-            gymnasium.register(id=env_id, entry_point=entry_point, vector_entry_point=vector_entry_point)
+            gymnasium.register(
+                id=env_id,
+                entry_point=entry_point,
+                vector_entry_point=vector_entry_point,
+                kwargs=kwargs,
+            )

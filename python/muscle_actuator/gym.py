@@ -6,10 +6,18 @@ reset, with the six muscles' excitations as the action.
 - observation (24 values, float64): joint angles (2, rad), joint velocities (2, rad/s), the
   target angles (2, rad), muscle activations (6), tendon forces over f_max (6), fibre lengths
   over l_opt (6);
-- action: excitations in [0, 1] (6), held over ``frame_skip`` ticks of 1 ms;
+- action: excitations in [0, 1] (6), held over ``frame_skip`` ticks (of 1 ms: ``rate_hz``);
 - reward: ``-|θ - θ*|₂ - effort_weight · mean(u²)`` per step;
 - an episode ends by truncation after ``max_episode_steps`` steps (2 s by default); a failed tick
   ends it as terminated with ``reward = -failure_penalty`` and ``info["step_error"]``.
+
+``fibre`` and ``tendon`` set every muscle's fibre and tendon kind (docs/configuration.md "Fibre
+and tendon kinds"), ``rate_hz`` the tick rate and ``tolerance`` the stepper's (docs/python.md
+"Accuracy"). ``muscle_actuator/ArmReachFast-v0`` is the same task (10 ms a step) with the Hill
+model on equilibrium fibres and rigid tendons (the formulation MuJoCo and MyoSuite use), ticks of
+2 ms (``rate_hz=500``, ``frame_skip=5``, MyoSuite's time step) and tolerance 1e-3: the arm's
+joint angles stay within 1e-4 rad of the 1 kHz, default-tolerance run over 5 s of random actions
+(docs/benchmarks.md "Python").
 
 :class:`ArmReachVectorEnv` is the native vector environment
 (``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")``): its instances are stepped
@@ -26,6 +34,7 @@ the ``gym`` extra).
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -42,6 +51,7 @@ from . import Actuator, ConfigError, InputError, StepError, rollout
 from ._registration import ENVS, register_envs
 
 ENV_ID = "muscle_actuator/ArmReach-v0"
+FAST_ENV_ID = "muscle_actuator/ArmReachFast-v0"
 #: Target angles are drawn uniformly from these ranges, rad (inside the joints' ranges).
 TARGET_LOW = np.array([0.0, 0.3])
 TARGET_HIGH = np.array([1.2, 1.8])
@@ -60,13 +70,24 @@ class _Task:
         effort_weight: float,
         failure_penalty: float,
         config: Any,
+        fibre: str | None = None,
+        tendon: str | None = None,
+        rate_hz: float = 1000.0,
+        tolerance: float | None = None,
     ) -> None:
         if frame_skip < 1 or max_episode_steps < 1:
             raise ConfigError("frame_skip and max_episode_steps must be >= 1")
         self.model, self.config = model, config
+        self.rate_hz, self.tolerance = float(rate_hz), tolerance
         self.frame_skip, self.max_episode_steps = int(frame_skip), int(max_episode_steps)
         self.effort_weight, self.failure_penalty = float(effort_weight), float(failure_penalty)
-        probe = Actuator(config, model)
+        # Every muscle's fibre and tendon kind, if given (docs/configuration.md).
+        names = Actuator(config, model, self.rate_hz).muscles
+        self.overrides: dict[str, Any] = {}
+        for key, value in (("fibre", fibre), ("tendon", tendon)):
+            if value is not None:
+                self.overrides.update({f"muscle.{n}.{key}": value for n in names})
+        probe = self.actuator()
         cfg = probe.config
         self.f_max = np.array([m["f_max"] for m in cfg["muscle"]])
         self.l_opt = np.array([m["l_opt"] for m in cfg["muscle"]])
@@ -82,7 +103,9 @@ class _Task:
         self.action_space = spaces.Box(0.0, 1.0, shape=(self.m,), dtype=np.float64)
 
     def actuator(self) -> Actuator:
-        return Actuator(self.config, self.model)
+        return Actuator(
+            self.config, self.model, self.rate_hz, overrides=self.overrides, tolerance=self.tolerance
+        )
 
     def initial(self, act: Actuator) -> dict[str, np.ndarray]:
         return act.observe(_OUTPUTS)
@@ -100,28 +123,30 @@ class _Task:
         )
 
     def reward(self, out: dict[str, np.ndarray], target: np.ndarray, u: np.ndarray) -> float:
-        error = float(np.linalg.norm(out["joint.position"] - target))
-        return -error - self.effort_weight * float(np.mean(u * u))
+        d = out["joint.position"] - target
+        return -math.sqrt(float(d @ d)) - self.effort_weight * float(u @ u) / len(u)
 
     def action(self, action: Any, shape: tuple[int, ...] | None = None) -> np.ndarray:
         """The action as excitations of ``shape`` (default: one per muscle), clipped to [0, 1];
         refused with :class:`InputError` if of another shape, not real numbers, or not finite."""
         shape = (self.m,) if shape is None else shape
-        want = f"{list(shape)} (" + ("environments, " if len(shape) == 2 else "") + "muscles)"
-        try:
-            a = np.asarray(action)
-        except (ValueError, TypeError) as e:  # ragged nested sequences
-            raise InputError(f"action must be an array of numbers of shape {want}: {e}") from None
-        if a.dtype.kind not in "biuf":
-            raise InputError(f"action has dtype {a.dtype}: expected real numbers of shape {want}")
-        if a.shape != shape:
-            raise InputError(f"action has shape {list(a.shape)}: expected {want}")
-        u = a.astype(np.float64)
-        bad = np.argwhere(~np.isfinite(u))
-        if len(bad):
-            k = tuple(int(i) for i in bad[0])
+        if type(action) is np.ndarray and action.dtype == np.float64 and action.shape == shape:
+            u = action.copy()  # the common case, checked without building messages
+        else:
+            want = f"{list(shape)} (" + ("environments, " if len(shape) == 2 else "") + "muscles)"
+            try:
+                a = np.asarray(action)
+            except (ValueError, TypeError) as e:  # ragged nested sequences
+                raise InputError(f"action must be an array of numbers of shape {want}: {e}") from None
+            if a.dtype.kind not in "biuf":
+                raise InputError(f"action has dtype {a.dtype}: expected real numbers of shape {want}")
+            if a.shape != shape:
+                raise InputError(f"action has shape {list(a.shape)}: expected {want}")
+            u = a.astype(np.float64)
+        if not np.isfinite(u).all():
+            k = tuple(int(i) for i in np.argwhere(~np.isfinite(u))[0])
             raise InputError(f"action{list(k)} = {u[k]} is not finite")
-        return np.clip(u, 0.0, 1.0)
+        return np.clip(u, 0.0, 1.0, out=u)
 
 
 class ArmReachEnv(gym.Env):
@@ -138,10 +163,17 @@ class ArmReachEnv(gym.Env):
         failure_penalty: float = 10.0,
         render_mode: str | None = None,
         config: Any = "arm",
+        fibre: str | None = None,
+        tendon: str | None = None,
+        rate_hz: float = 1000.0,
+        tolerance: float | None = None,
     ) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ConfigError(f"render_mode {render_mode!r}: expected one of {self.metadata['render_modes']}")
-        self._task = _Task(model, frame_skip, max_episode_steps, effort_weight, failure_penalty, config)
+        self._task = _Task(
+            model, frame_skip, max_episode_steps, effort_weight, failure_penalty, config, fibre,
+            tendon, rate_hz, tolerance,
+        )
         self.observation_space = self._task.observation_space
         self.action_space = self._task.action_space
         self.render_mode = render_mode
@@ -163,12 +195,13 @@ class ArmReachEnv(gym.Env):
         self._steps += 1
         info: dict[str, Any] = {"target": self._target.copy()}
         try:
-            traj = self._actuator.rollout(np.tile(u, (self._task.frame_skip, 1)), outputs=_OUTPUTS)
+            # The excitation held over the step's ticks in one call, then its end read in one.
+            self._actuator.step(u, ticks=self._task.frame_skip)
         except StepError as e:
             info["step_error"] = str(e)
             obs = self._task.observation(self._last, self._target)
             return obs, -self._task.failure_penalty, True, False, info
-        self._last = {k: v[-1] for k, v in traj.items()}
+        self._last = self._actuator.observe(_OUTPUTS)
         obs = self._task.observation(self._last, self._target)
         reward = self._task.reward(self._last, self._target, u)
         truncated = self._steps >= self._task.max_episode_steps
@@ -180,6 +213,11 @@ class ArmReachEnv(gym.Env):
         from ._render import arm_frame
 
         return arm_frame(self._last, self._target, self._actuator.muscles, self._task.f_max)
+
+    @property
+    def dt(self) -> float:
+        """Simulated time a step covers, s (``frame_skip`` ticks)."""
+        return self._task.frame_skip / self._actuator.rate_hz
 
     @property
     def actuator(self) -> Actuator:
@@ -203,10 +241,17 @@ class ArmReachVectorEnv(VectorEnv):
         render_mode: str | None = None,
         config: Any = "arm",
         threads: int | None = None,
+        fibre: str | None = None,
+        tendon: str | None = None,
+        rate_hz: float = 1000.0,
+        tolerance: float | None = None,
     ) -> None:
         if num_envs < 1:
             raise ConfigError("num_envs must be >= 1")
-        self._task = _Task(model, frame_skip, max_episode_steps, effort_weight, failure_penalty, config)
+        self._task = _Task(
+            model, frame_skip, max_episode_steps, effort_weight, failure_penalty, config, fibre,
+            tendon, rate_hz, tolerance,
+        )
         self.num_envs = int(num_envs)
         self.render_mode = render_mode
         self.single_observation_space = self._task.observation_space
@@ -302,6 +347,11 @@ class ArmReachVectorEnv(VectorEnv):
         return [arm_frame(self._last[i], self._targets[i], names, self._task.f_max) for i in range(self.num_envs)]
 
     @property
+    def dt(self) -> float:
+        """Simulated time a step covers, s (``frame_skip`` ticks)."""
+        return self._task.frame_skip / self._actuators[0].rate_hz
+
+    @property
     def actuators(self) -> list[Actuator]:
         """The stepped actuators, one per instance."""
         return self._actuators
@@ -315,6 +365,7 @@ def make_env(env_config: dict[str, Any] | None = None) -> ArmReachEnv:
 __all__ = [
     "ENVS",
     "ENV_ID",
+    "FAST_ENV_ID",
     "ArmReachEnv",
     "ArmReachVectorEnv",
     "make_env",
