@@ -346,6 +346,12 @@ def mujoco_vs(reps: int) -> None:
     x0 = np.zeros((1, mujoco.mj_stateSize(model, spec)))
     mujoco.mj_getState(model, data[0], x0[0], spec)
     protos = {mod: ma.Actuator("elbow", mod) for mod in ("huxley", "hill")}
+    # The formulations of docs/model.md §5b: DM on equilibrium fibres, Hill on rigid tendons.
+    names = protos["hill"].muscles
+    eq = {f"muscle.{n}.fibre": "equilibrium" for n in names}
+    rigid = {**eq, **{f"muscle.{n}.tendon": "rigid" for n in names}}
+    protos["huxley-eq"] = ma.Actuator("elbow", "huxley", overrides=eq)
+    protos["hill-rigid"] = ma.Actuator("elbow", "hill", overrides=rigid)
     loads = {
         "1 × 100,000, co-contraction": cocontraction(1, 100_000),
         "64 × 1000, co-contraction": cocontraction(64, 1000),
@@ -363,23 +369,34 @@ def mujoco_vs(reps: int) -> None:
         ["load (instances × ticks)", "MuJoCo µs/step", "DM µs/tick", "Hill µs/tick",
          "MuJoCo muscle-ticks/s", "DM / MuJoCo muscle-ticks/s", "Hill / MuJoCo"],
     )
+    kinds = t2_kinds = ("huxley-eq", "hill-rigid")
+    t2 = Table(
+        "The same, the elbow on equilibrium fibres (DM) and rigid tendons (Hill): time per tick "
+        "over MuJoCo's per step",
+        ["load (instances × ticks)", "MuJoCo µs/step", "DM equilibrium µs/tick", "/ MuJoCo",
+         "Hill rigid µs/tick", "/ MuJoCo"],
+    )
     with rollout.Rollout(nthread=1) as r:
         for name, u in loads.items():
             b, n = u.shape[:2]
-            res: dict[str, list[float]] = {"mj": [], "huxley": [], "hill": []}
+            res: dict[str, list[float]] = {k: [] for k in ("mj", "huxley", "hill", *kinds)}
             for _ in range(reps):
                 res["mj"].append(timed(lambda: r.rollout(model, data[:1], x0, u)) * 1e6 / (b * n))
-                for mod in ("huxley", "hill"):
+                for mod in ("huxley", "hill", *kinds):
                     res[mod].append(ours(mod, u, 1) * 1e6 / (b * n))
             mj, dm, hill = (median(res[k]) for k in ("mj", "huxley", "hill"))
             t.row(name, f"{mj:.3f}", f"{dm:.2f}", f"{hill:.2f}", f"{2e6 / mj:,.0f}",
                   f"{mj / dm:.3f}", f"{mj / hill:.3f}")
+            dm_eq, hill_rigid = (median(res[k]) for k in t2_kinds)
+            t2.row(name, f"{mj:.3f}", f"{dm_eq:.2f}", f"{dm_eq / mj:.2f}×", f"{hill_rigid:.2f}",
+                   f"{hill_rigid / mj:.2f}×")
         u = loads["64 × 1000, co-contraction"]
         one = median([timed(lambda: r.rollout(model, data[:1], x0, u)) for _ in range(reps)])
     with rollout.Rollout(nthread=2) as r2:
         two = median([timed(lambda: r2.rollout(model, data, x0, u)) for _ in range(reps)])
     ours1 = median([ours("huxley", u, 1) for _ in range(reps)])
     ours2 = median([ours("huxley", u, 2) for _ in range(reps)])
+    t2.show(f"; median of {reps}, the same repetitions as the table below")
     t.show(
         f"; median of {reps}; the elbows built before the clock starts. 64 × 1000 on 2 threads "
         f"(`Rollout(nthread=2)`, `threads=2`): MuJoCo speed-up {one / two:.2f}×, "

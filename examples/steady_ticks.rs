@@ -3,9 +3,12 @@
 //! `perf stat` (benches/tick_instructions.sh): instructions do not drift with the machine's load
 //! as times do.
 //!
-//!   cargo run --release --example steady_ticks -- MODEL TICKS     (MODEL: hill, huxley)
+//!   cargo run --release --example steady_ticks -- MODEL TICKS [FORMULATION]
+//!
+//! MODEL: hill, huxley; FORMULATION (docs/model.md §5b): massed (the default), equilibrium, rigid.
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::models::ModelKind;
+use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
 use muscle_actuator::sim::Actuator;
 use std::hint::black_box;
 
@@ -13,7 +16,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let (Some(name), Some(ticks)) = (args.get(1), args.get(2).and_then(|t| t.parse::<u64>().ok()))
     else {
-        eprintln!("usage: steady_ticks MODEL TICKS");
+        eprintln!("usage: steady_ticks MODEL TICKS [massed|equilibrium|rigid]");
         std::process::exit(2);
     };
     let Some(model) = ModelKind::all()
@@ -23,8 +26,21 @@ fn main() {
         eprintln!("steady_ticks: unknown model {name:?}");
         std::process::exit(2);
     };
+    let mut cfg = ActuatorConfig::default();
+    let (fibre, tendon) = match args.get(3).map(String::as_str) {
+        None | Some("massed") => (FibreKind::Massed, TendonKind::Elastic),
+        Some("equilibrium") => (FibreKind::Equilibrium, TendonKind::Elastic),
+        Some("rigid") => (FibreKind::Equilibrium, TendonKind::Rigid),
+        Some(other) => {
+            eprintln!("steady_ticks: unknown formulation {other:?}: massed, equilibrium, rigid");
+            std::process::exit(2);
+        }
+    };
+    for m in &mut cfg.muscles {
+        (m.params.fibre, m.params.tendon) = (fibre, tendon);
+    }
     // As benches/tick.rs's working_actuator: co-contracted, loaded, after 200 ticks.
-    let mut a = Actuator::new(&ActuatorConfig::default(), model, 1000.0).unwrap();
+    let mut a = Actuator::new(&cfg, model, 1000.0).unwrap();
     a.set_excitation(0, 0.6);
     a.set_excitation(1, 0.3);
     a.set_external_torque(0, 2.0);
