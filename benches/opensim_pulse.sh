@@ -18,5 +18,5 @@ source "$ROOT/benches/other_commit.sh"
 PULSE_TIME="$(cd "$ROOT" && cargo build --release --example pulse_time --message-format=json 2>/dev/null |
   executable_of example)"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-"$VENV/bin/python" "$ROOT/benches/opensim_pulse.py" "$ROUNDS" "$PULSE_TIME"
+PULSE_FORMULATIONS=1 "$VENV/bin/python" "$ROOT/benches/opensim_pulse.py" "$ROUNDS" "$PULSE_TIME"
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

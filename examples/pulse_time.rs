@@ -9,9 +9,14 @@
 //! `benches/opensim_pulse.sh`, beside another commit by `benches/pulse_paired.sh` (so it reads
 //! nothing of a run's records: the force comes from the runner, whose API both commits share).
 //!
+//! With `PULSE_FORMULATIONS=1` (benches/opensim_pulse.sh sets it), each round also runs both
+//! models on an equilibrium fibre and on a rigid tendon (docs/model.md §5b), as
+//! `MODEL-equilibrium` and `MODEL-rigid` lines.
+//!
 //!   cargo run --release --example pulse_time -- [ROUNDS]     (default 5, the first included)
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::models::ModelKind;
+use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
 use muscle_actuator::physics::params::MuscleParams;
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::default_stepping;
@@ -54,6 +59,29 @@ fn main() {
             println!("{name}{first} {run_us:.3} {force:.1}");
             println!("{name}-steps{first} {steps_us:.3} {force:.1}");
             println!("{name}-setup{first} {setup_us:.3} {force:.1}");
+        }
+        if std::env::var("PULSE_FORMULATIONS").is_ok() {
+            for (label, fibre, tendon) in [
+                ("equilibrium", FibreKind::Equilibrium, TendonKind::Elastic),
+                ("rigid", FibreKind::Equilibrium, TendonKind::Rigid),
+            ] {
+                let mut cfg = cfg.clone();
+                for m in &mut cfg.muscles {
+                    (m.params.fibre, m.params.tendon) = (fibre, tendon);
+                }
+                for model in [ModelKind::HILL, ModelKind::HUXLEY] {
+                    let t0 = Instant::now();
+                    let run = sc
+                        .run(&cfg, model, 1000.0, default_stepping(model))
+                        .unwrap();
+                    let run_us = t0.elapsed().as_secs_f64() * 1e6 / TICKS as f64;
+                    let force = run
+                        .records()
+                        .nth(2000)
+                        .map_or(f64::NAN, |r| r.muscles[0].force);
+                    println!("{}-{label}{first} {run_us:.3} {force:.1}", model.name());
+                }
+            }
         }
     }
 }

@@ -267,7 +267,17 @@ fn impossible_formulations_are_refused_with_the_reason() {
         .unwrap_or_else(|e| panic!("hill, b_m = 0: {e}"));
     for r in out.records() {
         let m = r.muscles[0];
-        assert!((m.force - (m.ce_force + m.pe_force)).abs() <= 1e-9 * 3913.0);
+        assert!(
+            (m.force - (m.ce_force + m.pe_force)).abs() <= 1e-9 * 3913.0,
+            "at {}: F {} CE {} PE {} v {} a {} l_m {}",
+            r.time,
+            m.force,
+            m.ce_force,
+            m.pe_force,
+            m.fiber_velocity,
+            m.activation,
+            m.fiber_length
+        );
     }
     // On a rigid tendon the path sets the velocity: no damper needed.
     let cfg = config("fibre = \"equilibrium\"\ntendon = \"rigid\"\nb_m = 0.0");

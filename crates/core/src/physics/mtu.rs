@@ -297,8 +297,21 @@ impl Mtu {
     /// Typical magnitudes of this muscle's state variables.
     pub fn scales(&self, out: &mut [f64]) {
         let m = self.mechanics.dim();
-        out[..m].copy_from_slice(&[self.params.l_opt, self.params.v_max][..m]);
+        let length = match self.mechanics {
+            Mechanics::Massed | Mechanics::Rigid => self.params.l_opt,
+            // A massless fibre's length sets the tendon's force directly: its error is judged on
+            // the tendon's stretch at Fmax (millimetres), not on l_opt, or a tolerance would let
+            // through force errors l_opt / stretch times larger than the massed fibre's
+            // (docs/benchmarks.md "Work and precision").
+            Mechanics::Equilibrium => self.tendon_stretch_at_fmax().min(self.params.l_opt),
+        };
+        out[..m].copy_from_slice(&[length, self.params.v_max][..m]);
         self.ce.state_scales(&mut out[m..]);
+    }
+
+    /// How far the tendon stretches beyond its slack length to carry Fmax, m.
+    pub fn tendon_stretch_at_fmax(&self) -> f64 {
+        self.tendon.length_at_force(self.params.f_max) - self.params.l_ts
     }
 
     /// Everything observable about this MTU at muscle state `s` with its tendon's far end at

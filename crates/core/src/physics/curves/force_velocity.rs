@@ -135,9 +135,11 @@ impl HillForceVelocity {
         } else {
             0.0
         };
+        // Converged when the residual is down to the rounding of its terms.
+        let rounding = 8.0 * f64::EPSILON * (force.abs() + active.abs() + damping * v_max);
         for _ in 0..BALANCE_MAX_ITERATIONS {
             let r = residual(v);
-            if r == 0.0 {
+            if r.abs() <= rounding {
                 return v;
             }
             if r < 0.0 {
@@ -159,10 +161,8 @@ impl HillForceVelocity {
                 }
                 0.5 * (lo + hi)
             };
-            // Newton's error after a step of δ is of order δ²/vmax (the relation's curvature
-            // scale is vmax): a step below 1e-8 vmax leaves about 1e-16 vmax, rounding.
-            let converged = 1e-8 * v_max;
-            if (next - v).abs() <= converged || hi - lo <= converged {
+            let ulps = 4.0 * f64::EPSILON * v.abs().max(v_max);
+            if (next - v).abs() <= ulps || hi - lo <= ulps {
                 return next;
             }
             v = next;
