@@ -2,13 +2,14 @@
 //! spring and damper act between the origin and the fibre's end, the tendon between that end and
 //! the load. Written once for every contractile model, in three formulations (§5b):
 //!
-//! | formulation                  | its state            | fibre velocity v               | tendon force            |
-//! |------------------------------|----------------------|--------------------------------|-------------------------|
-//! | massed fibre, elastic tendon | `[l_m, v, x...]`     | a state (eq. 8, mass M)        | `F_T(L - l_m)`          |
-//! | equilibrium, elastic tendon  | `[l_m, x...]`        | balances `F_CE + F_P + B v = F_T` | `F_T(L - l_m)`       |
-//! | equilibrium, rigid tendon    | `[x...]`             | the path's, `dL/dt`            | `F_CE + F_P + B v`      |
+//! | formulation                  | its state        | fibre velocity v                         | tendon force               |
+//! |------------------------------|------------------|------------------------------------------|----------------------------|
+//! | massed fibre, elastic tendon | `[l_m, v, x...]` | a state (eq. 8, mass M)                  | `F_T(L - l_m)`             |
+//! | equilibrium, elastic tendon  | `[l_m, x...]`    | balances `(F_CE + F_P + B v) cos α = F_T` | `F_T(L - l_m cos α)`      |
+//! | equilibrium, rigid tendon    | `[x...]`         | the path's, `cos α dL/dt`                | `(F_CE + F_P + B v) cos α` |
 //!
-//! (L: path length; x: the contractile model's own state.)
+//! (L: path length; x: the contractile model's own state; α: the pennation angle at constant
+//! thickness, `physics::pennation`, 0 for a fibre with mass.)
 
 use crate::physics::curves::overlap::ActiveForceLength;
 use crate::physics::energetics::bridge_power::atp_mol_per_j;
