@@ -21,7 +21,9 @@ moved forward row by row: one function through all rows has an ambiguous slope a
 follow a jump of speed inside a step. `--vmax` is in m/s; OpenSim's max_contraction_velocity is in
 optimal fibre lengths per second (vmax / lopt). `--tendon-strain` / `--passive-strain` set
 tendon_strain_at_one_norm_force / passive_fiber_strain_at_one_norm_force (DeGrooteFregly2016Muscle)
-or FmaxTendonStrain / FmaxMuscleStrain (Thelen2003Muscle); `--damping` sets fiber_damping
+or FmaxTendonStrain / FmaxMuscleStrain (Thelen2003Muscle); `--active-force-width-scale`
+(DeGrooteFregly2016Muscle) and `--kshape-active`, `--kshape-passive`, `--af`, `--flen`
+(Thelen2003Muscle) set those properties; `--damping` sets fiber_damping
 (damping force along the fibre = fiber_damping Fmax v / vmax); Thelen2003Muscle has none.
 
 DeGrooteFregly2016Muscle: ignore_activation_dynamics, so activation = control. Elastic tendon:
@@ -127,6 +129,11 @@ def build(args, t, a, l, rigid_eval):
             mu.set_FmaxTendonStrain(args.tendon_strain)
         if args.passive_strain is not None:
             mu.set_FmaxMuscleStrain(args.passive_strain)
+        for value, setter in ((args.kshape_active, mu.set_KshapeActive),
+                              (args.kshape_passive, mu.set_KshapePassive),
+                              (args.af, mu.set_Af), (args.flen, mu.set_Flen)):
+            if value is not None:
+                setter(value)
     else:
         mu = osim.DeGrooteFregly2016Muscle()
         mu.setName("muscle")
@@ -142,6 +149,8 @@ def build(args, t, a, l, rigid_eval):
             mu.set_tendon_strain_at_one_norm_force(args.tendon_strain)
         if args.passive_strain is not None:
             mu.set_passive_fiber_strain_at_one_norm_force(args.passive_strain)
+        if args.active_force_width_scale is not None:
+            mu.set_active_force_width_scale(args.active_force_width_scale)
     mu.setMaxContractionVelocity(args.vmax / args.lopt)
     mu.addNewPathPoint("origin", model.getGround(), osim.Vec3(0))
     mu.addNewPathPoint("insertion", body, osim.Vec3(0))
@@ -250,6 +259,11 @@ def main():
     ap.add_argument("--tendon-strain", type=float)
     ap.add_argument("--passive-strain", type=float)
     ap.add_argument("--damping", type=float, default=0.0, help="degroote2016 only")
+    ap.add_argument("--active-force-width-scale", type=float, help="degroote2016 only")
+    ap.add_argument("--kshape-active", type=float, help="thelen2003 only (KshapeActive)")
+    ap.add_argument("--kshape-passive", type=float, help="thelen2003 only (KshapePassive)")
+    ap.add_argument("--af", type=float, help="thelen2003 only (Af)")
+    ap.add_argument("--flen", type=float, help="thelen2003 only (Flen)")
     ap.add_argument("--accuracy", type=float, default=1e-12)
     ap.add_argument("--timeout", type=float, default=900.0, help="s of wall time")
     args = ap.parse_args()

@@ -80,6 +80,11 @@ def opensim(muscle, inputs_csv, out_csv):
         "--lts", repr(muscle["l_ts"]), "--vmax", repr(muscle["v_max"]),
         "--pennation", repr(muscle["pennation"]),
     ]
+    # The curve sets' constants the configuration sets, under OpenSim's names.
+    for key in ("tendon_strain", "passive_strain", "active_force_width_scale", "kshape_active",
+                "kshape_passive", "af", "flen"):
+        if key in muscle:
+            args += ["--" + key.replace("_", "-"), repr(muscle[key])]
     subprocess.run(args, check=True, timeout=600)
     with open(out_csv) as f:
         lines = [ln.strip() for ln in f if ln.strip()]

@@ -328,6 +328,34 @@ fn bad_curve_settings_are_refused_on_one_line() {
             "curves = \"thelen2003\"\ntendon_strain = nan",
             &["muscle.flexor.tendon_strain", "finite"],
         ),
+        // Each set's shape constants: only with that set, within OpenSim's ranges.
+        (
+            "curves = \"thelen2003\"\nactive_force_width_scale = 1.5",
+            &[
+                "muscle.flexor.active_force_width_scale",
+                "degroote2016\" only",
+            ],
+        ),
+        (
+            "curves = \"degroote2016\"\nactive_force_width_scale = 0.5",
+            &["muscle.flexor.active_force_width_scale", "must be >= 1"],
+        ),
+        (
+            "curves = \"degroote2016\"\nkshape_active = 0.5",
+            &["muscle.flexor.kshape_active", "thelen2003\" only"],
+        ),
+        (
+            "kshape_passive = 4.0",
+            &["muscle.flexor.kshape_passive", "thelen2003\" only"],
+        ),
+        (
+            "curves = \"thelen2003\"\naf = 0.0",
+            &["muscle.flexor.af", "must be > 0"],
+        ),
+        (
+            "curves = \"thelen2003\"\nflen = 1.0",
+            &["muscle.flexor.flen", "must be > 1"],
+        ),
     ];
     for (keys, needles) in cases {
         let message = refusal(keys);

@@ -62,7 +62,7 @@ fn the_muscles_agree_with_opensim() {
         .filter(|p| p.extension().is_some_and(|e| e == "csv"))
         .collect();
     refs.sort();
-    assert_eq!(refs.len(), 18, "6 muscles × 3 motions in {dir:?}");
+    assert_eq!(refs.len(), 24, "8 muscles × 3 motions in {dir:?}");
     println!(
         "{:<40} {:>14} {:>12} {:>14} {:>12}",
         "case", "RMS ΔF %Fmax", "max ΔF N", "RMS Δl_m µm", "max Δl_m µm"

@@ -36,7 +36,7 @@ def test_the_committed_muscle_references_are_what_opensim_computes(tmp_path):
         timeout=900,
     )
     committed = sorted(f for f in os.listdir(REFERENCES) if f.endswith(".csv"))
-    assert len(committed) == 18
+    assert len(committed) == 24
     assert sorted(os.listdir(tmp_path)) == committed
     for name in committed:
         fresh, ref = read(tmp_path / name), read(os.path.join(REFERENCES, name))

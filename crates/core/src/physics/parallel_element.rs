@@ -52,11 +52,10 @@ pub enum ParallelElement {
         l_opt: f64,
         /// Passive strain at one normalised force ε₀M.
         strain: f64,
+        /// Passive shape k_PE (`KshapePassive`).
+        kshape: f64,
     },
 }
-
-/// Thelen's passive shape k_PE (OpenSim's `KshapePassive`, not configurable here).
-const THELEN_KSHAPE_PASSIVE: f64 = thelen2003::DEFAULT_KSHAPE_PASSIVE;
 
 impl ParallelElement {
     /// The parallel element of the muscle's curve set.
@@ -73,6 +72,9 @@ impl ParallelElement {
                 f_max,
                 l_opt,
                 strain: passive_strain(p),
+                kshape: p
+                    .kshape_passive
+                    .unwrap_or(thelen2003::DEFAULT_KSHAPE_PASSIVE),
             },
         }
     }
@@ -91,9 +93,8 @@ impl ParallelElement {
                 f_max,
                 l_opt,
                 strain,
-            } => {
-                f_max * thelen2003::passive_force_length(l_m / l_opt, strain, THELEN_KSHAPE_PASSIVE)
-            }
+                kshape,
+            } => f_max * thelen2003::passive_force_length(l_m / l_opt, strain, kshape),
         }
     }
 
@@ -111,10 +112,10 @@ impl ParallelElement {
                 f_max,
                 l_opt,
                 strain,
+                kshape,
             } => {
                 let x = l_m / l_opt;
-                f_max / l_opt
-                    * thelen2003::passive_force_length_derivative(x, strain, THELEN_KSHAPE_PASSIVE)
+                f_max / l_opt * thelen2003::passive_force_length_derivative(x, strain, kshape)
             }
         }
     }
@@ -133,11 +134,10 @@ impl ParallelElement {
                 f_max,
                 l_opt,
                 strain,
+                kshape,
             } => {
                 let x = l_m / l_opt;
-                f_max
-                    * l_opt
-                    * thelen2003::passive_force_length_integral(x, strain, THELEN_KSHAPE_PASSIVE)
+                f_max * l_opt * thelen2003::passive_force_length_integral(x, strain, kshape)
             }
         }
     }
@@ -159,9 +159,10 @@ impl ParallelElement {
                 f_max,
                 l_opt,
                 strain,
+                kshape,
             } => {
                 let f = force / f_max;
-                l_opt * thelen2003::passive_force_length_inverse(f, strain, THELEN_KSHAPE_PASSIVE)
+                l_opt * thelen2003::passive_force_length_inverse(f, strain, kshape)
             }
         }
     }

@@ -86,6 +86,23 @@ pub struct MuscleParams {
     /// `passive_fiber_strain_at_one_norm_force`, `FmaxMuscleStrain`); `None`: the set's default.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub passive_strain: Option<f64>,
+    /// DeGroote 2016's active force–length width scale (OpenSim's `active_force_width_scale`,
+    /// >= 1); `None`: 1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub active_force_width_scale: Option<f64>,
+    /// Thelen 2003's active force–length shape γ (OpenSim's `KshapeActive`); `None`: 0.45.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kshape_active: Option<f64>,
+    /// Thelen 2003's passive shape k_PE (OpenSim's `KshapePassive`); `None`: 5.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kshape_passive: Option<f64>,
+    /// Thelen 2003's force–velocity shape Af (OpenSim's `Af`); `None`: 0.25.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub af: Option<f64>,
+    /// Thelen 2003's eccentric force asymptote Flen, normalised (OpenSim's `Flen`, > 1);
+    /// `None`: 1.4.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flen: Option<f64>,
     /// How the fibre moves: with mass (the paper's, the default) or in equilibrium with the
     /// tendon (docs/model.md §5b); written out only when not the default.
     #[serde(skip_serializing_if = "FibreKind::is_massed")]
@@ -133,6 +150,11 @@ impl Default for MuscleParams {
             curves: CurveSet::Paper,
             tendon_strain: None,
             passive_strain: None,
+            active_force_width_scale: None,
+            kshape_active: None,
+            kshape_passive: None,
+            af: None,
+            flen: None,
             fibre: FibreKind::Massed,
             tendon: TendonKind::Elastic,
             pennation: 0.0,
@@ -299,7 +321,7 @@ impl MuscleParams {
     }
 
     /// The curve-set rules: `tendon_strain` and `passive_strain` only with an OpenSim set, and
-    /// positive.
+    /// positive; each set's shape constants only with that set.
     fn validate_curves(&self, c: &mut Checker<'_>) {
         let strains = [
             (
@@ -319,6 +341,41 @@ impl MuscleParams {
             let Some(v) = value else { continue };
             if self.curves.is_paper() {
                 c.fail(name, v, paper_rule);
+            } else {
+                c.positive(name, v);
+            }
+        }
+        // Each set's own shape constants, only with that set, within OpenSim's ranges.
+        let shapes = [
+            (
+                "active_force_width_scale",
+                self.active_force_width_scale,
+                CurveSet::DeGroote2016,
+            ),
+            ("kshape_active", self.kshape_active, CurveSet::Thelen2003),
+            ("kshape_passive", self.kshape_passive, CurveSet::Thelen2003),
+            ("af", self.af, CurveSet::Thelen2003),
+            ("flen", self.flen, CurveSet::Thelen2003),
+        ];
+        for (name, value, set) in shapes {
+            let Some(v) = value else { continue };
+            if self.curves != set {
+                c.fail(
+                    name,
+                    v,
+                    match set {
+                        CurveSet::DeGroote2016 => "applies to curves = \"degroote2016\" only",
+                        _ => "applies to curves = \"thelen2003\" only",
+                    },
+                );
+            } else if name == "active_force_width_scale" {
+                if !(v.is_finite() && v >= 1.0) {
+                    c.fail(name, v, "must be >= 1 (OpenSim's rule)");
+                }
+            } else if name == "flen" {
+                if !(v.is_finite() && v > 1.0) {
+                    c.fail(name, v, "must be > 1 (the eccentric asymptote, normalised)");
+                }
             } else {
                 c.positive(name, v);
             }

@@ -34,10 +34,12 @@ pub enum HillForceVelocity {
         v_max: f64,
     },
     /// Thelen 2003's relation, which depends on activation
-    /// ([`thelen2003::force_velocity`], OpenSim's default shape).
+    /// ([`thelen2003::force_velocity`]).
     Thelen2003 {
         /// vmax, m/s.
         v_max: f64,
+        /// Its shape (Af, Flen; OpenSim's extrapolation threshold).
+        shape: thelen2003::ForceVelocityShape,
     },
 }
 
@@ -51,7 +53,17 @@ impl HillForceVelocity {
                 eccentric_asymptote: p.eccentric_asymptote,
             },
             CurveSet::DeGroote2016 => HillForceVelocity::DeGroote2016 { v_max },
-            CurveSet::Thelen2003 => HillForceVelocity::Thelen2003 { v_max },
+            CurveSet::Thelen2003 => {
+                let default = thelen2003::ForceVelocityShape::default();
+                HillForceVelocity::Thelen2003 {
+                    v_max,
+                    shape: thelen2003::ForceVelocityShape {
+                        af: p.af.unwrap_or(default.af),
+                        flen: p.flen.unwrap_or(default.flen),
+                        ..default
+                    },
+                }
+            }
         }
     }
 
@@ -60,7 +72,7 @@ impl HillForceVelocity {
         match *self {
             HillForceVelocity::Paper { v_max, .. }
             | HillForceVelocity::DeGroote2016 { v_max }
-            | HillForceVelocity::Thelen2003 { v_max } => v_max,
+            | HillForceVelocity::Thelen2003 { v_max, .. } => v_max,
         }
     }
 
@@ -75,9 +87,8 @@ impl HillForceVelocity {
             HillForceVelocity::DeGroote2016 { v_max } => {
                 degroote2016::force_velocity_derivative(v / v_max) / v_max
             }
-            HillForceVelocity::Thelen2003 { v_max } => {
-                let shape = thelen2003::ForceVelocityShape::default();
-                thelen2003::force_velocity_derivative(v / v_max, activation, &shape) / v_max
+            HillForceVelocity::Thelen2003 { v_max, ref shape } => {
+                thelen2003::force_velocity_derivative(v / v_max, activation, shape) / v_max
             }
         }
     }
@@ -107,9 +118,8 @@ impl HillForceVelocity {
             HillForceVelocity::DeGroote2016 { v_max } => {
                 degroote2016::force_velocity_inverse(g) * v_max
             }
-            HillForceVelocity::Thelen2003 { v_max } => {
-                let shape = thelen2003::ForceVelocityShape::default();
-                thelen2003::force_velocity_inverse(g, activation, &shape) * v_max
+            HillForceVelocity::Thelen2003 { v_max, ref shape } => {
+                thelen2003::force_velocity_inverse(g, activation, shape) * v_max
             }
         };
         let bound = BALANCE_VELOCITY_BOUND * self.v_max();
@@ -179,9 +189,8 @@ impl HillForceVelocity {
                 eccentric_asymptote,
             } => force_velocity(-v, v_max, eccentric_asymptote),
             HillForceVelocity::DeGroote2016 { v_max } => degroote2016::force_velocity(v / v_max),
-            HillForceVelocity::Thelen2003 { v_max } => {
-                let shape = thelen2003::ForceVelocityShape::default();
-                thelen2003::force_velocity(v / v_max, activation, &shape)
+            HillForceVelocity::Thelen2003 { v_max, ref shape } => {
+                thelen2003::force_velocity(v / v_max, activation, shape)
             }
         }
     }

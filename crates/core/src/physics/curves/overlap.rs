@@ -19,15 +19,19 @@ pub enum ActiveForceLength {
         /// Shape.
         shape: ForceLengthShape,
     },
-    /// DeGroote 2016's three Gaussian-like terms (width scale 1).
+    /// DeGroote 2016's three Gaussian-like terms.
     DeGroote2016 {
         /// Optimal fibre length, m.
         l_opt: f64,
+        /// Width scale (`active_force_width_scale`).
+        width_scale: f64,
     },
-    /// Thelen 2003's Gaussian (γ = 0.45).
+    /// Thelen 2003's Gaussian.
     Thelen2003 {
         /// Optimal fibre length, m.
         l_opt: f64,
+        /// Shape γ (`KshapeActive`).
+        kshape: f64,
     },
 }
 
@@ -41,8 +45,16 @@ impl ActiveForceLength {
                 width: p.fl_width,
                 shape: p.fl_shape,
             },
-            CurveSet::DeGroote2016 => ActiveForceLength::DeGroote2016 { l_opt },
-            CurveSet::Thelen2003 => ActiveForceLength::Thelen2003 { l_opt },
+            CurveSet::DeGroote2016 => ActiveForceLength::DeGroote2016 {
+                l_opt,
+                width_scale: p
+                    .active_force_width_scale
+                    .unwrap_or(degroote2016::DEFAULT_ACTIVE_FORCE_WIDTH_SCALE),
+            },
+            CurveSet::Thelen2003 => ActiveForceLength::Thelen2003 {
+                l_opt,
+                kshape: p.kshape_active.unwrap_or(thelen2003::DEFAULT_KSHAPE_ACTIVE),
+            },
         }
     }
 
@@ -55,11 +67,11 @@ impl ActiveForceLength {
                 width,
                 shape,
             } => force_length(l_m, l_opt, width, shape),
-            ActiveForceLength::DeGroote2016 { l_opt } => {
-                degroote2016::active_force_length(l_m / l_opt, DGF_WIDTH_SCALE)
+            ActiveForceLength::DeGroote2016 { l_opt, width_scale } => {
+                degroote2016::active_force_length(l_m / l_opt, width_scale)
             }
-            ActiveForceLength::Thelen2003 { l_opt } => {
-                thelen2003::active_force_length(l_m / l_opt, THELEN_KSHAPE_ACTIVE)
+            ActiveForceLength::Thelen2003 { l_opt, kshape } => {
+                thelen2003::active_force_length(l_m / l_opt, kshape)
             }
         }
     }
@@ -72,18 +84,12 @@ impl ActiveForceLength {
                 width,
                 shape,
             } => force_length_slope(l_m, l_opt, width, shape),
-            ActiveForceLength::DeGroote2016 { l_opt } => {
-                degroote2016::active_force_length_derivative(l_m / l_opt, DGF_WIDTH_SCALE) / l_opt
+            ActiveForceLength::DeGroote2016 { l_opt, width_scale } => {
+                degroote2016::active_force_length_derivative(l_m / l_opt, width_scale) / l_opt
             }
-            ActiveForceLength::Thelen2003 { l_opt } => {
-                thelen2003::active_force_length_derivative(l_m / l_opt, THELEN_KSHAPE_ACTIVE)
-                    / l_opt
+            ActiveForceLength::Thelen2003 { l_opt, kshape } => {
+                thelen2003::active_force_length_derivative(l_m / l_opt, kshape) / l_opt
             }
         }
     }
 }
-
-/// DeGroote 2016's active width scale (OpenSim's default, not configurable here).
-const DGF_WIDTH_SCALE: f64 = degroote2016::DEFAULT_ACTIVE_FORCE_WIDTH_SCALE;
-/// Thelen 2003's active shape γ (OpenSim's default, not configurable here).
-const THELEN_KSHAPE_ACTIVE: f64 = thelen2003::DEFAULT_KSHAPE_ACTIVE;
