@@ -10,11 +10,13 @@
 //! nothing of a run's records: the force comes from the runner, whose API both commits share).
 //!
 //! With `PULSE_FORMULATIONS=1` (benches/opensim_pulse.sh sets it), each round also runs both
-//! models on an equilibrium fibre and on a rigid tendon (docs/model.md §5b), as
-//! `MODEL-equilibrium` and `MODEL-rigid` lines.
+//! models on an equilibrium fibre and on a rigid tendon (docs/model.md §5b), and on an
+//! equilibrium fibre with DeGroote's curves, as `MODEL-equilibrium`, `MODEL-rigid` and
+//! `MODEL-degroote-equilibrium` lines.
 //!
 //!   cargo run --release --example pulse_time -- [ROUNDS]     (default 5, the first included)
 use muscle_actuator::config::ActuatorConfig;
+use muscle_actuator::physics::curves::CurveSet;
 use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
 use muscle_actuator::physics::params::MuscleParams;
@@ -61,13 +63,30 @@ fn main() {
             println!("{name}-setup{first} {setup_us:.3} {force:.1}");
         }
         if std::env::var("PULSE_FORMULATIONS").is_ok() {
-            for (label, fibre, tendon) in [
-                ("equilibrium", FibreKind::Equilibrium, TendonKind::Elastic),
-                ("rigid", FibreKind::Equilibrium, TendonKind::Rigid),
+            for (label, fibre, tendon, curves) in [
+                (
+                    "equilibrium",
+                    FibreKind::Equilibrium,
+                    TendonKind::Elastic,
+                    CurveSet::Paper,
+                ),
+                (
+                    "rigid",
+                    FibreKind::Equilibrium,
+                    TendonKind::Rigid,
+                    CurveSet::Paper,
+                ),
+                (
+                    "degroote-equilibrium",
+                    FibreKind::Equilibrium,
+                    TendonKind::Elastic,
+                    CurveSet::DeGroote2016,
+                ),
             ] {
                 let mut cfg = cfg.clone();
                 for m in &mut cfg.muscles {
                     (m.params.fibre, m.params.tendon) = (fibre, tendon);
+                    m.params.curves = curves;
                 }
                 for model in [ModelKind::HILL, ModelKind::HUXLEY] {
                     let t0 = Instant::now();

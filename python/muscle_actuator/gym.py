@@ -82,11 +82,11 @@ class _Task:
         self.frame_skip, self.max_episode_steps = int(frame_skip), int(max_episode_steps)
         self.effort_weight, self.failure_penalty = float(effort_weight), float(failure_penalty)
         # Every muscle's fibre and tendon kind, if given (docs/configuration.md).
-        names = Actuator(config, model, self.rate_hz).muscles
-        self.overrides: dict[str, Any] = {}
-        for key, value in (("fibre", fibre), ("tendon", tendon)):
-            if value is not None:
-                self.overrides.update({f"muscle.{n}.{key}": value for n in names})
+        self.overrides: dict[str, Any] = {
+            f"muscle.*.{key}": value
+            for key, value in (("fibre", fibre), ("tendon", tendon))
+            if value is not None
+        }
         probe = self.actuator()
         cfg = probe.config
         self.f_max = np.array([m["f_max"] for m in cfg["muscle"]])
