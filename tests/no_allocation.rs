@@ -8,6 +8,7 @@
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::models::ModelKind;
+use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::default_stepping;
 use muscle_actuator::sim::Actuator;
@@ -68,10 +69,21 @@ fn ticks_do_not_allocate() {
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let mut driven_arm = ActuatorConfig::resolve("arm").unwrap();
     driven_arm.joints[0].driven = true;
+    // The arm with massless fibres (pennated) and with rigid tendons (docs/model.md §5b).
+    let (mut equilibrium_arm, mut rigid_arm) = (driven_arm.clone(), driven_arm.clone());
+    for m in &mut equilibrium_arm.muscles {
+        m.params.fibre = FibreKind::Equilibrium;
+        m.params.pennation = 0.2;
+    }
+    for m in &mut rigid_arm.muscles {
+        (m.params.fibre, m.params.tendon) = (FibreKind::Equilibrium, TendonKind::Rigid);
+    }
     for cfg in [
         ActuatorConfig::default(),
         ActuatorConfig::resolve("arm").unwrap(),
         driven_arm,
+        equilibrium_arm,
+        rigid_arm,
     ] {
         for model in [ModelKind::HILL, ModelKind::HUXLEY] {
             let mut act = Actuator::new(&cfg, model, 1000.0).unwrap();

@@ -112,6 +112,8 @@ pub struct Mtu {
     pub mechanics: Mechanics,
     /// Its pennation (none for a fibre with mass).
     pub pennation: Pennation,
+    /// The scale its fibre length's error is judged on, m ([`Mtu::scales`]).
+    length_scale: f64,
 }
 
 impl Mtu {
@@ -127,11 +129,23 @@ impl Mtu {
                 model: model.name(),
             });
         }
+        let tendon = Tendon::new(params);
+        let length_scale = match mechanics {
+            Mechanics::Massed | Mechanics::Rigid => params.l_opt,
+            // A massless fibre's length sets the tendon's force directly: its error is judged on
+            // the tendon's stretch at Fmax (millimetres), not on l_opt, or a tolerance would let
+            // through force errors l_opt / stretch times larger than the massed fibre's
+            // (docs/benchmarks.md "Work and precision").
+            Mechanics::Equilibrium => {
+                (tendon.length_at_force(params.f_max) - params.l_ts).min(params.l_opt)
+            }
+        };
         Ok(Self {
             mechanics,
+            length_scale,
             pennation: Pennation::new(params),
             params: params.clone(),
-            tendon: Tendon::new(params),
+            tendon,
             parallel: ParallelElement::new(params),
             active_force_length: ActiveForceLength::new(params),
             ce,
@@ -279,17 +293,25 @@ impl Mtu {
         end: TendonEnd,
         ds: &mut [f64],
     ) -> f64 {
+        if self.mechanics == Mechanics::Massed {
+            // The paper's eq. (8): the tendon's force alone (a force-driven tendon's length is
+            // not needed here), no balance to solve.
+            let (l_m, v) = (s[0], s[1]);
+            let f_se = match end {
+                TendonEnd::Path { length, .. } => self.tendon.force(length - l_m),
+                TendonEnd::Force(f) => f.max(0.0),
+            };
+            let ce = self.ce_inputs(activation, l_m, v);
+            let f_ce = self.ce.force(&ce, &s[2..]);
+            ds[0] = v;
+            ds[1] = self.fibre_acceleration(f_se, f_ce, l_m, v);
+            self.ce.rates(t, &ce, &s[2..], &mut ds[2..]);
+            return f_se;
+        }
         let f = self.fibre_state(activation, s, end);
         let m = self.mechanics.dim();
-        match self.mechanics {
-            Mechanics::Massed => {
-                let (l_m, v) = (s[0], s[1]);
-                let f_ce = self.ce.force(&f.ce, &s[2..]);
-                ds[0] = v;
-                ds[1] = self.fibre_acceleration(f.tendon_force, f_ce, l_m, v);
-            }
-            Mechanics::Equilibrium => ds[0] = f.ce.fibre_velocity,
-            Mechanics::Rigid => {}
+        if self.mechanics == Mechanics::Equilibrium {
+            ds[0] = f.ce.fibre_velocity;
         }
         self.ce.rates(t, &f.ce, &s[m..], &mut ds[m..]);
         f.tendon_force
@@ -298,21 +320,8 @@ impl Mtu {
     /// Typical magnitudes of this muscle's state variables.
     pub fn scales(&self, out: &mut [f64]) {
         let m = self.mechanics.dim();
-        let length = match self.mechanics {
-            Mechanics::Massed | Mechanics::Rigid => self.params.l_opt,
-            // A massless fibre's length sets the tendon's force directly: its error is judged on
-            // the tendon's stretch at Fmax (millimetres), not on l_opt, or a tolerance would let
-            // through force errors l_opt / stretch times larger than the massed fibre's
-            // (docs/benchmarks.md "Work and precision").
-            Mechanics::Equilibrium => self.tendon_stretch_at_fmax().min(self.params.l_opt),
-        };
-        out[..m].copy_from_slice(&[length, self.params.v_max][..m]);
+        out[..m].copy_from_slice(&[self.length_scale, self.params.v_max][..m]);
         self.ce.state_scales(&mut out[m..]);
-    }
-
-    /// How far the tendon stretches beyond its slack length to carry Fmax, m.
-    pub fn tendon_stretch_at_fmax(&self) -> f64 {
-        self.tendon.length_at_force(self.params.f_max) - self.params.l_ts
     }
 
     /// Everything observable about this MTU at muscle state `s` with its tendon's far end at
@@ -397,18 +406,19 @@ impl Mtu {
         }
     }
 
-    /// The metabolic rates at muscle state `s` with its tendon's far end at `end`, the
-    /// excitation of `terms` (the probe's [`MuscleProbe::excitation_terms`]) and activation a
-    /// (docs/model.md §11.6), with the probe's inputs they came from. Models with state outside
-    /// the ODE must be asked after the sub-step hooks have brought it in step with `s`.
+    /// The metabolic rates at muscle state `s`, with what its contractile element sees there
+    /// (`ce`: [`Mtu::fibre_state`]'s), the excitation of `terms` (the probe's
+    /// [`MuscleProbe::excitation_terms`]) and activation a (docs/model.md §11.6), with the
+    /// probe's inputs they came from. Models with state outside the ODE must be asked after the
+    /// sub-step hooks have brought it in step with `s`.
     pub fn metabolic(
         &self,
         terms: &ExcitationTerms,
         activation: f64,
+        ce: &CeInputs,
         s: &[f64],
-        end: TendonEnd,
     ) -> MetabolicSample {
-        let ce = self.fibre_state(activation, s, end).ce;
+        let ce = *ce;
         let own = &s[self.mechanics.dim()..];
         let x = self.probe_inputs(terms.excitation, &ce, own);
         let mechanism = self.ce.bridge_energy(&ce, own).map(|(fluxes, b)| {

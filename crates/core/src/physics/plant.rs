@@ -21,7 +21,7 @@
 use crate::physics::energetics::metabolic::MetabolicSample;
 use crate::physics::energetics::probe::ExcitationTerms;
 use crate::physics::joint;
-use crate::physics::models::{ModelBuildError, ModelKind};
+use crate::physics::models::{CeInputs, ModelBuildError, ModelKind};
 use crate::physics::mtu::{FibreState, Mechanics, Mtu, TendonEnd};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::params::JointParams;
@@ -253,8 +253,27 @@ impl Plant {
 
     /// Muscle i's fibre length at state y, m.
     pub fn fibre_length(&self, y: &[f64], i: usize, inputs: &Inputs) -> f64 {
-        let end = self.tendon_end(y, i, inputs);
-        self.mtus[i].fibre_length(self.muscle_state(y, i), end)
+        match self.mtus[i].mechanics {
+            // Only a rigid tendon's fibre needs the path; the others' length is their state.
+            Mechanics::Rigid => {
+                let end = self.tendon_end(y, i, inputs);
+                self.mtus[i].fibre_length(self.muscle_state(y, i), end)
+            }
+            Mechanics::Massed | Mechanics::Equilibrium => y[self.offsets[i]],
+        }
+    }
+
+    /// What muscle i's contractile element sees at state y under activation a: a fibre with mass
+    /// reads it from its state alone, a massless one from its balance with the tendon.
+    pub fn ce_inputs(&self, y: &[f64], i: usize, activation: f64, inputs: &Inputs) -> CeInputs {
+        let (mtu, s) = (&self.mtus[i], self.muscle_state(y, i));
+        match mtu.mechanics {
+            Mechanics::Massed => mtu.ce_inputs(activation, s[0], s[1]),
+            Mechanics::Equilibrium | Mechanics::Rigid => {
+                mtu.fibre_state(activation, s, self.tendon_end(y, i, inputs))
+                    .ce
+            }
+        }
     }
 
     /// Muscle i's fibre and tendon at state y under activation a (docs/model.md §5b).
@@ -272,8 +291,8 @@ impl Plant {
         inputs: &Inputs,
         terms: &ExcitationTerms,
     ) -> MetabolicSample {
-        let end = self.tendon_end(y, i, inputs);
-        self.mtus[i].metabolic(terms, activation, self.muscle_state(y, i), end)
+        let ce = self.ce_inputs(y, i, activation, inputs);
+        self.mtus[i].metabolic(terms, activation, &ce, self.muscle_state(y, i))
     }
 
     /// `dy/dt` at state y with activations `act`; `t` is the time within the tick (it only

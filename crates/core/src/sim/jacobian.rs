@@ -19,7 +19,7 @@
 
 use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadSystem};
 use crate::physics::joint;
-use crate::physics::mtu::Mechanics;
+use crate::physics::mtu::{Mechanics, TendonEnd};
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Anchor;
 
@@ -34,13 +34,14 @@ pub(crate) struct JacobianScratch {
 }
 
 impl JacobianScratch {
-    /// Room for muscles of up to `n` state variables.
-    pub fn new(n: usize) -> Self {
+    /// Room for muscles of up to `n` state variables in a plant of `dim` (no allocation when
+    /// a Jacobian is evaluated).
+    pub fn new(n: usize, dim: usize) -> Self {
         Self {
             s: vec![0.0; n],
             ds: vec![0.0; n],
             scales: vec![0.0; n],
-            y: Vec::new(),
+            y: Vec::with_capacity(dim),
         }
     }
 }
@@ -77,6 +78,12 @@ pub(crate) fn eval_jacobian(
         core[(2 * j + 1) * nc + 2 * j] = d_theta / p.inertia;
     }
     let mut widest = 0;
+    // A copy of the state whose joint entries the massless muscles' differences perturb, made
+    // once per Jacobian (its room is kept from one to the next).
+    if plant.mtus.iter().any(|m| m.mechanics != Mechanics::Massed) {
+        scratch.y.clear();
+        scratch.y.extend_from_slice(y);
+    }
     for (i, mtu) in plant.mtus.iter().enumerate() {
         let o = plant.offset(i);
         let n = mtu.state_dim();
@@ -85,10 +92,13 @@ pub(crate) fn eval_jacobian(
         leaf.to_core.clear();
         leaf.from_core.clear();
         let end = plant.tendon_end(y, i, inputs);
-        let path = plant.path_length(y, i);
+        // A massless muscle's tendon force at y (its joint rows read it), from its coupling.
+        let mut f_se = 0.0;
         if mtu.mechanics != Mechanics::Massed {
-            coupling_by_differences(plant, t, y, act, inputs, f0, i, core, scratch, leaf);
-        } else if let (Some(l), Anchor::Path { spans, .. }) = (path, &plant.anchors[i]) {
+            f_se = coupling_by_differences(plant, t, y, act, inputs, f0, i, core, scratch, leaf);
+        } else if let (TendonEnd::Path { length: l, .. }, Anchor::Path { spans, .. }) =
+            (end, &plant.anchors[i])
+        {
             let l_m = y[o];
             let l_t = l - l_m;
             let (f_se, k_se) = (mtu.tendon.force(l_t), mtu.tendon.stiffness(l_t));
@@ -118,11 +128,6 @@ pub(crate) fn eval_jacobian(
         mtu.scales(scales);
         // A massless muscle's tendon force follows its own state: the joint rows see that.
         let force_rows = mtu.mechanics != Mechanics::Massed;
-        let f_se = if force_rows {
-            mtu.derivatives(t, act[i], s, end, ds)
-        } else {
-            0.0
-        };
         for c in 0..n {
             let h = 1e-7 * s[c].abs().max(scales[c]);
             let keep = s[c];
@@ -152,7 +157,8 @@ pub(crate) fn eval_jacobian(
 /// Muscle i's coupling to the joints it spans, for a muscle without mass (docs/model.md §5b),
 /// by forward differences in each spanned joint's angle and velocity: its rows' dependence on
 /// them (`from_core`) and the joints' torque rows' (`core`). Its own rows' dependence on its
-/// state, and the torque rows' on it, are left to the own block.
+/// state, and the torque rows' on it, are left to the own block. `scratch.y` holds a copy of
+/// `y`, perturbed and restored here. Returns the muscle's tendon force at `y`, N.
 #[allow(clippy::too_many_arguments)]
 fn coupling_by_differences(
     plant: &Plant,
@@ -165,14 +171,12 @@ fn coupling_by_differences(
     core: &mut [f64],
     scratch: &mut JacobianScratch,
     leaf: &mut crate::integrator::arrowhead::LeafJacobian,
-) {
+) -> f64 {
     let nc = 2 * plant.joint_count();
     let (mtu, o, n) = (&plant.mtus[i], plant.offset(i), plant.mtus[i].state_dim());
     let JacobianScratch { s, ds, y: yp, .. } = scratch;
     let (s, ds) = (&mut s[..n], &mut ds[..n]);
     s.copy_from_slice(&y[o..o + n]);
-    yp.clear();
-    yp.extend_from_slice(y);
     let spans = plant.spans(i);
     // The muscle's torque on each joint it spans at the unperturbed state.
     let f_se = mtu.derivatives(t, act[i], s, plant.tendon_end(y, i, inputs), ds);
@@ -200,6 +204,7 @@ fn coupling_by_differences(
             yp[c] = keep;
         }
     }
+    f_se
 }
 
 /// Anything that can lend the plant and the tick's inputs gets the arrowhead structure.

@@ -118,7 +118,7 @@ impl Part {
             memo: RefCell::new(ActivationMemo {
                 t: f64::NAN,
                 a: vec![0.0; m],
-                scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0)),
+                scratch: JacobianScratch::new(dims.iter().copied().max().unwrap_or(0), n),
             }),
             stepper: match stepping {
                 // Third order for ticks one step covers, fourth while the state moves fast, for
