@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""OpenSim's own evaluation of the curve sets `degroote2016` and `thelen2003`, the reference that
+"""OpenSim's own evaluation of the curve sets `degroote2016`, `thelen2003` and `millard2012`, the
+reference that
 crates/core/tests/opensim_curves.rs compares the Rust curves (crates/core/src/physics/curves/)
 against. Writes tests/reference/opensim_curves.csv: a comment line naming the OpenSim version and
 this command, then `set,curve,x,value`, one row per point, numbers in Python's shortest
@@ -24,6 +25,11 @@ and the fibre velocity from it (`calcdlceN`); the rows are those pairs, (velocit
 at activation 1 and at activation 0.5 (Thelen's maximum velocity scales with 0.25 + 0.75 a).
 Every x written is the argument OpenSim evaluated (read back from the model), not the one asked
 for.
+
+Millard2012EquilibriumMuscle's curves are OpenSim components of their own (ActiveForceLengthCurve,
+ForceVelocityCurve, FiberForceLengthCurve, TendonForceLengthCurve), each called directly with its
+default properties: value, first derivative and (passive and tendon) integral, also past the
+curves' ends, where they continue linearly.
 """
 
 import argparse
@@ -156,12 +162,39 @@ def thelen_balance(lce, e0=0.6, kpe=5.0, kshape=0.45):
     return -fpe / fal
 
 
+def millard_rows():
+    active = osim.ActiveForceLengthCurve()
+    fv = osim.ForceVelocityCurve()
+    passive = osim.FiberForceLengthCurve()
+    tendon = osim.TendonForceLengthCurve()
+    rows = []
+
+    def add(curve, xs, f):
+        rows.extend(("millard2012", curve, x, f(x)) for x in xs)
+
+    lengths = linspace(0.3, 1.95)
+    add("active_force_length", lengths, active.calcValue)
+    add("active_force_length_derivative", lengths, lambda x: active.calcDerivative(x, 1))
+    passive_lengths = linspace(0.9, 1.9)
+    add("passive_force_length", passive_lengths, passive.calcValue)
+    add("passive_force_length_derivative", passive_lengths, lambda x: passive.calcDerivative(x, 1))
+    add("passive_force_length_integral", passive_lengths, passive.calcIntegral)
+    velocities = linspace(-1.1, 1.1)
+    add("force_velocity", velocities, fv.calcValue)
+    add("force_velocity_derivative", velocities, lambda x: fv.calcDerivative(x, 1))
+    tendon_lengths = linspace(0.95, 1.09)
+    add("tendon_force_length", tendon_lengths, tendon.calcValue)
+    add("tendon_force_length_derivative", tendon_lengths, lambda x: tendon.calcDerivative(x, 1))
+    add("tendon_force_length_integral", tendon_lengths, tendon.calcIntegral)
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=os.path.join(ROOT, "tests", "reference", "opensim_curves.csv"))
     args = ap.parse_args()
     osim.Logger.setLevelString("warn")
-    rows = degroote_rows() + thelen_rows()
+    rows = degroote_rows() + thelen_rows() + millard_rows()
     with open(args.out, "w") as f:
         f.write(f"# OpenSim {osim.GetVersionAndDate()} (PyPI opensim==4.6); written by "
                 f"`.venv/bin/python scripts/opensim_curves.py`\n")

@@ -3,7 +3,7 @@
 are prescribed: the reference the engine's muscle is compared against.
 
     .venv/bin/python scripts/opensim_muscle.py --inputs IN.csv --out OUT.csv \\
-        --muscle degroote2016|thelen2003 --tendon elastic|rigid --fmax N --lopt M --lts M \\
+        --muscle degroote2016|thelen2003|millard2012 --tendon elastic|rigid --fmax N --lopt M --lts M \\
         --vmax M_PER_S [--pennation RAD] [--tendon-strain X] [--passive-strain X] [--damping B]
 
 IN.csv: a header `t,activation,mtu_length`, then rows on a time grid (SI units); both inputs are
@@ -25,11 +25,17 @@ or FmaxTendonStrain / FmaxMuscleStrain (Thelen2003Muscle); `--active-force-width
 (DeGrooteFregly2016Muscle) and `--kshape-active`, `--kshape-passive`, `--af`, `--flen`
 (Thelen2003Muscle) set those properties; `--damping` sets fiber_damping
 (damping force along the fibre = fiber_damping Fmax v / vmax); Thelen2003Muscle has none.
+For Millard2012EquilibriumMuscle `--tendon-strain` / `--passive-strain` set the
+strain_at_one_norm_force of its TendonForceLengthCurve / FiberForceLengthCurve.
 
 DeGrooteFregly2016Muscle: ignore_activation_dynamics, so activation = control. Elastic tendon:
 the explicit tendon-compliance mode (the default); its one state is the normalised tendon force,
 the fibre velocity follows from the force balance (without the damping term) through the inverse
 force-velocity curve. Rigid tendon: ignore_tendon_compliance.
+
+Millard2012EquilibriumMuscle: as DeGrooteFregly2016Muscle, ignore_activation_dynamics and, for
+a rigid tendon, ignore_tendon_compliance; elastic, its state is the fibre length and, with
+fiber_damping > 0, its fibre velocity solves the damped force balance by Newton's method.
 
 Thelen2003Muscle refuses both flags in OpenSim 4.6 ("flag is not currently implemented"). Its
 activation stays a state, da/dt = (u - a)/tau, tau = t_act (0.5 + 1.5 a) if u > a else
@@ -134,6 +140,23 @@ def build(args, t, a, l, rigid_eval):
                               (args.af, mu.set_Af), (args.flen, mu.set_Flen)):
             if value is not None:
                 setter(value)
+    elif args.muscle == "millard2012":
+        mu = osim.Millard2012EquilibriumMuscle("muscle", args.fmax, args.lopt, args.lts,
+                                               args.pennation)
+        mu.set_fiber_damping(args.damping)
+        # Its activation floor (minimum_activation, 0.01) is needed only by an undamped elastic
+        # fibre; the engine's activation reaches 0 elsewhere. The floor reaches the activation
+        # model (which clamps the control also when activation dynamics are ignored) only while
+        # they are not ignored, hence the order.
+        if args.damping > 0.0 or args.tendon == "rigid":
+            mu.set_minimum_activation(0.0)
+            mu.finalizeFromProperties()
+        mu.set_ignore_activation_dynamics(True)
+        mu.set_ignore_tendon_compliance(args.tendon == "rigid")
+        if args.tendon_strain is not None:
+            mu.upd_TendonForceLengthCurve().set_strain_at_one_norm_force(args.tendon_strain)
+        if args.passive_strain is not None:
+            mu.upd_FiberForceLengthCurve().set_strain_at_one_norm_force(args.passive_strain)
     else:
         mu = osim.DeGrooteFregly2016Muscle()
         mu.setName("muscle")
@@ -170,8 +193,9 @@ def build(args, t, a, l, rigid_eval):
         model.addController(controller)
     state = model.initSystem()
     muscle = model.getMuscles().get("muscle")
-    muscle = (osim.Thelen2003Muscle if thelen else osim.DeGrooteFregly2016Muscle).safeDownCast(
-        muscle)
+    cast = {"thelen2003": osim.Thelen2003Muscle, "degroote2016": osim.DeGrooteFregly2016Muscle,
+            "millard2012": osim.Millard2012EquilibriumMuscle}[args.muscle]
+    muscle = cast.safeDownCast(muscle)
     fn = None
     if not (thelen and rigid_eval):
         controller = osim.PrescribedController.safeDownCast(
@@ -228,7 +252,7 @@ def evaluate_rigid(args, t, a, l):
         s.setTime(tk)
         coord.setValue(s, l[k])
         coord.setSpeedValue(s, (l[j + 1] - l[j]) / (t[j + 1] - t[j]))
-        if args.muscle == "degroote2016":
+        if args.muscle != "thelen2003":
             move(fn, control(t, a, j, None))
             rows.append(sample(model, mu, s))
             continue
@@ -249,7 +273,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--inputs", required=True)
     ap.add_argument("--out", required=True)
-    ap.add_argument("--muscle", required=True, choices=["degroote2016", "thelen2003"])
+    ap.add_argument("--muscle", required=True,
+                    choices=["degroote2016", "thelen2003", "millard2012"])
     ap.add_argument("--tendon", required=True, choices=["elastic", "rigid"])
     ap.add_argument("--fmax", type=float, required=True, help="N")
     ap.add_argument("--lopt", type=float, required=True, help="m")
@@ -258,7 +283,8 @@ def main():
     ap.add_argument("--pennation", type=float, default=0.0, help="rad, at optimal length")
     ap.add_argument("--tendon-strain", type=float)
     ap.add_argument("--passive-strain", type=float)
-    ap.add_argument("--damping", type=float, default=0.0, help="degroote2016 only")
+    ap.add_argument("--damping", type=float, default=0.0,
+                    help="degroote2016 and millard2012 (fiber_damping)")
     ap.add_argument("--active-force-width-scale", type=float, help="degroote2016 only")
     ap.add_argument("--kshape-active", type=float, help="thelen2003 only (KshapeActive)")
     ap.add_argument("--kshape-passive", type=float, help="thelen2003 only (KshapePassive)")

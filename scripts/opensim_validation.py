@@ -80,6 +80,9 @@ def opensim(muscle, inputs_csv, out_csv):
         "--lts", repr(muscle["l_ts"]), "--vmax", repr(muscle["v_max"]),
         "--pennation", repr(muscle["pennation"]),
     ]
+    # The fibre damper b_m (N s/m) as OpenSim's fiber_damping, in Fmax per vmax.
+    if muscle.get("b_m", 0.0) > 0.0:
+        args += ["--damping", repr(muscle["b_m"] * muscle["v_max"] / muscle["f_max"])]
     # The curve sets' constants the configuration sets, under OpenSim's names.
     for key in ("tendon_strain", "passive_strain", "active_force_width_scale", "kshape_active",
                 "kshape_passive", "af", "flen"):

@@ -5,7 +5,7 @@
 //! the configuration's refusals.
 
 use muscle_actuator::config::{ActuatorConfig, ConfigError};
-use muscle_actuator::physics::curves::{degroote2016 as dgf, thelen2003, CurveSet};
+use muscle_actuator::physics::curves::{degroote2016 as dgf, thelen2003, Curve as Named, CurveSet};
 use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::mtu::{Mtu, TendonEnd};
 use muscle_actuator::physics::observables::EnergeticsOutputs;
@@ -16,7 +16,11 @@ use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal
 use muscle_actuator::sim::schedule::Schedule;
 use muscle_actuator::sim::simulation::default_stepping;
 
-const OPENSIM_SETS: [CurveSet; 2] = [CurveSet::DeGroote2016, CurveSet::Thelen2003];
+const OPENSIM_SETS: [CurveSet; 3] = [
+    CurveSet::DeGroote2016,
+    CurveSet::Thelen2003,
+    CurveSet::Millard2012,
+];
 
 fn params(curves: CurveSet) -> MuscleParams {
     let mut p = MuscleParams::default();
@@ -41,8 +45,18 @@ fn curves(set: CurveSet) -> (Curve, Curve, Curve) {
             |x| thelen2003::active_force_length(x, 0.45),
             |x| thelen2003::passive_force_length(x, 0.6, 5.0),
         ),
+        // Millard's curves are built per call from their corners (docs/model.md §4b).
+        CurveSet::Millard2012 => (
+            |x| millard(Named::TendonForceLength, x),
+            |x| millard(Named::ActiveForceLength, x),
+            |x| millard(Named::PassiveForceLength, x),
+        ),
         CurveSet::Paper => unreachable!("the paper's springs are not normalised"),
     }
+}
+
+fn millard(curve: Named, x: f64) -> f64 {
+    CurveSet::Millard2012.evaluate(curve, x).unwrap()
 }
 
 /// The fibre length where `f_T((L - l_m)/l_ts) = a f_L(l_m/l_opt) + f_PE(l_m/l_opt)`, by
@@ -231,6 +245,7 @@ fn the_hill_element_uses_the_sets_force_length_and_force_velocity() {
             let (l_m, v) = (l * p.l_opt, v * p.v_max);
             let f_v = match set {
                 CurveSet::DeGroote2016 => dgf::force_velocity(v / p.v_max),
+                CurveSet::Millard2012 => millard(Named::ForceVelocity, v / p.v_max),
                 _ => thelen2003::force_velocity(v / p.v_max, a, &Default::default()),
             };
             assert_eq!(mtu.overlap(l_m), f_l(l));
@@ -310,11 +325,11 @@ fn bad_curve_settings_are_refused_on_one_line() {
         ),
         (
             "tendon_strain = 0.05",
-            &["muscle.flexor.tendon_strain", "degroote2016", "k_te"],
+            &["muscle.flexor.tendon_strain", "OpenSim curve set", "k_te"],
         ),
         (
             "curves = \"paper\"\npassive_strain = 0.5",
-            &["muscle.flexor.passive_strain", "thelen2003", "k_me"],
+            &["muscle.flexor.passive_strain", "OpenSim curve set", "k_me"],
         ),
         (
             "curves = \"degroote2016\"\ntendon_strain = 0.0",
@@ -323,6 +338,10 @@ fn bad_curve_settings_are_refused_on_one_line() {
         (
             "curves = \"thelen2003\"\npassive_strain = -0.6",
             &["muscle.flexor.passive_strain", "must be > 0"],
+        ),
+        (
+            "curves = \"millard2012\"\npassive_strain = 5.0",
+            &["muscle.flexor.passive_strain", "< 5", "millard2012"],
         ),
         (
             "curves = \"thelen2003\"\ntendon_strain = nan",

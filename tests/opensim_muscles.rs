@@ -1,7 +1,8 @@
 //! The muscles against OpenSim 4.6 itself (docs/validation.md "Against OpenSim"): for every
-//! reference `tests/reference/opensim/CONFIG__MOTION.csv` (OpenSim's DeGrooteFregly2016Muscle or
-//! Thelen2003Muscle, elastic or rigid tendon, pennation 0 or 0.2 rad, under a clamped pulse, a
-//! ramp stretch and a sinusoid; scripts/opensim_validation.py), the same muscle here
+//! reference `tests/reference/opensim/CONFIG__MOTION.csv` (OpenSim's DeGrooteFregly2016Muscle,
+//! Thelen2003Muscle or Millard2012EquilibriumMuscle, elastic or rigid tendon, pennation 0 or 0.2
+//! rad, under a clamped pulse, a ramp stretch and a sinusoid; scripts/opensim_validation.py), the
+//! same muscle here
 //! (`tests/opensim/CONFIG.config.toml`: an equilibrium Hill fibre with the set's curves, the
 //! default stepping) under the same motion (`tests/opensim/MOTION.scenario.toml`) gives the
 //! tendon force and fibre length OpenSim does, within the bounds below, from 0.1 s on (before,
@@ -62,7 +63,7 @@ fn the_muscles_agree_with_opensim() {
         .filter(|p| p.extension().is_some_and(|e| e == "csv"))
         .collect();
     refs.sort();
-    assert_eq!(refs.len(), 24, "8 muscles × 3 motions in {dir:?}");
+    assert_eq!(refs.len(), 39, "13 muscles × 3 motions in {dir:?}");
     println!(
         "{:<40} {:>14} {:>12} {:>14} {:>12}",
         "case", "RMS ΔF %Fmax", "max ΔF N", "RMS Δl_m µm", "max Δl_m µm"

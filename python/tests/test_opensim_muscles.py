@@ -1,7 +1,7 @@
 """OpenSim 4.6 itself, simulated now, against the muscle references the Rust tests read.
 
-tests/opensim_muscles.rs compares the engine's equilibrium Hill muscles (DeGroote-Fregly 2016 and
-Thelen 2003 curves, elastic and rigid tendons, pennation 0 and 0.2 rad) with
+tests/opensim_muscles.rs compares the engine's equilibrium Hill muscles (DeGroote-Fregly 2016,
+Thelen 2003 and Millard 2012 curves, elastic and rigid tendons, pennation 0 and 0.2 rad) with
 tests/reference/opensim/*.csv; this test regenerates those files with the installed OpenSim
 (scripts/opensim_validation.py: the installed engine's run gives the inputs, OpenSim simulates the
 muscle on them) and requires them to be the committed ones: the inputs exactly, OpenSim's
@@ -36,7 +36,7 @@ def test_the_committed_muscle_references_are_what_opensim_computes(tmp_path):
         timeout=900,
     )
     committed = sorted(f for f in os.listdir(REFERENCES) if f.endswith(".csv"))
-    assert len(committed) == 24
+    assert len(committed) == 39
     assert sorted(os.listdir(tmp_path)) == committed
     for name in committed:
         fresh, ref = read(tmp_path / name), read(os.path.join(REFERENCES, name))

@@ -1,9 +1,11 @@
 //! The parallel elastic element and its damper (docs/model.md §4, paper eqs. 6–7), with the
 //! curves of the muscle's set (§4b).
 
-use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
+use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
+use std::sync::Arc;
 
 /// The parallel element's spring F_P(l_m).
 pub fn parallel_spring(p: &MuscleParams) -> ExpLinearSpring {
@@ -18,20 +20,21 @@ pub fn parallel_spring(p: &MuscleParams) -> ExpLinearSpring {
 }
 
 /// The passive fibre strain at one normalised force in force: the configured `passive_strain`,
-/// else the curve set's default (0.6 for both OpenSim sets; NaN for the paper's set, whose
-/// spring has none).
+/// else the curve set's default (0.6 for DeGroote's and Thelen's, 0.7 for Millard's; NaN for the
+/// paper's set, whose spring has none).
 pub fn passive_strain(p: &MuscleParams) -> f64 {
     let default = match p.curves {
         CurveSet::Paper => f64::NAN,
         CurveSet::DeGroote2016 => degroote2016::DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE,
         CurveSet::Thelen2003 => thelen2003::DEFAULT_FMAX_MUSCLE_STRAIN,
+        CurveSet::Millard2012 => millard2012::DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE,
     };
     p.passive_strain.unwrap_or(default)
 }
 
 /// A muscle's parallel elastic element: the paper's spring, or an OpenSim set's normalised
 /// passive curve scaled by Fmax and l_opt, `F_PE = Fmax f_PE(l_m / l_opt)`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum ParallelElement {
     /// The paper's exponential-then-linear spring (§4).
     Paper(ExpLinearSpring),
@@ -55,6 +58,15 @@ pub enum ParallelElement {
         /// Passive shape k_PE (`KshapePassive`).
         kshape: f64,
     },
+    /// Millard 2012's quintic Bézier curve: zero up to l_opt.
+    Millard2012 {
+        /// Fmax, N.
+        f_max: f64,
+        /// Optimal fibre length l_opt, m.
+        l_opt: f64,
+        /// The curve of l̃ ([`millard2012::passive_force_length_curve`]).
+        curve: Arc<SegmentedBezier>,
+    },
 }
 
 impl ParallelElement {
@@ -76,6 +88,14 @@ impl ParallelElement {
                     .kshape_passive
                     .unwrap_or(thelen2003::DEFAULT_KSHAPE_PASSIVE),
             },
+            CurveSet::Millard2012 => ParallelElement::Millard2012 {
+                f_max,
+                l_opt,
+                curve: Arc::new(
+                    millard2012::passive_force_length_curve(passive_strain(p))
+                        .unwrap_or_else(|_| SegmentedBezier::undefined()),
+                ),
+            },
         }
     }
 
@@ -95,6 +115,11 @@ impl ParallelElement {
                 strain,
                 kshape,
             } => f_max * thelen2003::passive_force_length(l_m / l_opt, strain, kshape),
+            ParallelElement::Millard2012 {
+                f_max,
+                l_opt,
+                ref curve,
+            } => f_max * curve.value(l_m / l_opt),
         }
     }
 
@@ -117,11 +142,16 @@ impl ParallelElement {
                 let x = l_m / l_opt;
                 f_max / l_opt * thelen2003::passive_force_length_derivative(x, strain, kshape)
             }
+            ParallelElement::Millard2012 {
+                f_max,
+                l_opt,
+                ref curve,
+            } => f_max / l_opt * curve.slope(l_m / l_opt),
         }
     }
 
-    /// Strain energy, J: `∫ F` from the length where the force is zero (the paper's and
-    /// Thelen's slack length, l_ms and l_opt; DeGroote's 0.2 l_opt, as OpenSim has it).
+    /// Strain energy, J: `∫ F` from the length where the force is zero (the paper's, Thelen's
+    /// and Millard's slack length, l_ms and l_opt; DeGroote's 0.2 l_opt, as OpenSim has it).
     pub fn energy(&self, l_m: f64) -> f64 {
         match *self {
             ParallelElement::Paper(ref s) => s.energy(l_m),
@@ -139,11 +169,16 @@ impl ParallelElement {
                 let x = l_m / l_opt;
                 f_max * l_opt * thelen2003::passive_force_length_integral(x, strain, kshape)
             }
+            ParallelElement::Millard2012 {
+                f_max,
+                l_opt,
+                ref curve,
+            } => f_max * l_opt * curve.integral(l_m / l_opt),
         }
     }
 
     /// Fibre length at which the element carries `force`, m; for a force <= 0 the length where
-    /// its force is zero (l_ms, 0.2 l_opt for DeGroote's, l_opt for Thelen's).
+    /// its force is zero (l_ms, 0.2 l_opt for DeGroote's, l_opt for Thelen's and Millard's).
     pub fn length_at_force(&self, force: f64) -> f64 {
         match *self {
             ParallelElement::Paper(ref s) => s.length_at_force(force),
@@ -164,6 +199,11 @@ impl ParallelElement {
                 let f = force / f_max;
                 l_opt * thelen2003::passive_force_length_inverse(f, strain, kshape)
             }
+            ParallelElement::Millard2012 {
+                f_max,
+                l_opt,
+                ref curve,
+            } => l_opt * curve.argument_at(force.max(0.0) / f_max),
         }
     }
 }

@@ -305,6 +305,11 @@ fn is_zero(x: &f64) -> bool {
     *x == 0.0
 }
 
+/// The largest passive strain Millard 2012's passive curve can be built with: its foot's slope
+/// (`stiffness_at_low_force`, 0.2) must stay below the mean slope `1 / strain`
+/// (OpenSim's `createFiberForceLengthCurve` check).
+const MILLARD_MAX_PASSIVE_STRAIN: f64 = 5.0;
+
 /// Relative force jump at l_tc above which a configured l_tc is reported as discontinuous.
 pub(crate) const TENDON_CONTINUITY_TOLERANCE: f64 = 1e-3;
 
@@ -327,20 +332,30 @@ impl MuscleParams {
             (
                 "tendon_strain",
                 self.tendon_strain,
-                "applies to curves = \"degroote2016\" or \"thelen2003\" only (the paper's \
-                 tendon is set by k_te, k_tl, k_t)",
+                "applies to an OpenSim curve set only (the paper's tendon is set by k_te, k_tl, \
+                 k_t)",
             ),
             (
                 "passive_strain",
                 self.passive_strain,
-                "applies to curves = \"degroote2016\" or \"thelen2003\" only (the paper's \
-                 parallel element is set by k_me, k_ml, k_m)",
+                "applies to an OpenSim curve set only (the paper's parallel element is set by \
+                 k_me, k_ml, k_m)",
             ),
         ];
         for (name, value, paper_rule) in strains {
             let Some(v) = value else { continue };
             if self.curves.is_paper() {
                 c.fail(name, v, paper_rule);
+            } else if name == "passive_strain"
+                && self.curves == CurveSet::Millard2012
+                && !(v > 0.0 && v < MILLARD_MAX_PASSIVE_STRAIN)
+            {
+                c.fail(
+                    name,
+                    v,
+                    "must be > 0 and < 5 for curves = \"millard2012\" (its passive curve's foot, \
+                     slope 0.2, must be shallower than its mean slope 1/strain)",
+                );
             } else {
                 c.positive(name, v);
             }

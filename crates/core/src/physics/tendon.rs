@@ -1,9 +1,11 @@
 //! The series elastic element, the tendon (docs/model.md §4, paper eqs. 4–5), with the curves of
 //! the muscle's set (§4b).
 
-use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
+use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
+use std::sync::Arc;
 
 /// The tendon's spring, with l_tc derived by force continuity unless configured.
 pub fn tendon(p: &MuscleParams) -> ExpLinearSpring {
@@ -18,20 +20,21 @@ pub fn tendon(p: &MuscleParams) -> ExpLinearSpring {
 }
 
 /// The tendon strain at one normalised force in force: the configured `tendon_strain`, else
-/// the curve set's default (DeGroote 2016: 0.049, Thelen 2003: 0.04; NaN for the paper's set,
-/// whose tendon has none).
+/// the curve set's default (DeGroote 2016 and Millard 2012: 0.049, Thelen 2003: 0.04; NaN for the
+/// paper's set, whose tendon has none).
 pub fn tendon_strain(p: &MuscleParams) -> f64 {
     let default = match p.curves {
         CurveSet::Paper => f64::NAN,
         CurveSet::DeGroote2016 => degroote2016::DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE,
         CurveSet::Thelen2003 => thelen2003::DEFAULT_FMAX_TENDON_STRAIN,
+        CurveSet::Millard2012 => millard2012::DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE,
     };
     p.tendon_strain.unwrap_or(default)
 }
 
 /// A muscle's tendon: the paper's spring, or an OpenSim set's normalised curve scaled by Fmax and
 /// the slack length, `F_T = Fmax f_T(l_T / l_s)`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Tendon {
     /// The paper's exponential-then-linear spring (§4).
     Paper(ExpLinearSpring),
@@ -53,6 +56,15 @@ pub enum Tendon {
         /// Strain at one normalised force ε₀T.
         strain: f64,
     },
+    /// Millard 2012's quintic Bézier curve, zero when slack.
+    Millard2012 {
+        /// Fmax, N.
+        f_max: f64,
+        /// Slack length l_s, m.
+        l_s: f64,
+        /// The curve of l̃_T ([`millard2012::tendon_force_length_curve`]).
+        curve: Arc<SegmentedBezier>,
+    },
 }
 
 impl Tendon {
@@ -71,6 +83,14 @@ impl Tendon {
                 l_s,
                 strain: tendon_strain(p),
             },
+            CurveSet::Millard2012 => Tendon::Millard2012 {
+                f_max,
+                l_s,
+                curve: Arc::new(
+                    millard2012::tendon_force_length_curve(tendon_strain(p))
+                        .unwrap_or_else(|_| SegmentedBezier::undefined()),
+                ),
+            },
         }
     }
 
@@ -85,6 +105,11 @@ impl Tendon {
             Tendon::Thelen2003 { f_max, l_s, strain } => {
                 f_max * thelen2003::tendon_force_length(l / l_s, strain)
             }
+            Tendon::Millard2012 {
+                f_max,
+                l_s,
+                ref curve,
+            } => f_max * curve.value(l / l_s),
         }
     }
 
@@ -99,6 +124,11 @@ impl Tendon {
             Tendon::Thelen2003 { f_max, l_s, strain } => {
                 f_max / l_s * thelen2003::tendon_force_length_derivative(l / l_s, strain)
             }
+            Tendon::Millard2012 {
+                f_max,
+                l_s,
+                ref curve,
+            } => f_max / l_s * curve.slope(l / l_s),
         }
     }
 
@@ -113,6 +143,11 @@ impl Tendon {
             Tendon::Thelen2003 { f_max, l_s, strain } => {
                 f_max * l_s * thelen2003::tendon_force_length_integral(l / l_s, strain)
             }
+            Tendon::Millard2012 {
+                f_max,
+                l_s,
+                ref curve,
+            } => f_max * l_s * curve.integral(l / l_s),
         }
     }
 
@@ -121,7 +156,11 @@ impl Tendon {
     pub fn length_at_force(&self, force: f64) -> f64 {
         match *self {
             Tendon::Paper(ref s) => s.length_at_force(force),
-            Tendon::DeGroote2016 { l_s, .. } | Tendon::Thelen2003 { l_s, .. } if force <= 0.0 => {
+            Tendon::DeGroote2016 { l_s, .. }
+            | Tendon::Thelen2003 { l_s, .. }
+            | Tendon::Millard2012 { l_s, .. }
+                if force <= 0.0 =>
+            {
                 l_s
             }
             Tendon::DeGroote2016 { f_max, l_s, k_t } => {
@@ -130,6 +169,11 @@ impl Tendon {
             Tendon::Thelen2003 { f_max, l_s, strain } => {
                 l_s * thelen2003::tendon_force_length_inverse(force / f_max, strain)
             }
+            Tendon::Millard2012 {
+                f_max,
+                l_s,
+                ref curve,
+            } => l_s * curve.argument_at(force / f_max),
         }
     }
 }

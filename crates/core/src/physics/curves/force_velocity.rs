@@ -2,8 +2,10 @@
 //! and the velocity at which it balances a force (an equilibrium fibre, §5b).
 
 use crate::physics::contractile::hill_equation::{force_velocity, force_velocity_derivative};
-use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
+use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
+use std::sync::Arc;
 
 /// The fastest an equilibrium fibre moves, in units of vmax: where no velocity balances the
 /// force (an element without active force and no damper, or a force beyond what the curve
@@ -19,7 +21,7 @@ const BALANCE_MAX_ITERATIONS: usize = 200;
 /// A Hill element's force–velocity relation of its curve set (docs/model.md §3, §4b), at the
 /// fibre's lengthening velocity v (m/s) normalised as `ṽ = v / vmax` (vmax in m/s, OpenSim's
 /// `max_contraction_velocity · l_opt`).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum HillForceVelocity {
     /// The paper's eq. (2) and the project's eccentric continuation ([`force_velocity`]).
     Paper {
@@ -40,6 +42,13 @@ pub enum HillForceVelocity {
         v_max: f64,
         /// Its shape (Af, Flen; OpenSim's extrapolation threshold).
         shape: thelen2003::ForceVelocityShape,
+    },
+    /// Millard 2012's quintic Bézier curve ([`millard2012::force_velocity_curve`]).
+    Millard2012 {
+        /// vmax, m/s.
+        v_max: f64,
+        /// The curve of ṽ.
+        curve: Arc<SegmentedBezier>,
     },
 }
 
@@ -64,6 +73,17 @@ impl HillForceVelocity {
                     },
                 }
             }
+            CurveSet::Millard2012 => HillForceVelocity::Millard2012 {
+                v_max,
+                curve: Arc::new({
+                    let shape = millard2012::Shape::of(p);
+                    millard2012::force_velocity_curve(
+                        shape.concentric_slope_at_vmax,
+                        shape.eccentric_slope_at_vmax,
+                    )
+                    .unwrap_or_else(|_| SegmentedBezier::undefined())
+                }),
+            },
         }
     }
 
@@ -72,7 +92,8 @@ impl HillForceVelocity {
         match *self {
             HillForceVelocity::Paper { v_max, .. }
             | HillForceVelocity::DeGroote2016 { v_max }
-            | HillForceVelocity::Thelen2003 { v_max, .. } => v_max,
+            | HillForceVelocity::Thelen2003 { v_max, .. }
+            | HillForceVelocity::Millard2012 { v_max, .. } => v_max,
         }
     }
 
@@ -90,6 +111,7 @@ impl HillForceVelocity {
             HillForceVelocity::Thelen2003 { v_max, ref shape } => {
                 thelen2003::force_velocity_derivative(v / v_max, activation, shape) / v_max
             }
+            HillForceVelocity::Millard2012 { v_max, ref curve } => curve.slope(v / v_max) / v_max,
         }
     }
 
@@ -121,6 +143,9 @@ impl HillForceVelocity {
             HillForceVelocity::Thelen2003 { v_max, ref shape } => {
                 thelen2003::force_velocity_inverse(g, activation, shape) * v_max
             }
+            // OpenSim's ForceVelocityInverseCurve is this curve with x and y exchanged; a flat
+            // end (the default slopes at ±vmax are 0) saturates at ±vmax.
+            HillForceVelocity::Millard2012 { v_max, ref curve } => curve.argument_at(g) * v_max,
         };
         let bound = BALANCE_VELOCITY_BOUND * self.v_max();
         v.clamp(-bound, bound)
@@ -192,6 +217,7 @@ impl HillForceVelocity {
             HillForceVelocity::Thelen2003 { v_max, ref shape } => {
                 thelen2003::force_velocity(v / v_max, activation, shape)
             }
+            HillForceVelocity::Millard2012 { v_max, ref curve } => curve.value(v / v_max),
         }
     }
 }

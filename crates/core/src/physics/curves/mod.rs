@@ -4,6 +4,8 @@
 //! - [`paper`]: the paper's force–length and force–velocity curves (§3), the default;
 //! - [`degroote2016`]: DeGrooteFregly2016Muscle's curves as OpenSim 4.6 computes them;
 //! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them;
+//! - [`millard2012`]: Millard2012EquilibriumMuscle's quintic Bézier curves as OpenSim 4.6 builds
+//!   them ([`quintic_bezier`]);
 //! - [`overlap`], [`force_velocity`]: a muscle's active force–length and Hill force–velocity
 //!   relations of its set, in SI units (the tendon's and the parallel element's are
 //!   [`crate::physics::tendon::Tendon`] and [`crate::physics::parallel_element::ParallelElement`]).
@@ -14,12 +16,14 @@
 //! a normalised argument: fibre length `l̃ = l_M/l_opt`, fibre velocity `ṽ` (lengthening
 //! positive; 0 and 1 at ṽ = 0 and -1), tendon length `l̃_T = l_T/l_s`. The results are forces
 //! as fractions of the maximum isometric force. tests/reference/opensim_curves.csv holds
-//! OpenSim's own values of the two OpenSim sets (scripts/opensim_curves.py).
+//! OpenSim's own values of the three OpenSim sets (scripts/opensim_curves.py).
 
 pub mod degroote2016;
 pub mod force_velocity;
+pub mod millard2012;
 pub mod overlap;
 pub mod paper;
+pub mod quintic_bezier;
 pub mod thelen2003;
 
 pub use crate::physics::params::curve_set::{CurveSet, UnknownCurveSet};
@@ -68,6 +72,7 @@ impl CurveSet {
             CurveSet::Paper => evaluate_paper(curve, x),
             CurveSet::DeGroote2016 => Some(evaluate_degroote2016(curve, x)),
             CurveSet::Thelen2003 => Some(evaluate_thelen2003(curve, x)),
+            CurveSet::Millard2012 => Some(evaluate_millard2012(curve, x)),
         }
     }
 }
@@ -106,6 +111,26 @@ fn evaluate_thelen2003(curve: Curve, x: f64) -> f64 {
         Curve::ForceVelocity => t::force_velocity(x, 1.0, &t::ForceVelocityShape::default()),
         Curve::TendonForceLength => t::tendon_force_length(x, t::DEFAULT_FMAX_TENDON_STRAIN),
     }
+}
+
+fn evaluate_millard2012(curve: Curve, x: f64) -> f64 {
+    use millard2012 as m;
+    let shape = m::Shape::DEFAULT;
+    let built = match curve {
+        Curve::ActiveForceLength => m::active_force_length_curve(shape.active_minimum),
+        Curve::PassiveForceLength => {
+            m::passive_force_length_curve(m::DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE)
+        }
+        Curve::ForceVelocity => m::force_velocity_curve(
+            shape.concentric_slope_at_vmax,
+            shape.eccentric_slope_at_vmax,
+        ),
+        Curve::TendonForceLength => {
+            m::tendon_force_length_curve(m::DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE)
+        }
+    };
+    // The defaults always form corners (tests below).
+    built.map_or(f64::NAN, |c| c.value(x))
 }
 
 #[cfg(test)]

@@ -2,13 +2,15 @@
 //! overlap factor λ(l_m) that every contractile model reads, of the fibre length in m.
 
 use crate::physics::contractile::force_length::{force_length, force_length_slope};
-use crate::physics::curves::{degroote2016, thelen2003, CurveSet};
+use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::{ForceLengthShape, MuscleParams};
+use std::sync::Arc;
 
 /// A muscle's active force–length relation, the filament-overlap factor λ(l_m) every contractile
 /// model reads (docs/model.md §3, §4b): the paper's eq. (3), or an OpenSim set's curve at
 /// `l_m / l_opt`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum ActiveForceLength {
     /// The paper's parabola or Gaussian ([`force_length`]).
     Paper {
@@ -33,6 +35,13 @@ pub enum ActiveForceLength {
         /// Shape γ (`KshapeActive`).
         kshape: f64,
     },
+    /// Millard 2012's quintic Bézier curve.
+    Millard2012 {
+        /// Optimal fibre length, m.
+        l_opt: f64,
+        /// The curve of l̃ ([`millard2012::active_force_length_curve`]).
+        curve: Arc<SegmentedBezier>,
+    },
 }
 
 impl ActiveForceLength {
@@ -55,6 +64,15 @@ impl ActiveForceLength {
                 l_opt,
                 kshape: p.kshape_active.unwrap_or(thelen2003::DEFAULT_KSHAPE_ACTIVE),
             },
+            CurveSet::Millard2012 => ActiveForceLength::Millard2012 {
+                l_opt,
+                curve: Arc::new(
+                    millard2012::active_force_length_curve(
+                        millard2012::Shape::of(p).active_minimum,
+                    )
+                    .unwrap_or_else(|_| SegmentedBezier::undefined()),
+                ),
+            },
         }
     }
 
@@ -73,6 +91,7 @@ impl ActiveForceLength {
             ActiveForceLength::Thelen2003 { l_opt, kshape } => {
                 thelen2003::active_force_length(l_m / l_opt, kshape)
             }
+            ActiveForceLength::Millard2012 { l_opt, ref curve } => curve.value(l_m / l_opt),
         }
     }
 
@@ -90,6 +109,7 @@ impl ActiveForceLength {
             ActiveForceLength::Thelen2003 { l_opt, kshape } => {
                 thelen2003::active_force_length_derivative(l_m / l_opt, kshape) / l_opt
             }
+            ActiveForceLength::Millard2012 { l_opt, ref curve } => curve.slope(l_m / l_opt) / l_opt,
         }
     }
 }

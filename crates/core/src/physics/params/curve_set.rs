@@ -16,14 +16,17 @@ pub enum CurveSet {
     DeGroote2016,
     /// Thelen (2003), J Biomech Eng 125(1), as OpenSim's Thelen2003Muscle.
     Thelen2003,
+    /// Millard et al. (2013), J Biomech Eng 135(2), as OpenSim's Millard2012EquilibriumMuscle.
+    Millard2012,
 }
 
 impl CurveSet {
     /// Every curve set.
-    pub const ALL: [CurveSet; 3] = [
+    pub const ALL: [CurveSet; 4] = [
         CurveSet::Paper,
         CurveSet::DeGroote2016,
         CurveSet::Thelen2003,
+        CurveSet::Millard2012,
     ];
 
     /// Its name in configurations.
@@ -32,6 +35,7 @@ impl CurveSet {
             CurveSet::Paper => "paper",
             CurveSet::DeGroote2016 => "degroote2016",
             CurveSet::Thelen2003 => "thelen2003",
+            CurveSet::Millard2012 => "millard2012",
         }
     }
 
