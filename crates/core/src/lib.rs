@@ -6,6 +6,8 @@
 //! - [`integrator`]: the fixed-tick implicit stepper, its tableaux and iteration matrices.
 //! - [`sim`]: the actuator stepped tick by tick, its inputs checked by name, the offline
 //!   scenarios, saved states, rollouts and steady states.
+//! - [`emg`]: EMG to activation: Butterworth filters, the raw-EMG chain to a normalised linear
+//!   envelope, neural activation and its nonlinearity (Lloyd & Besier 2003), no I/O.
 //! - [`config`]: the configuration file: schema, the antagonistic-pair form, parsing, validation.
 //! - [`csv`]: a run as CSV (`simulate --csv`, `export`).
 //! - [`time`]: the time base of a run (ticks ↔ stamps), now, ISO 8601 dates (neutral).
@@ -17,6 +19,7 @@
 
 pub mod config;
 pub mod csv;
+pub mod emg;
 pub mod files;
 pub mod integrator;
 pub mod physics;
