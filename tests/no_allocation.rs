@@ -8,7 +8,7 @@
 
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
+use muscle_actuator::physics::params::formulation::{ActivationKind, FibreKind, TendonKind};
 use muscle_actuator::sim::scenario::Scenario;
 use muscle_actuator::sim::simulation::default_stepping;
 use muscle_actuator::sim::Actuator;
@@ -78,12 +78,20 @@ fn ticks_do_not_allocate() {
     for m in &mut rigid_arm.muscles {
         (m.params.fibre, m.params.tendon) = (FibreKind::Equilibrium, TendonKind::Rigid);
     }
+    // Lloyd & Besier's activation with a delay line (docs/model.md §2b).
+    let mut neural_arm = driven_arm.clone();
+    for m in &mut neural_arm.muscles {
+        m.params.activation = ActivationKind::LloydBesier;
+        (m.params.c1, m.params.c2, m.params.em_delay) = (Some(-0.6), Some(-0.4), Some(0.03));
+        m.params.shape_factor = Some(-1.5);
+    }
     for cfg in [
         ActuatorConfig::default(),
         ActuatorConfig::resolve("arm").unwrap(),
         driven_arm,
         equilibrium_arm,
         rigid_arm,
+        neural_arm,
     ] {
         for model in [ModelKind::HILL, ModelKind::HUXLEY] {
             let mut act = Actuator::new(&cfg, model, 1000.0).unwrap();

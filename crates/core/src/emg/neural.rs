@@ -44,6 +44,7 @@
 //! sample, within T/2 of the delay asked for).
 
 use crate::emg::error::{check_finite, EmgError};
+use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// Longest electromechanical delay accepted, s. Delays of 10 to 100 ms are usual (Lloyd &
 /// Besier 2003); this leaves room while bounding the delay line.
@@ -220,27 +221,45 @@ impl NeuralActivation {
         self.params
     }
 
-    /// `e` in, the input of d samples ago out.
-    fn delayed(&mut self, e: f64) -> f64 {
-        match self.line.get_mut(self.head) {
-            Some(slot) => {
-                let out = std::mem::replace(slot, e);
-                self.head = (self.head + 1) % self.line.len();
-                out
-            }
-            None => e,
+    /// A sample as the recursion takes it: clamped to [0, 1] as CEINMS clamps its excitation
+    /// (`setEmg`); a NaN counts as 0, so the state stays finite.
+    fn admitted(e: f64) -> f64 {
+        if e.is_nan() {
+            0.0
+        } else {
+            e.clamp(0.0, 1.0)
         }
     }
 
-    /// The next neural activation for envelope sample `e`, clamped to [0, 1] first as CEINMS
-    /// clamps its excitation (`setEmg`); a NaN `e` counts as 0, so the state stays finite.
-    pub fn step(&mut self, e: f64) -> f64 {
-        let e = if e.is_nan() { 0.0 } else { e.clamp(0.0, 1.0) };
-        let e_d = self.delayed(e);
+    /// The next neural activation for envelope sample `e`, as [`Self::step`] gives it, without
+    /// taking the sample: for a caller that takes it ([`Self::take`]) only once the step it
+    /// belongs to has been kept.
+    pub fn next(&self, e: f64) -> f64 {
+        // The input of d samples ago: the delay line's oldest, or e itself without delay.
+        let e_d = self
+            .line
+            .get(self.head)
+            .copied()
+            .unwrap_or(Self::admitted(e));
         let p = &self.params;
-        let u = p.alpha() * e_d - p.beta1() * self.u1 - p.beta2() * self.u2;
+        p.alpha() * e_d - p.beta1() * self.u1 - p.beta2() * self.u2
+    }
+
+    /// Takes sample `e`, whose output [`Self::next`] gave as `u`.
+    pub fn take(&mut self, e: f64, u: f64) {
+        if let Some(slot) = self.line.get_mut(self.head) {
+            *slot = Self::admitted(e);
+            self.head = (self.head + 1) % self.line.len();
+        }
         self.u2 = self.u1;
         self.u1 = u;
+    }
+
+    /// The next neural activation for envelope sample `e` (clamped as [`Self::next`] says),
+    /// the sample taken.
+    pub fn step(&mut self, e: f64) -> f64 {
+        let u = self.next(e);
+        self.take(e, u);
         u
     }
 
@@ -257,6 +276,29 @@ impl NeuralActivation {
         self.u2 = e;
         self.line.iter_mut().for_each(|v| *v = e);
         self.head = 0;
+    }
+}
+
+/// What the recursion carries from sample to sample: its last two outputs, then its delay line
+/// from the oldest sample on (so that a restored line starts at its head). The coefficients and
+/// the delay are the rebuilt recursion's, and the saved line must be as long.
+impl SavedState for NeuralActivation {
+    fn save_state(&self, out: &mut StateWriter) {
+        out.f64(self.u1);
+        out.f64(self.u2);
+        out.usize(self.line.len());
+        let (recent, oldest) = self.line.split_at(self.head);
+        for &v in oldest.iter().chain(recent) {
+            out.f64(v);
+        }
+    }
+
+    fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
+        self.u1 = input.f64("neural activation u[k-1]")?;
+        self.u2 = input.f64("neural activation u[k-2]")?;
+        input.f64s_into("neural activation's delay line", &mut self.line)?;
+        self.head = 0;
+        Ok(())
     }
 }
 

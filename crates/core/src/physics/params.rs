@@ -8,9 +8,10 @@ use serde::{Deserialize, Serialize};
 pub mod curve_set;
 pub mod energetics;
 pub mod formulation;
+mod neural;
 
 use curve_set::CurveSet;
-use formulation::{FibreKind, TendonKind};
+use formulation::{ActivationKind, FibreKind, TendonKind};
 
 pub use energetics::{EnergeticsParams, EnergyModel};
 
@@ -116,6 +117,25 @@ pub struct MuscleParams {
     /// out.
     #[serde(skip_serializing_if = "is_zero")]
     pub pennation: f64,
+    /// How excitation becomes activation (docs/model.md §2, §2b); written out only when not the
+    /// paper's first order.
+    #[serde(skip_serializing_if = "ActivationKind::is_first_order")]
+    pub activation: ActivationKind,
+    /// Lloyd & Besier's C1 (|C1| < 1), needed with `activation = "lloyd_besier"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub c1: Option<f64>,
+    /// Lloyd & Besier's C2 (|C2| < 1), needed with `activation = "lloyd_besier"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub c2: Option<f64>,
+    /// The activation nonlinearity's shape factor A, in [-3, 3]; `None`: 0, linear.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape_factor: Option<f64>,
+    /// The electromechanical delay, s, in [0, 0.5]; `None`: 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub em_delay: Option<f64>,
+    /// The sample rate C1 and C2 belong to, Hz; `None`: the tick rate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub neural_rate_hz: Option<f64>,
     /// Cross-bridge parameters of the Huxley models.
     pub crossbridge: CrossBridgeParams,
     /// Energetics: the phenomenological heat-rate model and the energy constants (§11).
@@ -158,6 +178,12 @@ impl Default for MuscleParams {
             fibre: FibreKind::Massed,
             tendon: TendonKind::Elastic,
             pennation: 0.0,
+            activation: ActivationKind::FirstOrder,
+            c1: None,
+            c2: None,
+            shape_factor: None,
+            em_delay: None,
+            neural_rate_hz: None,
             crossbridge: CrossBridgeParams::default(),
             energetics: EnergeticsParams::default(),
         }
@@ -472,6 +498,7 @@ impl MuscleParams {
         }
         self.validate_curves(&mut c);
         self.validate_formulation(&mut c);
+        self.validate_activation(&mut c);
         let x = &self.crossbridge;
         let mut c = Checker {
             prefix: &format!("{prefix}crossbridge."),

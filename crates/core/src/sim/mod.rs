@@ -23,6 +23,7 @@ pub mod actuator;
 pub mod energy;
 pub mod input;
 pub mod jacobian;
+pub mod neural_drive;
 pub mod part;
 pub mod rollout;
 pub mod run;

@@ -1,6 +1,8 @@
 //! One independent part of a limb (joints connected by muscles, and those muscles), stepped
 //! over a tick with its own sub-steps: a busy joint does not make its quiet neighbours take
-//! small steps. Its ODE is the plant's equations with the activations in closed form.
+//! small steps. Its ODE is the plant's equations with the activations in closed form (the
+//! paper's first order) or linear within the tick towards its end value (Lloyd & Besier's,
+//! [`crate::sim::neural_drive`]).
 
 use crate::integrator::arrowhead::{ArrowheadJacobian, ArrowheadMatrix};
 use crate::integrator::{esdirk::Esdirk, tableau::Tableau};
@@ -9,6 +11,7 @@ use crate::physics::activation::activation_after;
 use crate::physics::energetics::metabolic::MetabolicSample;
 use crate::physics::energetics::probe::ExcitationTerms;
 use crate::physics::models::SubstepMotion;
+use crate::physics::params::formulation::ActivationKind;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::stepping::Stepping;
 use crate::sim::energy::{MuscleEnergy, TickEnergy};
@@ -25,11 +28,16 @@ struct ActivationMemo {
     scratch: JacobianScratch,
 }
 
-/// A plant's ODE over one tick, with activations in closed form from the tick's start.
+/// A plant's ODE over one tick of length `dt`, with activations in closed form from the tick's
+/// start, or linear from it to the tick's end value `a1` for the muscles listed in `neural`
+/// (None when there are none).
 struct TickOde<'a> {
     plant: &'a Plant,
     inputs: &'a Inputs,
     a0: &'a [f64],
+    a1: &'a [f64],
+    neural: Option<&'a [usize]>,
+    dt: f64,
     memo: &'a RefCell<ActivationMemo>,
 }
 
@@ -43,6 +51,12 @@ impl TickOde<'_> {
         for (i, mtu) in self.plant.mtus.iter().enumerate() {
             let p = &mtu.params;
             m.a[i] = activation_after(self.a0[i], self.inputs.excitation[i], t, p.t_act, p.t_deact);
+        }
+        if let Some(neural) = self.neural {
+            let s = t / self.dt;
+            for &i in neural {
+                m.a[i] = self.a0[i] * (1.0 - s) + self.a1[i] * s;
+            }
         }
         m.t = t;
     }
@@ -89,6 +103,10 @@ pub struct Part {
     saved_h: f64,
     inputs: Inputs,
     a0: Vec<f64>,
+    /// The activations at the tick's end of the muscles with Lloyd & Besier's activation
+    /// (`neural`, their local indices), given by the whole before each tick.
+    a1: Vec<f64>,
+    neural: Vec<usize>,
     lm_before: Vec<f64>,
     memo: RefCell<ActivationMemo>,
     /// The ESDIRK stepper: ARK3(2)4L\[2\]SA (third order) for adaptive sub-steps, TR-BDF2 (second
@@ -134,6 +152,11 @@ impl Part {
             saved_h: 0.0,
             inputs: Inputs::zeros(m, plant.joint_count()),
             a0: vec![0.0; m],
+            a1: vec![0.0; m],
+            neural: (plant.mtus.iter().enumerate())
+                .filter(|(_, mtu)| mtu.params.activation == ActivationKind::LloydBesier)
+                .map(|(k, _)| k)
+                .collect(),
             lm_before: vec![0.0; m],
             energy: vec![TickEnergy::default(); m],
             plant,
@@ -143,14 +166,22 @@ impl Part {
         }
     }
 
-    /// Takes this part's state, activations and inputs from the whole; its driven joints start
-    /// the tick at their input motion.
-    pub(crate) fn gather(&mut self, y: &[f64], activation: &[f64], inputs: &Inputs) {
+    /// Takes this part's state, activations (at the tick's start, and at its end where the
+    /// whole computes them) and inputs from the whole; its driven joints start the tick at
+    /// their input motion.
+    pub(crate) fn gather(
+        &mut self,
+        y: &[f64],
+        activation: &[f64],
+        activation_end: &[f64],
+        inputs: &Inputs,
+    ) {
         for (local, &global) in self.y.iter_mut().zip(&self.state_map) {
             *local = y[global];
         }
         for (k, &i) in self.muscles.iter().enumerate() {
             self.a0[k] = activation[i];
+            self.a1[k] = activation_end[i];
             self.inputs.excitation[k] = inputs.excitation[i];
             self.inputs.tendon_force[k] = inputs.tendon_force[i];
         }
@@ -218,11 +249,14 @@ impl Part {
         self.y.iter().all(|v| v.is_finite()) && self.memo.borrow().a.iter().all(|v| v.is_finite())
     }
 
-    fn ode(&self) -> TickOde<'_> {
+    fn ode(&self, dt: f64) -> TickOde<'_> {
         TickOde {
             plant: &self.plant,
             inputs: &self.inputs,
             a0: &self.a0,
+            a1: &self.a1,
+            neural: (!self.neural.is_empty()).then_some(&self.neural[..]),
+            dt,
             memo: &self.memo,
         }
     }
@@ -241,6 +275,9 @@ impl Part {
                     plant: &self.plant,
                     inputs: &self.inputs,
                     a0: &self.a0,
+                    a1: &self.a1,
+                    neural: (!self.neural.is_empty()).then_some(&self.neural[..]),
+                    dt,
                     memo: &self.memo,
                 };
                 ok = self
@@ -270,6 +307,9 @@ impl Part {
                 plant: &self.plant,
                 inputs: &self.inputs,
                 a0: &self.a0,
+                a1: &self.a1,
+                neural: (!self.neural.is_empty()).then_some(&self.neural[..]),
+                dt,
                 memo: &self.memo,
             };
             ok &= self.stepper.step(&ode, t, h, &mut self.y).is_ok();
@@ -294,7 +334,7 @@ impl Part {
                 break;
             }
         }
-        self.ode().at(dt);
+        self.ode(dt).at(dt);
         ok
     }
 

@@ -49,6 +49,15 @@ pub enum SetupError {
         /// Joints of the plant.
         plant_joints: usize,
     },
+    /// A muscle's Lloyd & Besier activation that cannot run at the tick rate (a positive C1 or
+    /// C2 at another `neural_rate_hz`, a delay of too many ticks).
+    #[error("muscle {muscle}'s activation: {source}")]
+    Activation {
+        /// The muscle's index.
+        muscle: usize,
+        /// Why.
+        source: crate::emg::EmgError,
+    },
     /// A number of threads outside 1 to the most a simulation takes
     /// (`simulation::MAX_THREADS`).
     #[error("invalid threads = {threads}: must be 1 to {max}")]

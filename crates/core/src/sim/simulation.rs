@@ -9,6 +9,7 @@ use crate::physics::models::ModelKind;
 use crate::physics::observables::EnergeticsOutputs;
 use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
+use crate::sim::neural_drive::NeuralDrive;
 use crate::sim::part::Part;
 pub use crate::sim::setup_error::SetupError;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
@@ -50,6 +51,12 @@ pub struct Simulation {
     stepping: Stepping,
     inputs: Inputs,
     activation: Vec<f64>,
+    /// Per muscle with Lloyd & Besier's activation, its drive (docs/model.md §2b).
+    neural: Vec<Option<NeuralDrive>>,
+    /// The activations at the end of the tick being stepped, of those muscles.
+    activation_end: Vec<f64>,
+    /// Whether any muscle has one.
+    has_neural: bool,
     y: Vec<f64>,
     tick: u64,
     /// Per muscle: the energetics carried from tick to tick (sim::energy).
@@ -88,6 +95,15 @@ impl Simulation {
                 plant_joints: j,
             });
         }
+        let neural = plant
+            .mtus
+            .iter()
+            .enumerate()
+            .map(|(i, mtu)| {
+                NeuralDrive::of(&mtu.params, rate_hz)
+                    .map_err(|source| SetupError::Activation { muscle: i, source })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let parts = plant
             .components()
             .into_iter()
@@ -98,6 +114,9 @@ impl Simulation {
             stepping,
             inputs: inputs.clone(),
             activation: vec![0.0; m],
+            has_neural: neural.iter().any(Option::is_some),
+            neural,
+            activation_end: vec![0.0; m],
             y: vec![0.0; n],
             tick: 0,
             energy: vec![MuscleEnergy::default(); m],
@@ -113,6 +132,9 @@ impl Simulation {
     pub(crate) fn reset_with(&mut self, inputs: &Inputs) {
         self.inputs.clone_from(inputs);
         self.activation.fill(0.0);
+        for d in self.neural.iter_mut().flatten() {
+            d.reset();
+        }
         self.plant.resting_state(&self.inputs, &mut self.y);
         for p in &mut self.parts {
             p.reset();
@@ -222,13 +244,14 @@ impl Simulation {
             parts,
             y,
             activation,
+            activation_end,
             inputs,
             stepping,
             energy,
             ..
         } = self;
         let one = |p: &mut Part| {
-            p.gather(y, activation, inputs);
+            p.gather(y, activation, activation_end, inputs);
             p.step(dt, *stepping)
         };
         if on_threads {
@@ -292,6 +315,9 @@ impl Simulation {
     /// [`Simulation::step`], within the pool when on threads.
     fn step_here(&mut self) -> Result<(), StepError> {
         let dt = 1.0 / self.rate_hz;
+        if self.has_neural {
+            self.neural_tick_ends();
+        }
         let (ok, stepped) = self.step_parts(dt);
         let finite = ok && self.parts.iter().all(|p| p.is_finite());
         if !finite {
@@ -307,6 +333,9 @@ impl Simulation {
                 tick: self.tick,
                 reason,
             });
+        }
+        if self.has_neural {
+            self.neural_commit();
         }
         let on_threads = self.parts_on_threads();
         for p in &self.parts {
@@ -328,6 +357,28 @@ impl Simulation {
         self.plant.carry_driven_motion(&self.y, &mut self.inputs);
         self.tick += 1;
         Ok(())
+    }
+
+    /// The activations at the end of the tick about to be stepped, of the muscles with Lloyd &
+    /// Besier's activation. Out of line: the paper's first order, the common case, keeps the
+    /// tick's code as it was.
+    #[inline(never)]
+    fn neural_tick_ends(&mut self) {
+        for (i, d) in self.neural.iter_mut().enumerate() {
+            if let Some(d) = d {
+                self.activation_end[i] = d.tick_end(self.inputs.excitation[i]);
+            }
+        }
+    }
+
+    /// The kept tick's excitations taken by the recursions ([`NeuralDrive::commit`]).
+    #[inline(never)]
+    fn neural_commit(&mut self) {
+        for (i, d) in self.neural.iter_mut().enumerate() {
+            if let Some(d) = d {
+                d.commit(self.inputs.excitation[i]);
+            }
+        }
     }
 
     /// Muscle i's published state.
@@ -413,7 +464,8 @@ impl Simulation {
 }
 
 /// What the simulation carries from tick to tick: the tick, the inputs held over the next one,
-/// the activations, the state vector, each muscle's energetics, then each part's own state. The
+/// the activations, the state vector, each muscle's energetics, then each part's own state, then
+/// the recursion of each muscle with Lloyd & Besier's activation (none for the paper's). The
 /// plant, the rate and the stepping are the rebuilt simulation's, and the saved sizes must be
 /// its; the whole plant's contractile elements are never stepped (the parts' are) and the
 /// rates at a tick's start are scratch, so neither is saved.
@@ -431,6 +483,9 @@ impl SavedState for Simulation {
         for p in &self.parts {
             p.save_state(out);
         }
+        for d in self.neural.iter().flatten() {
+            d.save_state(out);
+        }
     }
 
     fn restore_state(&mut self, input: &mut StateReader) -> Result<(), StateError> {
@@ -447,6 +502,12 @@ impl SavedState for Simulation {
         for (k, p) in self.parts.iter_mut().enumerate() {
             p.restore_state(input)
                 .map_err(|e| e.in_part(format!("part {k}")))?;
+        }
+        for (i, d) in self.neural.iter_mut().enumerate() {
+            if let Some(d) = d {
+                d.restore_state(input)
+                    .map_err(|e| e.in_part(format!("muscle {i}'s neural activation")))?;
+            }
         }
         Ok(())
     }

@@ -1,6 +1,6 @@
-//! How a muscle–tendon unit is formulated mechanically (docs/model.md §5b), two parameters of the
-//! muscle: its fibre kind and its tendon kind. The defaults are the paper's: a fibre with mass on
-//! an elastic tendon.
+//! How a muscle–tendon unit is formulated (docs/model.md §2b, §5b), three parameters of the
+//! muscle: its fibre kind and its tendon kind, and how its excitation becomes activation. The
+//! defaults are the paper's: a fibre with mass on an elastic tendon, first-order activation.
 
 use serde::{Deserialize, Serialize};
 use std::str::FromStr;
@@ -28,6 +28,18 @@ pub enum TendonKind {
     /// Inextensible, always at its slack length: the fibre follows the path (§5b); OpenSim's
     /// `ignore_tendon_compliance`. Needs an equilibrium fibre.
     Rigid,
+}
+
+/// How excitation becomes activation (docs/model.md §2, §2b).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", try_from = "String")]
+pub enum ActivationKind {
+    /// The paper's first-order dynamics, `da/dt = (u - a)/τ(u, a)`, exact over a tick (§2).
+    #[default]
+    FirstOrder,
+    /// Lloyd & Besier's (2003) second-order recursion once per tick on the excitation (an EMG
+    /// envelope), with its delay and its nonlinearity (§2b, `crate::emg`).
+    LloydBesier,
 }
 
 /// The names of a kind's values, in configurations and messages.
@@ -59,6 +71,48 @@ impl Named for TendonKind {
     }
 }
 
+impl Named for ActivationKind {
+    const ALL: &'static [Self] = &[ActivationKind::FirstOrder, ActivationKind::LloydBesier];
+    const WHAT: &'static str = "activation kind";
+    fn name(self) -> &'static str {
+        match self {
+            ActivationKind::FirstOrder => "first_order",
+            ActivationKind::LloydBesier => "lloyd_besier",
+        }
+    }
+}
+
+impl ActivationKind {
+    /// Its name in configurations.
+    pub fn name(self) -> &'static str {
+        Named::name(self)
+    }
+    /// Whether this is the default, the paper's first order (configurations omit it then).
+    pub fn is_first_order(&self) -> bool {
+        *self == ActivationKind::FirstOrder
+    }
+}
+
+impl FromStr for ActivationKind {
+    type Err = UnknownKind;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        parse(s)
+    }
+}
+
+impl TryFrom<String> for ActivationKind {
+    type Error = UnknownKind;
+    fn try_from(s: String) -> Result<Self, Self::Error> {
+        s.parse()
+    }
+}
+
+impl std::fmt::Display for ActivationKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 impl FibreKind {
     /// Its name in configurations.
     pub fn name(self) -> &'static str {
@@ -81,11 +135,12 @@ impl TendonKind {
     }
 }
 
-/// An unknown fibre or tendon kind (quoted as a short excerpt), with the known names.
+/// An unknown fibre, tendon or activation kind (quoted as a short excerpt), with the known
+/// names.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("unknown {what} {given:?}: expected one of {names}")]
 pub struct UnknownKind {
-    /// Which parameter: "fibre kind" or "tendon kind".
+    /// Which parameter: "fibre kind", "tendon kind" or "activation kind".
     pub what: &'static str,
     /// The name given, at most 64 characters of it.
     pub given: String,
@@ -168,5 +223,13 @@ mod tests {
         );
         let e = "massles".parse::<FibreKind>().unwrap_err().to_string();
         assert!(e.contains("massed, equilibrium"), "{e}");
+        for k in ActivationKind::ALL {
+            assert_eq!(k.name().parse::<ActivationKind>().unwrap(), *k);
+        }
+        let e = "second_order"
+            .parse::<ActivationKind>()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("first_order, lloyd_besier"), "{e}");
     }
 }
