@@ -456,6 +456,7 @@ impl<M> Esdirk<M> {
     /// Steps are at most `t1 - t0` and at least `(t1 - t0) / max_substeps`; a step at the
     /// minimum size is accepted whatever its estimate.
     #[allow(clippy::too_many_arguments)]
+    #[inline]
     pub fn advance<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &S,

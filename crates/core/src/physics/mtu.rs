@@ -177,6 +177,7 @@ impl Mtu {
     }
 
     /// What the contractile element sees.
+    #[inline]
     pub(crate) fn ce_inputs(&self, activation: f64, l_m: f64, v: f64) -> CeInputs {
         CeInputs {
             activation,

@@ -43,6 +43,7 @@ struct TickOde<'a> {
 
 impl TickOde<'_> {
     /// Makes sure the memo holds the activations at t.
+    #[inline]
     fn at(&self, t: f64) {
         let mut m = self.memo.borrow_mut();
         if m.t == t {
