@@ -6,6 +6,8 @@
 //! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them;
 //! - [`millard2012`]: Millard2012EquilibriumMuscle's quintic Bézier curves as OpenSim 4.6 builds
 //!   them ([`quintic_bezier`]);
+//! - [`tabulated`]: curves given as points, by the cubic spline CEINMS interpolates its subject
+//!   files' curves with;
 //! - [`overlap`], [`force_velocity`]: a muscle's active force–length and Hill force–velocity
 //!   relations of its set, in SI units (the tendon's and the parallel element's are
 //!   [`crate::physics::tendon::Tendon`] and [`crate::physics::parallel_element::ParallelElement`]).
@@ -24,6 +26,7 @@ pub mod millard2012;
 pub mod overlap;
 pub mod paper;
 pub mod quintic_bezier;
+pub mod tabulated;
 pub mod thelen2003;
 
 pub use crate::physics::params::curve_set::{CurveSet, UnknownCurveSet};
