@@ -10,6 +10,11 @@
 //!   curves ([`curve`]), the degrees of freedom and the units that span each.
 //! - [`excitation_map`]: how the recorded EMG channels drive the units (CEINMS's
 //!   `emgGenerator` file), and the units' excitations from a channel table.
+//! - [`rating`]: how well a predicted series matches a measured one: the coefficient of
+//!   determination R², Pearson's r², the RMSE and the RMSE over the measured peak.
+//! - [`resample`]: a table's column, or any series, at other times (linear, no extrapolation),
+//!   a series' time derivative, and for a trial its moments at the kinematics' times and a
+//!   unit's length and lengthening rate at any time within them.
 //!
 //! Every reader takes a path (a regular file of bounded size, [`crate::files`]) or text, and
 //! fails with a [`MeasuredError`] that names the file, then the line (and column or element)
@@ -17,6 +22,8 @@
 
 pub mod curve;
 pub mod excitation_map;
+pub mod rating;
+pub mod resample;
 pub mod subject;
 pub mod table;
 pub mod trial;
