@@ -5,15 +5,15 @@
 //! this one, the node, the command line and the figures. Their modules are re-exported here, so
 //! `muscle_actuator::physics` is `muscle_actuator_core::physics`.
 //!
-//! - [`physics`], [`integrator`], [`sim`], [`config`], [`csv`], [`time`], [`text`], [`files`],
-//!   [`state_bytes`]: from [`muscle_actuator_core`].
+//! - [`physics`], [`integrator`], [`sim`], [`config`], [`csv`], [`emg`], [`measured`], [`time`],
+//!   [`text`], [`files`], [`state_bytes`]: from [`muscle_actuator_core`].
 //! - [`msgs`], [`recording`], [`runs`]: from [`muscle_actuator_recording`].
 //! - [`figures`]: the paper's figures reproduced (`figures`), and `compare --plot`.
 //! - [`ros`]: the ROS 2 node (`node`).
 //! - [`cli`]: the command line (`src/main.rs` calls [`cli::main`]).
 
 pub use muscle_actuator_core::{
-    config, csv, files, integrator, physics, sim, state_bytes, text, time,
+    config, csv, emg, files, integrator, measured, physics, sim, state_bytes, text, time,
 };
 pub use muscle_actuator_recording::{msgs, recording, runs};
 

@@ -51,7 +51,9 @@ fn curves(set: CurveSet) -> (Curve, Curve, Curve) {
             |x| millard(Named::ActiveForceLength, x),
             |x| millard(Named::PassiveForceLength, x),
         ),
-        CurveSet::Paper => unreachable!("the paper's springs are not normalised"),
+        CurveSet::Paper | CurveSet::Tabulated => {
+            unreachable!("the paper's springs are not normalised; tabulated curves are a muscle's")
+        }
     }
 }
 

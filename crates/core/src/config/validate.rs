@@ -5,6 +5,8 @@
 
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig};
 use super::{rule, ConfigError};
+use crate::physics::curves::tabulated::{TabulatedCurve, TabulatedCurveError};
+use crate::physics::params::tabulated::{split, TabulatedCurves};
 use crate::physics::params::{JointParams, ParamError};
 use crate::text::excerpt;
 
@@ -14,6 +16,39 @@ fn check_name(at: String, name: &str, taken: bool, errors: &mut Vec<ParamError>)
         errors.push(rule(at, "\"\"", "must not be empty"));
     } else if taken {
         errors.push(rule(at, format!("{:?}", excerpt(name)), "must be unique"));
+    }
+}
+
+/// A tabulated muscle's curves (`at` names the table): each a curve the spline can be built
+/// through, and each but the active one rising somewhere, since the balance, the tendon's and
+/// the parallel element's lengths invert them there (docs/model.md §4b).
+fn validate_tabulated(at: &str, t: &TabulatedCurves, errors: &mut Vec<ParamError>) {
+    for (key, points) in t.named() {
+        let (x, y) = split(points);
+        let rule_of = |e: &TabulatedCurveError| match e {
+            TabulatedCurveError::Lengths { .. } => "every point must be [x, y]",
+            TabulatedCurveError::TooFewPoints { .. } => "needs at least 2 points",
+            TabulatedCurveError::NotFiniteX { .. } | TabulatedCurveError::NotFiniteY { .. } => {
+                "every x and y must be a finite number"
+            }
+            TabulatedCurveError::NotIncreasing { .. } => "its x must rise from point to point",
+            TabulatedCurveError::Overflow => "its spline overflows: points too far apart",
+        };
+        match TabulatedCurve::new(&x, &y) {
+            Err(e) => errors.push(rule(
+                format!("{at}{key}"),
+                excerpt(&e.to_string()),
+                rule_of(&e),
+            )),
+            Ok(c) if key != "active_force_length" && c.rising_part().is_none() => {
+                errors.push(rule(
+                    format!("{at}{key}"),
+                    format!("{} points", points.len()),
+                    "must rise somewhere (two consecutive points with rising y)",
+                ))
+            }
+            Ok(_) => {}
+        }
     }
 }
 
@@ -78,6 +113,9 @@ impl ActuatorConfig {
         let taken = self.muscles[..i].iter().any(|o| o.name == m.name);
         check_name(format!("muscle[{i}].name"), &m.name, taken, errors);
         m.params.validate(&format!("muscle.{name}."), errors);
+        if let Some(t) = &m.params.tabulated {
+            validate_tabulated(&format!("muscle.{name}.tabulated."), t, errors);
+        }
         if let Some(l0) = m.path_length {
             if !(l0.is_finite() && l0 > 0.0) {
                 errors.push(rule(

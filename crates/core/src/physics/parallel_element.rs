@@ -2,6 +2,7 @@
 //! curves of the muscle's set (§4b).
 
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
@@ -21,10 +22,10 @@ pub fn parallel_spring(p: &MuscleParams) -> ExpLinearSpring {
 
 /// The passive fibre strain at one normalised force in force: the configured `passive_strain`,
 /// else the curve set's default (0.6 for DeGroote's and Thelen's, 0.7 for Millard's; NaN for the
-/// paper's set, whose spring has none).
+/// paper's set, whose spring has none, and for tabulated curves, whose points set it).
 pub fn passive_strain(p: &MuscleParams) -> f64 {
     let default = match p.curves {
-        CurveSet::Paper => f64::NAN,
+        CurveSet::Paper | CurveSet::Tabulated => f64::NAN,
         CurveSet::DeGroote2016 => degroote2016::DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE,
         CurveSet::Thelen2003 => thelen2003::DEFAULT_FMAX_MUSCLE_STRAIN,
         CurveSet::Millard2012 => millard2012::DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE,
@@ -67,6 +68,15 @@ pub enum ParallelElement {
         /// The curve of l̃ ([`millard2012::passive_force_length_curve`]).
         curve: Arc<SegmentedBezier>,
     },
+    /// The muscle's own points, interpolated as CEINMS does; its energy from l_opt.
+    Tabulated {
+        /// Fmax, N.
+        f_max: f64,
+        /// Optimal fibre length l_opt, m.
+        l_opt: f64,
+        /// The curve of l̃.
+        curve: Arc<TabulatedCurve>,
+    },
 }
 
 impl ParallelElement {
@@ -87,6 +97,13 @@ impl ParallelElement {
                 kshape: p
                     .kshape_passive
                     .unwrap_or(thelen2003::DEFAULT_KSHAPE_PASSIVE),
+            },
+            CurveSet::Tabulated => ParallelElement::Tabulated {
+                f_max,
+                l_opt,
+                curve: Arc::new(tabulated::of_points(
+                    p.tabulated.as_ref().map(|t| &t.passive_force_length),
+                )),
             },
             CurveSet::Millard2012 => ParallelElement::Millard2012 {
                 f_max,
@@ -120,6 +137,11 @@ impl ParallelElement {
                 l_opt,
                 ref curve,
             } => f_max * curve.value(l_m / l_opt),
+            ParallelElement::Tabulated {
+                f_max,
+                l_opt,
+                ref curve,
+            } => f_max * curve.value(l_m / l_opt),
         }
     }
 
@@ -143,6 +165,11 @@ impl ParallelElement {
                 f_max / l_opt * thelen2003::passive_force_length_derivative(x, strain, kshape)
             }
             ParallelElement::Millard2012 {
+                f_max,
+                l_opt,
+                ref curve,
+            } => f_max / l_opt * curve.slope(l_m / l_opt),
+            ParallelElement::Tabulated {
                 f_max,
                 l_opt,
                 ref curve,
@@ -174,6 +201,11 @@ impl ParallelElement {
                 l_opt,
                 ref curve,
             } => f_max * l_opt * curve.integral(l_m / l_opt),
+            ParallelElement::Tabulated {
+                f_max,
+                l_opt,
+                ref curve,
+            } => f_max * l_opt * curve.integral_between(1.0, l_m / l_opt),
         }
     }
 
@@ -200,6 +232,11 @@ impl ParallelElement {
                 l_opt * thelen2003::passive_force_length_inverse(f, strain, kshape)
             }
             ParallelElement::Millard2012 {
+                f_max,
+                l_opt,
+                ref curve,
+            } => l_opt * curve.argument_at(force.max(0.0) / f_max),
+            ParallelElement::Tabulated {
                 f_max,
                 l_opt,
                 ref curve,

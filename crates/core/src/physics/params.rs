@@ -5,13 +5,16 @@
 
 use serde::{Deserialize, Serialize};
 
+mod curve_rules;
 pub mod curve_set;
 pub mod energetics;
 pub mod formulation;
 mod neural;
+pub mod tabulated;
 
 use curve_set::CurveSet;
 use formulation::{ActivationKind, FibreKind, TendonKind};
+use tabulated::TabulatedCurves;
 
 pub use energetics::{EnergeticsParams, EnergyModel};
 
@@ -140,6 +143,9 @@ pub struct MuscleParams {
     pub crossbridge: CrossBridgeParams,
     /// Energetics: the phenomenological heat-rate model and the energy constants (§11).
     pub energetics: EnergeticsParams,
+    /// The curves of `curves = "tabulated"`, as points (§4b); needed with that set only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tabulated: Option<TabulatedCurves>,
 }
 
 impl Default for MuscleParams {
@@ -186,6 +192,7 @@ impl Default for MuscleParams {
             neural_rate_hz: None,
             crossbridge: CrossBridgeParams::default(),
             energetics: EnergeticsParams::default(),
+            tabulated: None,
         }
     }
 }
@@ -331,11 +338,6 @@ fn is_zero(x: &f64) -> bool {
     *x == 0.0
 }
 
-/// The largest passive strain Millard 2012's passive curve can be built with: its foot's slope
-/// (`stiffness_at_low_force`, 0.2) must stay below the mean slope `1 / strain`
-/// (OpenSim's `createFiberForceLengthCurve` check).
-const MILLARD_MAX_PASSIVE_STRAIN: f64 = 5.0;
-
 /// Relative force jump at l_tc above which a configured l_tc is reported as discontinuous.
 pub(crate) const TENDON_CONTINUITY_TOLERANCE: f64 = 1e-3;
 
@@ -349,78 +351,6 @@ impl MuscleParams {
     /// l_tc in force: the configured one, or the derived one.
     pub fn l_tc(&self) -> f64 {
         self.l_tc.unwrap_or_else(|| self.derived_l_tc())
-    }
-
-    /// The curve-set rules: `tendon_strain` and `passive_strain` only with an OpenSim set, and
-    /// positive; each set's shape constants only with that set.
-    fn validate_curves(&self, c: &mut Checker<'_>) {
-        let strains = [
-            (
-                "tendon_strain",
-                self.tendon_strain,
-                "applies to an OpenSim curve set only (the paper's tendon is set by k_te, k_tl, \
-                 k_t)",
-            ),
-            (
-                "passive_strain",
-                self.passive_strain,
-                "applies to an OpenSim curve set only (the paper's parallel element is set by \
-                 k_me, k_ml, k_m)",
-            ),
-        ];
-        for (name, value, paper_rule) in strains {
-            let Some(v) = value else { continue };
-            if self.curves.is_paper() {
-                c.fail(name, v, paper_rule);
-            } else if name == "passive_strain"
-                && self.curves == CurveSet::Millard2012
-                && !(v > 0.0 && v < MILLARD_MAX_PASSIVE_STRAIN)
-            {
-                c.fail(
-                    name,
-                    v,
-                    "must be > 0 and < 5 for curves = \"millard2012\" (its passive curve's foot, \
-                     slope 0.2, must be shallower than its mean slope 1/strain)",
-                );
-            } else {
-                c.positive(name, v);
-            }
-        }
-        // Each set's own shape constants, only with that set, within OpenSim's ranges.
-        let shapes = [
-            (
-                "active_force_width_scale",
-                self.active_force_width_scale,
-                CurveSet::DeGroote2016,
-            ),
-            ("kshape_active", self.kshape_active, CurveSet::Thelen2003),
-            ("kshape_passive", self.kshape_passive, CurveSet::Thelen2003),
-            ("af", self.af, CurveSet::Thelen2003),
-            ("flen", self.flen, CurveSet::Thelen2003),
-        ];
-        for (name, value, set) in shapes {
-            let Some(v) = value else { continue };
-            if self.curves != set {
-                c.fail(
-                    name,
-                    v,
-                    match set {
-                        CurveSet::DeGroote2016 => "applies to curves = \"degroote2016\" only",
-                        _ => "applies to curves = \"thelen2003\" only",
-                    },
-                );
-            } else if name == "active_force_width_scale" {
-                if !(v.is_finite() && v >= 1.0) {
-                    c.fail(name, v, "must be >= 1 (OpenSim's rule)");
-                }
-            } else if name == "flen" {
-                if !(v.is_finite() && v > 1.0) {
-                    c.fail(name, v, "must be > 1 (the eccentric asymptote, normalised)");
-                }
-            } else {
-                c.positive(name, v);
-            }
-        }
     }
 
     /// The formulation rules (docs/model.md §5b): a rigid tendon needs an equilibrium fibre (a

@@ -2,6 +2,7 @@
 //! the muscle's set (§4b).
 
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
@@ -21,10 +22,10 @@ pub fn tendon(p: &MuscleParams) -> ExpLinearSpring {
 
 /// The tendon strain at one normalised force in force: the configured `tendon_strain`, else
 /// the curve set's default (DeGroote 2016 and Millard 2012: 0.049, Thelen 2003: 0.04; NaN for the
-/// paper's set, whose tendon has none).
+/// paper's set, whose tendon has none, and for tabulated curves, whose points set it).
 pub fn tendon_strain(p: &MuscleParams) -> f64 {
     let default = match p.curves {
-        CurveSet::Paper => f64::NAN,
+        CurveSet::Paper | CurveSet::Tabulated => f64::NAN,
         CurveSet::DeGroote2016 => degroote2016::DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE,
         CurveSet::Thelen2003 => thelen2003::DEFAULT_FMAX_TENDON_STRAIN,
         CurveSet::Millard2012 => millard2012::DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE,
@@ -65,6 +66,16 @@ pub enum Tendon {
         /// The curve of l̃_T ([`millard2012::tendon_force_length_curve`]).
         curve: Arc<SegmentedBezier>,
     },
+    /// The muscle's own points of force against strain `l_T / l_s - 1`, interpolated as CEINMS
+    /// does; its energy from slack length.
+    Tabulated {
+        /// Fmax, N.
+        f_max: f64,
+        /// Slack length l_s, m.
+        l_s: f64,
+        /// The curve of the strain.
+        curve: Arc<TabulatedCurve>,
+    },
 }
 
 impl Tendon {
@@ -82,6 +93,13 @@ impl Tendon {
                 f_max,
                 l_s,
                 strain: tendon_strain(p),
+            },
+            CurveSet::Tabulated => Tendon::Tabulated {
+                f_max,
+                l_s,
+                curve: Arc::new(tabulated::of_points(
+                    p.tabulated.as_ref().map(|t| &t.tendon_force_strain),
+                )),
             },
             CurveSet::Millard2012 => Tendon::Millard2012 {
                 f_max,
@@ -110,6 +128,11 @@ impl Tendon {
                 l_s,
                 ref curve,
             } => f_max * curve.value(l / l_s),
+            Tendon::Tabulated {
+                f_max,
+                l_s,
+                ref curve,
+            } => f_max * curve.value(l / l_s - 1.0),
         }
     }
 
@@ -129,6 +152,11 @@ impl Tendon {
                 l_s,
                 ref curve,
             } => f_max / l_s * curve.slope(l / l_s),
+            Tendon::Tabulated {
+                f_max,
+                l_s,
+                ref curve,
+            } => f_max / l_s * curve.slope(l / l_s - 1.0),
         }
     }
 
@@ -148,6 +176,11 @@ impl Tendon {
                 l_s,
                 ref curve,
             } => f_max * l_s * curve.integral(l / l_s),
+            Tendon::Tabulated {
+                f_max,
+                l_s,
+                ref curve,
+            } => f_max * l_s * curve.integral_between(0.0, l / l_s - 1.0),
         }
     }
 
@@ -159,6 +192,7 @@ impl Tendon {
             Tendon::DeGroote2016 { l_s, .. }
             | Tendon::Thelen2003 { l_s, .. }
             | Tendon::Millard2012 { l_s, .. }
+            | Tendon::Tabulated { l_s, .. }
                 if force <= 0.0 =>
             {
                 l_s
@@ -174,6 +208,11 @@ impl Tendon {
                 l_s,
                 ref curve,
             } => l_s * curve.argument_at(force / f_max),
+            Tendon::Tabulated {
+                f_max,
+                l_s,
+                ref curve,
+            } => l_s * (1.0 + curve.argument_at(force / f_max)),
         }
     }
 }

@@ -3,6 +3,7 @@
 
 use crate::physics::contractile::hill_equation::{force_velocity, force_velocity_derivative};
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::MuscleParams;
 use std::sync::Arc;
@@ -50,6 +51,13 @@ pub enum HillForceVelocity {
         /// The curve of ṽ.
         curve: Arc<SegmentedBezier>,
     },
+    /// The muscle's own points, interpolated as CEINMS does.
+    Tabulated {
+        /// vmax, m/s.
+        v_max: f64,
+        /// The curve of ṽ.
+        curve: Arc<TabulatedCurve>,
+    },
 }
 
 impl HillForceVelocity {
@@ -73,6 +81,12 @@ impl HillForceVelocity {
                     },
                 }
             }
+            CurveSet::Tabulated => HillForceVelocity::Tabulated {
+                v_max,
+                curve: Arc::new(tabulated::of_points(
+                    p.tabulated.as_ref().map(|t| &t.force_velocity),
+                )),
+            },
             CurveSet::Millard2012 => HillForceVelocity::Millard2012 {
                 v_max,
                 curve: Arc::new({
@@ -93,7 +107,8 @@ impl HillForceVelocity {
             HillForceVelocity::Paper { v_max, .. }
             | HillForceVelocity::DeGroote2016 { v_max }
             | HillForceVelocity::Thelen2003 { v_max, .. }
-            | HillForceVelocity::Millard2012 { v_max, .. } => v_max,
+            | HillForceVelocity::Millard2012 { v_max, .. }
+            | HillForceVelocity::Tabulated { v_max, .. } => v_max,
         }
     }
 
@@ -112,6 +127,7 @@ impl HillForceVelocity {
                 thelen2003::force_velocity_derivative(v / v_max, activation, shape) / v_max
             }
             HillForceVelocity::Millard2012 { v_max, ref curve } => curve.slope(v / v_max) / v_max,
+            HillForceVelocity::Tabulated { v_max, ref curve } => curve.slope(v / v_max) / v_max,
         }
     }
 
@@ -146,6 +162,8 @@ impl HillForceVelocity {
             // OpenSim's ForceVelocityInverseCurve is this curve with x and y exchanged; a flat
             // end (the default slopes at ±vmax are 0) saturates at ±vmax.
             HillForceVelocity::Millard2012 { v_max, ref curve } => curve.argument_at(g) * v_max,
+            // Its rising part's inverse (the flat padding is never inverted).
+            HillForceVelocity::Tabulated { v_max, ref curve } => curve.argument_at(g) * v_max,
         };
         let bound = BALANCE_VELOCITY_BOUND * self.v_max();
         v.clamp(-bound, bound)
@@ -218,6 +236,7 @@ impl HillForceVelocity {
                 thelen2003::force_velocity(v / v_max, activation, shape)
             }
             HillForceVelocity::Millard2012 { v_max, ref curve } => curve.value(v / v_max),
+            HillForceVelocity::Tabulated { v_max, ref curve } => curve.value(v / v_max),
         }
     }
 }
@@ -228,8 +247,10 @@ mod tests {
     use crate::physics::curves::CurveSet;
 
     fn relations() -> Vec<HillForceVelocity> {
+        // (A tabulated muscle's curve is its own points: tests/curve_sets.rs builds some.)
         CurveSet::ALL
             .iter()
+            .filter(|&&s| s != CurveSet::Tabulated)
             .map(|&curves| {
                 HillForceVelocity::new(&MuscleParams {
                     curves,

@@ -3,6 +3,7 @@
 
 use crate::physics::contractile::force_length::{force_length, force_length_slope};
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
 use crate::physics::params::{ForceLengthShape, MuscleParams};
 use std::sync::Arc;
@@ -42,6 +43,13 @@ pub enum ActiveForceLength {
         /// The curve of l̃ ([`millard2012::active_force_length_curve`]).
         curve: Arc<SegmentedBezier>,
     },
+    /// The muscle's own points, interpolated as CEINMS does.
+    Tabulated {
+        /// Optimal fibre length, m.
+        l_opt: f64,
+        /// The curve of l̃.
+        curve: Arc<TabulatedCurve>,
+    },
 }
 
 impl ActiveForceLength {
@@ -63,6 +71,12 @@ impl ActiveForceLength {
             CurveSet::Thelen2003 => ActiveForceLength::Thelen2003 {
                 l_opt,
                 kshape: p.kshape_active.unwrap_or(thelen2003::DEFAULT_KSHAPE_ACTIVE),
+            },
+            CurveSet::Tabulated => ActiveForceLength::Tabulated {
+                l_opt,
+                curve: Arc::new(tabulated::of_points(
+                    p.tabulated.as_ref().map(|t| &t.active_force_length),
+                )),
             },
             CurveSet::Millard2012 => ActiveForceLength::Millard2012 {
                 l_opt,
@@ -92,6 +106,7 @@ impl ActiveForceLength {
                 thelen2003::active_force_length(l_m / l_opt, kshape)
             }
             ActiveForceLength::Millard2012 { l_opt, ref curve } => curve.value(l_m / l_opt),
+            ActiveForceLength::Tabulated { l_opt, ref curve } => curve.value(l_m / l_opt),
         }
     }
 
@@ -110,6 +125,7 @@ impl ActiveForceLength {
                 thelen2003::active_force_length_derivative(l_m / l_opt, kshape) / l_opt
             }
             ActiveForceLength::Millard2012 { l_opt, ref curve } => curve.slope(l_m / l_opt) / l_opt,
+            ActiveForceLength::Tabulated { l_opt, ref curve } => curve.slope(l_m / l_opt) / l_opt,
         }
     }
 }

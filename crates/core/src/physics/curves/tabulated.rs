@@ -81,6 +81,7 @@ mod rising;
 #[cfg(test)]
 mod tests;
 
+use crate::physics::params::tabulated::{split, Points};
 use fmm::Cubic;
 use knot::Knot;
 use rising::RisingPart;
@@ -149,6 +150,17 @@ pub struct TabulatedCurve {
     rising: Option<RisingPart>,
     /// The slope outside the points: 0, NaN for [`TabulatedCurve::undefined`].
     held_slope: f64,
+}
+
+/// The curve of a muscle's points (`curves = "tabulated"`), [`TabulatedCurve::undefined`]
+/// where there are none or they make no curve (validation refuses both first).
+pub fn of_points(points: Option<&Points>) -> TabulatedCurve {
+    points
+        .and_then(|p| {
+            let (x, y) = split(p);
+            TabulatedCurve::new(&x, &y).ok()
+        })
+        .unwrap_or_else(TabulatedCurve::undefined)
 }
 
 impl TabulatedCurve {

@@ -18,15 +18,19 @@ pub enum CurveSet {
     Thelen2003,
     /// Millard et al. (2013), J Biomech Eng 135(2), as OpenSim's Millard2012EquilibriumMuscle.
     Millard2012,
+    /// Curves given as points in the muscle's `tabulated` table (a CEINMS subject's), each
+    /// interpolated as CEINMS interpolates it (`crate::physics::curves::tabulated`).
+    Tabulated,
 }
 
 impl CurveSet {
     /// Every curve set.
-    pub const ALL: [CurveSet; 4] = [
+    pub const ALL: [CurveSet; 5] = [
         CurveSet::Paper,
         CurveSet::DeGroote2016,
         CurveSet::Thelen2003,
         CurveSet::Millard2012,
+        CurveSet::Tabulated,
     ];
 
     /// Its name in configurations.
@@ -36,6 +40,7 @@ impl CurveSet {
             CurveSet::DeGroote2016 => "degroote2016",
             CurveSet::Thelen2003 => "thelen2003",
             CurveSet::Millard2012 => "millard2012",
+            CurveSet::Tabulated => "tabulated",
         }
     }
 
