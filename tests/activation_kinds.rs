@@ -4,6 +4,9 @@
 //! nonlinearity; a saved state continues it bit for bit; its constants belong to
 //! `neural_rate_hz`; the keys are refused where they do not apply.
 
+mod common;
+
+use common::fixtures::refusal;
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::params::formulation::ActivationKind;
@@ -110,7 +113,7 @@ fn a_saved_state_continues_the_recursion_bit_for_bit() {
 /// Constants given for another rate are converted by keeping each root's time constant: with
 /// constants for 1 kHz, a 500 Hz tick's recursion leaves the step's transient decaying per
 /// second as at 1 kHz (0.2 s after the step, within 20 %); taken unconverted, the 500 Hz
-/// recursion would be 0.98^100 against 0.98^200 from its end, 7.4 times as far.
+/// recursion would be 0.98^100 against 0.98^200 from its end, 7.5 times as far.
 #[test]
 fn constants_for_another_rate_keep_their_time_constants() {
     let mut at_1khz = elbow(-0.98, -0.9, 0.0, 0.0);
@@ -143,14 +146,6 @@ fn constants_for_another_rate_keep_their_time_constants() {
         "{err}"
     );
     assert!(Actuator::new(&bad, ModelKind::HILL, 1000.0).is_ok());
-}
-
-fn refusal(keys: &str) -> String {
-    let text = format!("[[muscle]]\nname = \"flexor\"\n{keys}\n[[muscle]]\nname = \"extensor\"\n");
-    match ActuatorConfig::from_toml_str(&text) {
-        Ok(_) => panic!("accepted: {keys}"),
-        Err(e) => e.to_string(),
-    }
 }
 
 /// Each bad setting is refused on one line naming the key and its rule; the default writes

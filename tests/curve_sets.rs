@@ -4,7 +4,10 @@
 //! an independent bisection on the curves, stiffness and energy against differences of force, and
 //! the configuration's refusals.
 
-use muscle_actuator::config::{ActuatorConfig, ConfigError};
+mod common;
+
+use common::fixtures::{clamped, refusal};
+use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::physics::curves::{degroote2016 as dgf, thelen2003, Curve as Named, CurveSet};
 use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::mtu::{Mtu, TendonEnd};
@@ -12,8 +15,7 @@ use muscle_actuator::physics::observables::EnergeticsOutputs;
 use muscle_actuator::physics::parallel_element::passive_strain;
 use muscle_actuator::physics::params::MuscleParams;
 use muscle_actuator::physics::tendon::tendon_strain;
-use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator::sim::schedule::Schedule;
+use muscle_actuator::sim::scenario::{Scenario, SetupKind};
 use muscle_actuator::sim::simulation::default_stepping;
 
 const OPENSIM_SETS: [CurveSet; 3] = [
@@ -97,19 +99,7 @@ fn a_clamped_unit_settles_where_the_sets_curves_balance() {
                 cfg.muscles[0].params.curves = set;
                 let p = cfg.muscles[0].params.clone();
                 let length = p.l_opt + p.l_ts + 0.005;
-                let sc = Scenario {
-                    name: "isometric".into(),
-                    duration: 3.0,
-                    attachment: SetupKind::Clamped,
-                    length: Some(length),
-                    initial_force: 0.0,
-                    inputs: vec![ScheduledInput {
-                        signal: Signal::Excitation,
-                        muscle: None,
-                        joint: None,
-                        schedule: Schedule::Constant { value: u },
-                    }],
-                };
+                let sc = clamped(u, length, 3.0);
                 let rate = 1000.0;
                 let mut runner = sc
                     .runner(&cfg, model, rate, default_stepping(model))
@@ -304,16 +294,6 @@ fn the_resting_fibre_balances_tendon_and_parallel_element() {
             "{set}: {}",
             m.force
         );
-    }
-}
-
-fn refusal(muscle_keys: &str) -> String {
-    let text =
-        format!("[[muscle]]\nname = \"flexor\"\n{muscle_keys}\n[[muscle]]\nname = \"extensor\"\n");
-    match ActuatorConfig::from_toml_str(&text) {
-        Ok(_) => panic!("accepted: {muscle_keys}"),
-        Err(e @ (ConfigError::Invalid(_) | ConfigError::Parse { .. })) => e.to_string(),
-        Err(other) => panic!("{muscle_keys}: unexpected {other}"),
     }
 }
 

@@ -3,6 +3,9 @@
 //! sampled: the same isometric states and the same run on an equilibrium fibre), settles where
 //! the CEINMS subject's own curves balance, and bad tables are refused on one line each.
 
+mod common;
+
+use common::fixtures::{clamped, refusal};
 use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::measured::Subject;
 use muscle_actuator::physics::curves::tabulated::TabulatedCurve;
@@ -11,7 +14,7 @@ use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::physics::params::formulation::FibreKind;
 use muscle_actuator::physics::params::tabulated::{Points, TabulatedCurves};
 use muscle_actuator::physics::params::MuscleParams;
-use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
+use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, Signal};
 use muscle_actuator::sim::schedule::Schedule;
 use muscle_actuator::sim::simulation::default_stepping;
 use std::path::PathBuf;
@@ -34,22 +37,6 @@ fn degroote_points() -> TabulatedCurves {
         passive_force_length: sampled(|x| dgf(Curve::PassiveForceLength, x), 0.2, 1.9, 601),
         force_velocity: sampled(|x| dgf(Curve::ForceVelocity, x), -1.5, 1.5, 601),
         tendon_force_strain: sampled(|e| dgf(Curve::TendonForceLength, 1.0 + e), -0.05, 0.1, 601),
-    }
-}
-
-fn clamped(u: f64, length: f64, seconds: f64) -> Scenario {
-    Scenario {
-        name: "isometric".into(),
-        duration: seconds,
-        attachment: SetupKind::Clamped,
-        length: Some(length),
-        initial_force: 0.0,
-        inputs: vec![ScheduledInput {
-            signal: Signal::Excitation,
-            muscle: None,
-            joint: None,
-            schedule: Schedule::Constant { value: u },
-        }],
     }
 }
 
@@ -196,14 +183,6 @@ fn the_subjects_curves_balance_where_they_say() {
         );
         assert!((l_m - want).abs() < 1e-6 * want, "{l_m} vs {want}");
         assert!((force - want_force).abs() < 1e-6 * want_force.abs().max(1.0));
-    }
-}
-
-fn refusal(keys: &str) -> String {
-    let text = format!("[[muscle]]\nname = \"flexor\"\n{keys}\n[[muscle]]\nname = \"extensor\"\n");
-    match ActuatorConfig::from_toml_str(&text) {
-        Ok(_) => panic!("accepted: {keys}"),
-        Err(e) => e.to_string(),
     }
 }
 

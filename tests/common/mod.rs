@@ -1,6 +1,8 @@
-//! Shared helpers of the Rust tests: the adaptive reference solution of a scenario.
+//! Shared helpers of the Rust tests: the adaptive reference solution of a scenario, and small
+//! configuration and scenario fixtures.
 #![allow(dead_code)]
 
+pub mod fixtures;
 mod reference;
 
 use muscle_actuator::config::ActuatorConfig;

@@ -117,7 +117,7 @@ impl ParallelElement {
     }
 
     /// Tension at fibre length `l_m`, N.
-    #[inline]
+    #[inline(always)]
     pub fn force(&self, l_m: f64) -> f64 {
         match *self {
             ParallelElement::Paper(ref s) => s.force(l_m),

@@ -113,7 +113,7 @@ impl Tendon {
     }
 
     /// Tension at tendon length `l`, N.
-    #[inline]
+    #[inline(always)]
     pub fn force(&self, l: f64) -> f64 {
         match *self {
             Tendon::Paper(ref s) => s.force(l),
@@ -137,7 +137,7 @@ impl Tendon {
     }
 
     /// Stiffness dF/dl, N/m.
-    #[inline]
+    #[inline(always)]
     pub fn stiffness(&self, l: f64) -> f64 {
         match *self {
             Tendon::Paper(ref s) => s.stiffness(l),

@@ -182,9 +182,12 @@ impl Part {
         }
         for (k, &i) in self.muscles.iter().enumerate() {
             self.a0[k] = activation[i];
-            self.a1[k] = activation_end[i];
             self.inputs.excitation[k] = inputs.excitation[i];
             self.inputs.tendon_force[k] = inputs.tendon_force[i];
+        }
+        // Only Lloyd & Besier's muscles read an end value.
+        for &k in &self.neural {
+            self.a1[k] = activation_end[self.muscles[k]];
         }
         for (k, &j) in self.joints.iter().enumerate() {
             self.inputs.external_torque[k] = inputs.external_torque[j];

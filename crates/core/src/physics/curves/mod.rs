@@ -6,6 +6,7 @@
 //! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them;
 //! - [`millard2012`]: Millard2012EquilibriumMuscle's quintic Bézier curves as OpenSim 4.6 builds
 //!   them ([`quintic_bezier`]);
+//! - [`rising_root`]: the bracketed Newton solve the point-wise curves evaluate and invert with;
 //! - [`tabulated`]: curves given as points, by the cubic spline CEINMS interpolates its subject
 //!   files' curves with;
 //! - [`overlap`], [`force_velocity`]: a muscle's active force–length and Hill force–velocity
@@ -26,6 +27,7 @@ pub mod millard2012;
 pub mod overlap;
 pub mod paper;
 pub mod quintic_bezier;
+pub mod rising_root;
 pub mod tabulated;
 pub mod thelen2003;
 

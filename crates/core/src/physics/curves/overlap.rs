@@ -91,7 +91,7 @@ impl ActiveForceLength {
     }
 
     /// λ(l_m), dimensionless.
-    #[inline]
+    #[inline(always)]
     pub fn at(&self, l_m: f64) -> f64 {
         match *self {
             ActiveForceLength::Paper {

@@ -11,16 +11,15 @@
 //!
 //! Evaluating y at x means solving x(u) = x for u on the segment that holds x. OpenSim starts
 //! Newton's method from a cubic-spline guess and stops at |x(u) − x| ≤ 100 ε; here Newton's
-//! method is safeguarded by bisection on [0, 1] and runs until x(u) is within rounding of x, so
+//! method is safeguarded by bisection on [0, 1] ([`super::rising_root`]) and runs until x(u) is
+//! within rounding of x, so
 //! the two agree to about 1e-13 (tests/curve_sets.rs). Written here rather than taken from a
 //! crate: no crate builds Millard's corners, and the evaluation must not allocate.
 
+use super::rising_root::rising_root;
+
 /// The most segments a curve has (Millard's active force–length curve has five).
 pub const MAX_SEGMENTS: usize = 5;
-
-/// Iterations of the safeguarded Newton solve for u: each at least halves the bracket, so 100
-/// resolve [0, 1] to below one ulp; it stops after 3–6 in practice.
-const MAX_ITERATIONS: usize = 100;
 
 /// Six control points of one coordinate of a quintic Bézier segment.
 pub type ControlPoints = [f64; 6];
@@ -110,42 +109,23 @@ fn bernstein_derivative(p: &ControlPoints, u: f64) -> f64 {
     5.0 * sum
 }
 
-/// The u in [0, 1] at which the monotonic Bézier polynomial `p` takes the value `target` (which
-/// lies between p[0] and p[5]): Newton's method kept inside a shrinking bracket, bisection where
-/// a step would leave it.
+/// The u in [0, 1] at which the rising Bézier polynomial `p` takes the value `target` (which
+/// lies between p[0] and p[5]), from the linear guess, to rounding ([`rising_root`]).
 fn solve_u(p: &ControlPoints, target: f64) -> f64 {
-    let rising = p[5] >= p[0];
-    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
     let span = p[5] - p[0];
-    let mut u = if span != 0.0 {
-        ((target - p[0]) / span).clamp(0.0, 1.0)
+    let guess = if span != 0.0 {
+        (target - p[0]) / span
     } else {
         0.5
     };
     let rounding = 4.0 * f64::EPSILON * (p[0].abs().max(p[5].abs()).max(target.abs()));
-    for _ in 0..MAX_ITERATIONS {
-        let r = bernstein(p, u) - target;
-        if r.abs() <= rounding {
-            return u;
-        }
-        if (r < 0.0) == rising {
-            lo = u;
-        } else {
-            hi = u;
-        }
-        let slope = bernstein_derivative(p, u);
-        let newton = u - r / slope;
-        let next = if slope != 0.0 && newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (next - u).abs() <= f64::EPSILON || hi - lo <= f64::EPSILON {
-            return next;
-        }
-        u = next;
-    }
-    u
+    rising_root(
+        |u| (bernstein(p, u) - target, bernstein_derivative(p, u)),
+        (0.0, 1.0),
+        guess,
+        rounding,
+        f64::EPSILON,
+    )
 }
 
 /// Gauss–Legendre nodes on [−1, 1], five points: exact for polynomials up to degree 9, so for

@@ -81,14 +81,11 @@ mod rising;
 #[cfg(test)]
 mod tests;
 
+use crate::physics::curves::rising_root::rising_root;
 use crate::physics::params::tabulated::{split, Points};
 use fmm::Cubic;
 use knot::Knot;
 use rising::RisingPart;
-
-/// Iterations of the safeguarded Newton solve of [`TabulatedCurve::argument_at`]: each at least
-/// halves the bracket once Newton's step leaves it, and Newton's own steps converge in a few.
-const MAX_ITERATIONS: usize = 100;
 
 /// Why points do not make a tabulated curve; indices count from 0.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -332,38 +329,23 @@ fn held_integral(y: f64, d: f64) -> f64 {
 }
 
 /// The dx in `[lo, hi]` at which the rising cubic of `knot` takes `target` (which lies between
-/// its values at lo and hi): Newton's method kept inside a shrinking bracket, bisection where a
-/// step would leave it, until the step is below rounding of x.
-fn solve_rising(knot: &Knot, target: f64, (mut lo, mut hi): (f64, f64)) -> f64 {
+/// its values at lo and hi), from the secant's guess, until the step is below rounding of x
+/// ([`rising_root`]).
+fn solve_rising(knot: &Knot, target: f64, (lo, hi): (f64, f64)) -> f64 {
     let (below, above) = (knot.value(lo) - target, knot.value(hi) - target);
-    let mut dx = if above > below {
-        (lo - below * (hi - lo) / (above - below)).clamp(lo, hi)
+    let guess = if above > below {
+        lo - below * (hi - lo) / (above - below)
     } else {
         0.5 * (lo + hi)
     };
-    for _ in 0..MAX_ITERATIONS {
-        let r = knot.value(dx) - target;
-        if r == 0.0 {
-            return dx;
-        }
-        if r < 0.0 {
-            lo = dx;
-        } else {
-            hi = dx;
-        }
-        let newton = dx - r / knot.slope(dx);
-        let next = if newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        let rounding = 2.0 * f64::EPSILON * (knot.x.abs() + next.abs());
-        if (next - dx).abs() <= rounding || hi - lo <= rounding {
-            return next;
-        }
-        dx = next;
-    }
-    dx
+    let rounding = 2.0 * f64::EPSILON * (knot.x.abs() + lo.abs().max(hi.abs()));
+    rising_root(
+        |dx| (knot.value(dx) - target, knot.slope(dx)),
+        (lo, hi),
+        guess,
+        0.0,
+        rounding,
+    )
 }
 
 /// The points' checks, in the order the error lists them.
