@@ -4,6 +4,7 @@
 
 mod error;
 pub mod steady;
+pub mod subject;
 
 pub use error::CliError;
 
@@ -105,6 +106,53 @@ pub enum Command {
     },
     /// List the contractile models: name and what it is, one a line.
     Models,
+    /// A subject's muscle-tendon units (CEINMS's subject XML, or the project's TOML) written as
+    /// the project's TOML subject file (docs/emg.md).
+    Subject {
+        /// The subject file (.xml or .toml).
+        file: PathBuf,
+        /// The TOML subject file to write.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Drive a subject's units through a measured trial (EMG, muscle-tendon lengths, moment
+    /// arms) and rate the predicted joint moments against the measured ones: R2, r2, RMSE.
+    Predict {
+        #[command(flatten)]
+        args: subject::PredictArgs,
+        #[arg(long, default_value = "hill", help = model_help())]
+        model: String,
+    },
+    /// Calibrate a subject's units on trials: bounded parameters fitted by CMA-ES so that the
+    /// predicted moments of the degrees of freedom match the measured ones (docs/emg.md).
+    Calibrate {
+        /// The subject file (CEINMS XML or the project's TOML).
+        #[arg(long)]
+        subject: PathBuf,
+        /// The EMG-to-unit map (CEINMS's excitation generator XML).
+        #[arg(long)]
+        excitations: PathBuf,
+        /// The trials' folders.
+        #[arg(long, num_args = 1.., required = true)]
+        trials: Vec<PathBuf>,
+        /// The degrees of freedom whose moments are matched, comma-separated (R_knee_fe,...).
+        #[arg(long)]
+        dofs: String,
+        #[arg(long, default_value = "hill", help = model_help())]
+        model: String,
+        /// The calibrated subject's TOML file.
+        #[arg(long)]
+        out: PathBuf,
+        /// The optimiser's seed (the same seed, the same result).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Most objective evaluations.
+        #[arg(long, default_value_t = DEFAULT_EVALUATIONS)]
+        evaluations: usize,
+        /// Threads the candidates are evaluated on (default: every core).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
     /// One muscle's steady states at full activation and optimal length, shortening velocities
     /// from -vmax to vmax: force, ATP rate, chemical power, heat, work, efficiency, from the
     /// cross-bridges (Huxley models) and each phenomenological energy model.
@@ -124,6 +172,9 @@ pub enum Command {
         csv: Option<PathBuf>,
     },
 }
+
+/// `calibrate --evaluations` by default.
+const DEFAULT_EVALUATIONS: usize = 1000;
 
 /// Help of `simulate --model`.
 fn model_help() -> String {
@@ -277,6 +328,41 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             Ok(())
         }
         Command::Node { args } => Ok(crate::ros::run_node(args)?),
+        Command::Subject { file, out } => Ok(subject::convert(&file, &out)?),
+        Command::Predict { args, model } => {
+            let ratings = subject::predict(&args, parse_model(&model)?)?;
+            let trial = args.trial.display().to_string();
+            print!("{}", subject::ratings_table(&trial, &ratings));
+            Ok(())
+        }
+        Command::Calibrate {
+            subject: s,
+            excitations,
+            trials,
+            dofs,
+            model,
+            out,
+            seed,
+            evaluations,
+            threads,
+        } => {
+            let dofs = subject::parse_dofs(&dofs)?;
+            Ok(subject::calibrate(&subject::CalibrateArgs {
+                subject: &s,
+                excitations: &excitations,
+                trials: &trials,
+                dofs: &dofs,
+                model: parse_model(&model)?,
+                out: &out,
+                settings: crate::subject::calibrate::Settings {
+                    seed,
+                    max_evaluations: evaluations,
+                    threads: threads.unwrap_or_else(rayon::current_num_threads),
+                    ..Default::default()
+                },
+                progress: true,
+            })?)
+        }
         Command::Steady {
             model,
             config,

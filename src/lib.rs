@@ -13,7 +13,7 @@
 //! - [`cli`]: the command line (`src/main.rs` calls [`cli::main`]).
 
 pub use muscle_actuator_core::{
-    config, csv, emg, files, integrator, measured, physics, sim, state_bytes, text, time,
+    config, csv, emg, files, integrator, measured, physics, sim, state_bytes, subject, text, time,
 };
 pub use muscle_actuator_recording::{msgs, recording, runs};
 

@@ -254,3 +254,49 @@ fn bad_tables_are_refused_on_one_line() {
         .unwrap()
         .contains("tabulated"));
 }
+
+/// CEINMS's two readings of a unit's curves (docs/model.md §4b): a tendon strain below 0 is read
+/// as 0 (no push, no stiffness, whatever the spline does in the padding: −1.22 Fmax at strain
+/// −5 on the subject's points), and the force–velocity curve at ṽ within [−1, 1] (flat beyond, so
+/// the equilibrium balance never falls as v rises; the spline's bulge to 2.7 at ṽ = −7 unread).
+#[test]
+fn a_slack_tendon_pushes_nothing_and_the_force_velocity_curve_ends_at_vmax() {
+    use muscle_actuator::physics::curves::force_velocity::HillForceVelocity;
+    use muscle_actuator::physics::tendon::Tendon;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let subject = Subject::read(&root.join("data/ceinms/uncalibratedSubject.xml")).unwrap();
+    let model = muscle_actuator::subject::SubjectModel::of_ceinms(&subject).unwrap();
+    let p = &model.units[0].params;
+    let tendon = Tendon::new(p);
+    let points = &p.tabulated.as_ref().unwrap().tendon_force_strain;
+    let (x, y): (Vec<f64>, Vec<f64>) = points.iter().map(|&[x, y]| (x, y)).unzip();
+    let spline = TabulatedCurve::new(&x, &y).unwrap();
+    assert!(
+        spline.value(-5.0) < -1.0,
+        "the padding's dip: {}",
+        spline.value(-5.0)
+    );
+    for strain in [-5.0, -0.5, -0.01, -1e-9] {
+        let l = p.l_ts * (1.0 + strain);
+        assert_eq!(tendon.force(l), 0.0, "strain {strain}");
+        assert_eq!(tendon.stiffness(l), 0.0);
+        assert_eq!(tendon.energy(l), 0.0);
+    }
+    let l = p.l_ts * 1.01;
+    let f = p.f_max * spline.value(l / p.l_ts - 1.0);
+    assert!((tendon.force(l) - f).abs() <= 1e-12 * f);
+    let fv = HillForceVelocity::new(p);
+    let v_max = fv.v_max();
+    for (beyond, end) in [(-7.084, -1.0), (-3.0, -1.0), (1.5, 1.0), (9.0, 1.0)] {
+        assert_eq!(fv.at(beyond * v_max, 1.0), fv.at(end * v_max, 1.0));
+        assert_eq!(fv.slope(beyond * v_max, 1.0), 0.0);
+    }
+    // The balance rises with v everywhere: a damper and a curve that never falls.
+    let mut last = f64::NEG_INFINITY;
+    for k in -400..=400 {
+        let v = k as f64 * 0.01 * v_max;
+        let f = 500.0 * fv.at(v, 1.0) + p.b_m * v;
+        assert!(f > last, "falls at v = {v}");
+        last = f;
+    }
+}

@@ -6,6 +6,10 @@ any limb, the engine of the ``muscle_actuator`` ROS 2 node, bit for bit (docs/py
 - :func:`rollout`: many actuators (each with its own parameters) over many ticks, on every core.
 - :func:`simulate`, :func:`read_recording`, :func:`compare`: offline runs and recordings as
   arrays (:class:`Run`), and the ``compare`` command's figures.
+- :class:`Subject`, :func:`predict`, :func:`calibrate`: a person's muscle–tendon units (a CEINMS
+  subject) driven by a measured trial (:class:`Prediction`), and calibrated on trials' moments.
+- :func:`emg_envelope`, :func:`neural_activation`: raw EMG to a normalised envelope, and
+  Lloyd & Besier's activation of an excitation.
 - :mod:`muscle_actuator.gym`: Gymnasium environments (``muscle_actuator/ArmReach-v0``),
   registered with Gymnasium on import of this package when Gymnasium is installed.
 - :class:`Error` (a ``ValueError``) and its kinds: :class:`ConfigError`, :class:`InputError`,
@@ -30,8 +34,10 @@ from ._core import (
     Error,
     FileNotFound,
     InputError,
+    Prediction,
     RecordingError,
     StepError,
+    Subject,
     UnknownNameError,
 )
 from ._registration import register_envs
@@ -44,12 +50,18 @@ __all__ = [
     "Error",
     "FileNotFound",
     "InputError",
+    "Prediction",
     "RecordingError",
     "Run",
     "StepError",
+    "Subject",
     "UnknownNameError",
     "TruncatedRecordingWarning",
+    "calibrate",
     "compare",
+    "emg_envelope",
+    "neural_activation",
+    "predict",
     "read_recording",
     "rollout",
     "simulate",
@@ -172,6 +184,92 @@ def compare(
             warnings.simplefilter("ignore", TruncatedRecordingWarning)
             overlay(read_recording(a), read_recording(b), plot)
     return json.loads(text)
+
+
+_Path = str | os.PathLike[str]
+
+
+def predict(
+    subject: Subject | _Path,
+    excitations: _Path,
+    trial: _Path,
+    model: str = "hill",
+    dofs: str | Sequence[str] | None = None,
+) -> Prediction:
+    """``muscle_actuator predict``: the subject's units (a :class:`Subject` or its file) driven
+    through the trial in the folder ``trial`` (``emg.txt``, ``lmt.txt``, ``<dof>Ma.txt``,
+    ``<dof>Torque.txt``), each unit along its measured length under the excitation the map
+    ``excitations`` (CEINMS's excitation generator) makes of the EMG; the units of ``dofs``
+    (default: every degree of freedom of the trial). The numbers are those of ``predict --csv``
+    and ``--muscles-csv``, bit for bit. Runs with the GIL released."""
+    return _core._predict(subject, excitations, trial, model, dofs)
+
+
+def calibrate(
+    subject: Subject | _Path,
+    excitations: _Path,
+    trials: _Path | Sequence[_Path],
+    dofs: str | Sequence[str],
+    model: str = "hill",
+    seed: int = 1,
+    evaluations: int = 1000,
+    threads: int | None = None,
+) -> tuple[Subject, dict[str, Any]]:
+    """``muscle_actuator calibrate``: the subject's bounded parameters (C1, C2, shape factor,
+    delay; per group of units strength, tendon slack and optimal fibre length multipliers)
+    fitted by CMA-ES so that the units' moments of ``dofs`` match the trials' measured ones.
+
+    Returns the calibrated :class:`Subject` (with its ``calibration`` record; ``to_toml()`` is
+    the file ``calibrate --out`` writes) and a dict: ``cost`` and ``start_cost`` (mean of
+    1 - R²), ``evaluations``, ``history`` (after each generation: evaluations so far, best cost)
+    and ``parameters`` (name -> value). The same seed gives the same result on any number of
+    ``threads`` (default: one per core). Runs with the GIL released."""
+    return _core._calibrate(subject, excitations, trials, dofs, model, seed, evaluations, threads)
+
+
+def emg_envelope(
+    raw: Any,
+    rate_hz: float,
+    *,
+    remove_mean: bool = True,
+    band_pass: tuple[float, float] | None = (20.0, 450.0),
+    band_pass_order: int = 4,
+    low_pass_hz: float = 6.0,
+    low_pass_order: int = 4,
+    phase: str = "zero-phase",
+    normalisation: str | float | None = "signal-peak",
+) -> np.ndarray:
+    """The normalised linear envelope of raw EMG sampled at ``rate_hz``: the mean removed, a
+    Butterworth band-pass (``band_pass`` Hz, None for none), full-wave rectification, a
+    Butterworth low-pass (``low_pass_hz``), then division by the normaliser: ``"signal-peak"``
+    (the largest value of the envelope(s) given), a number (an MVC envelope's peak) or None.
+    ``phase`` is ``"zero-phase"`` (forward and backward, no lag: ``scipy.signal.sosfiltfilt``)
+    or ``"causal"`` (one forward pass, as online). ``raw`` is one signal ``(samples,)`` or
+    several ``(signals, samples)``, all divided by their common peak; the result has its shape.
+    The defaults are the crate's (``muscle_actuator_core::emg::envelope``)."""
+    return _core._emg_envelope(
+        raw,
+        rate_hz,
+        remove_mean,
+        None if band_pass is None else (float(band_pass[0]), float(band_pass[1])),
+        band_pass_order,
+        low_pass_hz,
+        low_pass_order,
+        phase,
+        normalisation,
+    )
+
+
+def neural_activation(
+    excitation: Any, c1: float, c2: float, shape_factor: float, delay_samples: int = 0
+) -> np.ndarray:
+    """Lloyd & Besier's activation of an excitation (a normalised envelope, clamped to [0, 1]),
+    one value per sample, from rest: the recursion ``u[k] = α e[k-d] - β1 u[k-1] - β2 u[k-2]``
+    (``β1 = C1 + C2``, ``β2 = C1 C2``, ``α = 1 + β1 + β2``: a constant excitation gives itself),
+    |C1|, |C2| < 1, a delay of ``delay_samples`` samples, then ``a = (exp(A u) - 1)/(exp(A) - 1)``
+    with A = ``shape_factor`` in [-3, 3] (the line a = u at A = 0). C1 and C2 belong to the
+    excitation's sample period. ``excitation`` is ``(samples,)`` or ``(signals, samples)``."""
+    return _core._neural_activation(excitation, c1, c2, shape_factor, delay_samples)
 
 
 register_envs()

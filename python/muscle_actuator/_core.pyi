@@ -8,6 +8,7 @@ import numpy.typing as npt
 
 _Config = str | os.PathLike[str] | Mapping[str, Any] | None
 _Inputs = npt.ArrayLike | Mapping[str, float] | None
+_Path = str | os.PathLike[str]
 
 __all__ = [
     "Actuator",
@@ -16,11 +17,18 @@ __all__ = [
     "Error",
     "FileNotFound",
     "InputError",
+    "Prediction",
     "RecordingError",
     "StepError",
+    "Subject",
     "UnknownNameError",
     "__version__",
+    "_calibrate",
     "_compare",
+    "_emg_envelope",
+    "_emg_envelope_defaults",
+    "_neural_activation",
+    "_predict",
     "_read_recording",
     "_rollout_actuators",
     "_rollout_new",
@@ -158,3 +166,87 @@ def _read_recording(path: str | os.PathLike[str]) -> dict[str, Any]: ...
 def _compare(
     a: str | os.PathLike[str], b: str | os.PathLike[str], plot: str | os.PathLike[str] | None = None
 ) -> tuple[str, list[str]]: ...
+
+@final
+class Subject:
+    """A subject's muscle-tendon units: CEINMS's XML or the project's TOML (docs/emg.md)."""
+
+    @staticmethod
+    def read(path: _Path) -> Subject: ...
+    @staticmethod
+    def from_toml(text: str) -> Subject: ...
+    def to_toml(self) -> str: ...
+    @property
+    def id(self) -> str: ...
+    @property
+    def units(self) -> list[str]: ...
+    @property
+    def dofs(self) -> dict[str, list[str]]: ...
+    @property
+    def calibration(self) -> dict[str, Any] | None: ...
+    @property
+    def bounds(self) -> dict[str, list[float]]: ...
+    def unit_params(self, name: str) -> dict[str, Any]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+
+@final
+class Prediction:
+    """A subject driven through a trial, at the trial's kinematic samples."""
+
+    @property
+    def trial(self) -> str: ...
+    @property
+    def model(self) -> str: ...
+    @property
+    def clamped_excitations(self) -> int: ...
+    @property
+    def time(self) -> np.ndarray: ...
+    @property
+    def dofs(self) -> list[str]: ...
+    @property
+    def units(self) -> list[str]: ...
+    @property
+    def moment(self) -> dict[str, np.ndarray]: ...
+    @property
+    def measured(self) -> dict[str, np.ndarray]: ...
+    @property
+    def force(self) -> np.ndarray: ...
+    @property
+    def activation(self) -> np.ndarray: ...
+    @property
+    def fibre_length(self) -> np.ndarray: ...
+    def ratings(self) -> dict[str, dict[str, float]]: ...
+    def to_pandas(self) -> tuple[Any, Any]: ...
+
+def _predict(
+    subject: Subject | _Path,
+    excitations: _Path,
+    trial: _Path,
+    model: str = "hill",
+    dofs: str | Sequence[str] | None = None,
+) -> Prediction: ...
+def _calibrate(
+    subject: Subject | _Path,
+    excitations: _Path,
+    trials: _Path | Sequence[_Path],
+    dofs: str | Sequence[str],
+    model: str,
+    seed: int,
+    evaluations: int,
+    threads: int | None,
+) -> tuple[Subject, dict[str, Any]]: ...
+def _emg_envelope(
+    raw: npt.ArrayLike,
+    rate_hz: float,
+    remove_mean: bool,
+    band_pass: tuple[float, float] | None,
+    band_pass_order: int,
+    low_pass_hz: float,
+    low_pass_order: int,
+    phase: str,
+    normalisation: str | float | None,
+) -> np.ndarray: ...
+def _emg_envelope_defaults() -> dict[str, Any]: ...
+def _neural_activation(
+    excitation: npt.ArrayLike, c1: float, c2: float, shape_factor: float, delay_samples: int = 0
+) -> np.ndarray: ...

@@ -9,16 +9,29 @@
 //!   `InputError`;
 //! - a recording that reads but is damaged or not a run of this program: `RecordingError`;
 //! - a failed tick: `StepError`, with its `tick` and `reason`.
+//! - subjects, trials and EMG (docs/python.md "Subjects, EMG and calibration"): a subject or
+//!   excitation-map file that is not one, a unit's parameters, the EMG filters' and the
+//!   activation's parameters: `ConfigError`; a trial's tables, a trial that cannot be driven
+//!   (uneven EMG, kinematics outside it, a negative excitation, a length beyond a unit's
+//!   reach), a signal (non-finite, too short, no peak), a rating: `InputError`; a degree of
+//!   freedom or unit the subject, the map or the trial does not have: `UnknownNameError`; a
+//!   unit's failed tick: `StepError`.
 
 use crate::errors::{with_step_attributes, ErrorKind};
 use muscle_actuator_core::config::{ConfigError, StepperError};
+use muscle_actuator_core::emg::EmgError;
 use muscle_actuator_core::files::OverwritesInput;
+use muscle_actuator_core::measured::rating::RatingError;
+use muscle_actuator_core::measured::MeasuredError;
 use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
 use muscle_actuator_core::physics::models::UnknownModel;
 use muscle_actuator_core::sim::rollout::OutputsError;
 use muscle_actuator_core::sim::saved::SavedStateError;
 use muscle_actuator_core::sim::scenario::{ScenarioError, ScenarioRunError};
 use muscle_actuator_core::sim::{SetupError, StepError};
+use muscle_actuator_core::subject::calibrate::CalibrateError;
+use muscle_actuator_core::subject::{DriveError, SubjectFileError};
+use muscle_actuator_core::text::one_line;
 use muscle_actuator_recording::recording::RecordingError;
 use muscle_actuator_recording::runs::limits::LimitError;
 use muscle_actuator_recording::runs::load::LoadError;
@@ -177,5 +190,98 @@ impl ToPyErr for RunError {
             RunError::RecorderFailed(_) | RunError::RecorderStopped => PyOSError::new_err(msg()),
             _ => ErrorKind::Recording.err(msg()),
         }
+    }
+}
+
+/// A subject file that failed to read: `FileNotFound` when it does not exist, else
+/// `ConfigError`.
+pub fn subject_file_error(e: &SubjectFileError) -> PyErr {
+    if e.is_not_found() {
+        ErrorKind::FileNotFound.err(e.to_string())
+    } else {
+        ErrorKind::Config.err(e.to_string())
+    }
+}
+
+impl ToPyErr for MeasuredError {
+    fn to_py(&self, _py: Python<'_>) -> PyErr {
+        match self {
+            MeasuredError::Io { kind, .. } => io_error(*kind, self.to_string()),
+            MeasuredError::Subject { .. } | MeasuredError::ExcitationMap { .. } => {
+                ErrorKind::Config.err(self.to_string())
+            }
+            MeasuredError::Table { .. } | MeasuredError::Trial { .. } => {
+                ErrorKind::Input.err(self.to_string())
+            }
+        }
+    }
+}
+
+impl ToPyErr for DriveError {
+    fn to_py(&self, py: Python<'_>) -> PyErr {
+        drive_error(py, self, self.to_string())
+    }
+}
+
+/// `e` of the trial in the folder `path`, the folder before its message (as the command line
+/// says it).
+pub fn drive_error_in(py: Python<'_>, path: &str, e: &DriveError) -> PyErr {
+    drive_error(py, e, format!("{path}: {}", one_line(&e.to_string())))
+}
+
+/// The exception of `e`'s variant, with the message `msg`.
+fn drive_error(py: Python<'_>, e: &DriveError, msg: String) -> PyErr {
+    let kind = match e {
+        DriveError::Step { error, .. } => return failed_tick(py, error, msg),
+        DriveError::DofNotInSubject(_)
+        | DriveError::DofNotInTrial { .. }
+        | DriveError::UnitNotInSubject(_)
+        | DriveError::UnitNotInMap(_)
+        | DriveError::UnitNotInTrial { .. } => ErrorKind::UnknownName,
+        DriveError::NoDof
+        | DriveError::UnevenEmg { .. }
+        | DriveError::KinematicsOutsideEmg { .. }
+        | DriveError::NegativeExcitation { .. }
+        | DriveError::OutOfReach { .. }
+        | DriveError::Map { .. }
+        | DriveError::Resample { .. } => ErrorKind::Input,
+        DriveError::Params(_) | DriveError::Plant(_) | DriveError::Setup(_) => ErrorKind::Config,
+    };
+    kind.err(msg)
+}
+
+impl ToPyErr for CalibrateError {
+    fn to_py(&self, _py: Python<'_>) -> PyErr {
+        match self {
+            CalibrateError::Threads(_) => PyOSError::new_err(self.to_string()),
+            CalibrateError::Options(_) => ErrorKind::Config.err(self.to_string()),
+        }
+    }
+}
+
+impl ToPyErr for EmgError {
+    fn to_py(&self, _py: Python<'_>) -> PyErr {
+        match self {
+            EmgError::NonFiniteSample { .. }
+            | EmgError::TooShort { .. }
+            | EmgError::ZeroPeak { .. } => ErrorKind::Input.err(self.to_string()),
+            EmgError::SampleRate { .. }
+            | EmgError::SamplePeriod { .. }
+            | EmgError::Order { .. }
+            | EmgError::CutOff { .. }
+            | EmgError::BandOrder { .. }
+            | EmgError::Normaliser { .. }
+            | EmgError::Coefficient { .. }
+            | EmgError::NoOtherPeriod { .. }
+            | EmgError::Delay { .. }
+            | EmgError::DelaySamples { .. }
+            | EmgError::ShapeFactor { .. } => ErrorKind::Config.err(self.to_string()),
+        }
+    }
+}
+
+impl ToPyErr for RatingError {
+    fn to_py(&self, _py: Python<'_>) -> PyErr {
+        ErrorKind::Input.err(self.to_string())
     }
 }

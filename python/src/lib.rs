@@ -10,16 +10,20 @@
 //!   over per-tick inputs is the crate's `sim::rollout`);
 //! - [`actuator`]: `Actuator` and its saved states;
 //! - [`rollout`]: batched stepping on a thread pool;
-//! - [`runs`]: `simulate`, `read_recording`, `compare`.
+//! - [`runs`]: `simulate`, `read_recording`, `compare`;
+//! - [`subject`]: `Subject`, `Prediction`, `predict`, `calibrate`;
+//! - [`emg`]: `emg_envelope`, `neural_activation`.
 
 mod actuator;
 mod config;
+mod emg;
 mod error_kinds;
 mod errors;
 mod inputs;
 mod outputs;
 mod rollout;
 mod runs;
+mod subject;
 
 use pyo3::prelude::*;
 
@@ -35,6 +39,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runs::_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(runs::_read_recording, m)?)?;
     m.add_function(wrap_pyfunction!(runs::_compare, m)?)?;
+    m.add_class::<subject::PySubject>()?;
+    m.add_class::<subject::PyPrediction>()?;
+    m.add_function(wrap_pyfunction!(subject::_predict, m)?)?;
+    m.add_function(wrap_pyfunction!(subject::_calibrate, m)?)?;
+    m.add_function(wrap_pyfunction!(emg::_emg_envelope, m)?)?;
+    m.add_function(wrap_pyfunction!(emg::_emg_envelope_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(emg::_neural_activation, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -53,6 +53,9 @@ pub enum CliError {
     /// `steady` failed.
     #[error(transparent)]
     Steady(#[from] SteadyError),
+    /// `subject`, `predict` or `calibrate` failed.
+    #[error(transparent)]
+    Subject(#[from] super::subject::SubjectError),
     /// `node` failed.
     #[error(transparent)]
     Node(#[from] NodeError),

@@ -11,6 +11,7 @@ pub mod error;
 pub mod palette;
 pub mod plot;
 pub mod samples;
+pub mod subject_plot;
 
 use crate::config::ActuatorConfig;
 use crate::physics::contractile::calibration::{calibrate_distribution_moment, calibrate_exact};

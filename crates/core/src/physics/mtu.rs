@@ -114,6 +114,8 @@ pub struct Mtu {
     pub pennation: Pennation,
     /// The scale its fibre length's error is judged on, m ([`Mtu::scales`]).
     length_scale: f64,
+    /// The optimal length's lengthening at zero activation (`optimal_length_shift`; 0: none).
+    length_shift: f64,
 }
 
 impl Mtu {
@@ -143,6 +145,7 @@ impl Mtu {
         Ok(Self {
             mechanics,
             length_scale,
+            length_shift: params.optimal_length_shift.unwrap_or(0.0),
             pennation: Pennation::new(params),
             params: params.clone(),
             tendon,
@@ -171,6 +174,17 @@ impl Mtu {
         self.active_force_length.at(l_m)
     }
 
+    /// The overlap factor under activation `a`: λ at `l_m / (1 + s (1 − a))` for an optimal
+    /// length that lengthens by s at zero activation (docs/model.md §3b), λ(l_m) for s = 0.
+    #[inline]
+    pub fn overlap_at(&self, l_m: f64, a: f64) -> f64 {
+        if self.length_shift == 0.0 {
+            self.overlap(l_m)
+        } else {
+            self.overlap(l_m / (1.0 + self.length_shift * (1.0 - a)))
+        }
+    }
+
     /// Slope of the overlap factor, 1/m.
     pub fn overlap_slope(&self, l_m: f64) -> f64 {
         self.active_force_length.slope(l_m)
@@ -183,7 +197,7 @@ impl Mtu {
             activation,
             fibre_length: l_m,
             fibre_velocity: v,
-            overlap: self.overlap(l_m),
+            overlap: self.overlap_at(l_m, activation),
         }
     }
 
@@ -461,5 +475,50 @@ impl Mtu {
             }
         }
         0.5 * (lo + hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `optimal_length_shift` s reads the overlap at `l_m / (1 + s (1 − a))` (model.md eq. 3b):
+    /// at full activation and at s = 0 it is the overlap at l_m bit for bit, at rest the curve
+    /// stretched by 1 + s; the passive force does not depend on it.
+    #[test]
+    fn the_optimal_length_lengthens_at_low_activation() {
+        let plain = MuscleParams::default();
+        let shifted = MuscleParams {
+            optimal_length_shift: Some(0.15),
+            ..plain.clone()
+        };
+        let (m0, m1) = (
+            Mtu::new(&plain, ModelKind::HILL).unwrap(),
+            Mtu::new(&shifted, ModelKind::HILL).unwrap(),
+        );
+        for l in [0.06, 0.0959, 0.11, 0.13] {
+            assert_eq!(m1.overlap_at(l, 1.0).to_bits(), m0.overlap(l).to_bits());
+            for a in [0.0, 0.3, 0.7] {
+                assert_eq!(m0.overlap_at(l, a).to_bits(), m0.overlap(l).to_bits());
+                let want = m0.overlap(l / (1.0 + 0.15 * (1.0 - a)));
+                assert_eq!(m1.overlap_at(l, a), want);
+                assert_eq!(m1.ce_inputs(a, l, 0.0).overlap, want);
+            }
+            assert_eq!(m1.parallel.force(l), m0.parallel.force(l));
+        }
+        // At rest the peak sits at 1.15 l_opt.
+        assert!((m1.overlap_at(1.15 * plain.l_opt, 0.0) - 1.0).abs() < 1e-12);
+        let mut errors = Vec::new();
+        for s in [-0.1, 1.0, f64::NAN] {
+            MuscleParams {
+                optimal_length_shift: Some(s),
+                ..plain.clone()
+            }
+            .validate("m.", &mut errors);
+        }
+        assert_eq!(errors.len(), 3, "{errors:?}");
+        assert!(errors
+            .iter()
+            .all(|e| e.parameter == "m.optimal_length_shift"));
     }
 }

@@ -120,6 +120,11 @@ pub struct MuscleParams {
     /// out.
     #[serde(skip_serializing_if = "is_zero")]
     pub pennation: f64,
+    /// The optimal fibre length's lengthening at low activation s: the active force–length
+    /// relation is read at `l_m / (l_opt (1 + s (1 − a)))` (docs/model.md §3b; CEINMS's
+    /// `percentageChange`, Lloyd & Besier 2003 after Huijing 1996), in [0, 1); `None`: 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub optimal_length_shift: Option<f64>,
     /// How excitation becomes activation (docs/model.md §2, §2b); written out only when not the
     /// paper's first order.
     #[serde(skip_serializing_if = "ActivationKind::is_first_order")]
@@ -184,6 +189,7 @@ impl Default for MuscleParams {
             fibre: FibreKind::Massed,
             tendon: TendonKind::Elastic,
             pennation: 0.0,
+            optimal_length_shift: None,
             activation: ActivationKind::FirstOrder,
             c1: None,
             c2: None,

@@ -67,7 +67,9 @@ pub enum Tendon {
         curve: Arc<SegmentedBezier>,
     },
     /// The muscle's own points of force against strain `l_T / l_s - 1`, interpolated as CEINMS
-    /// does; its energy from slack length.
+    /// does, a strain below 0 taken as 0 as CEINMS takes it (lib/NMSmodel/Lloyd2003Muscle
+    /// `calculateTendonStrain`): a slack tendon carries the curve's value at 0 and no
+    /// stiffness, whatever the spline does in the padding below; its energy from slack length.
     Tabulated {
         /// Fmax, N.
         f_max: f64,
@@ -132,7 +134,7 @@ impl Tendon {
                 f_max,
                 l_s,
                 ref curve,
-            } => f_max * curve.value(l / l_s - 1.0),
+            } => f_max * curve.value((l / l_s - 1.0).max(0.0)),
         }
     }
 
@@ -156,7 +158,14 @@ impl Tendon {
                 f_max,
                 l_s,
                 ref curve,
-            } => f_max / l_s * curve.slope(l / l_s - 1.0),
+            } => {
+                let strain = l / l_s - 1.0;
+                if strain < 0.0 {
+                    0.0
+                } else {
+                    f_max / l_s * curve.slope(strain)
+                }
+            }
         }
     }
 
@@ -180,7 +189,7 @@ impl Tendon {
                 f_max,
                 l_s,
                 ref curve,
-            } => f_max * l_s * curve.integral_between(0.0, l / l_s - 1.0),
+            } => f_max * l_s * curve.integral_between(0.0, (l / l_s - 1.0).max(0.0)),
         }
     }
 

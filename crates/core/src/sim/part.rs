@@ -328,7 +328,7 @@ impl Part {
                 let motion = SubstepMotion {
                     dt: h,
                     activation_mid: memo.a[i],
-                    overlap_mid: mtu.overlap(0.5 * (l_m + self.lm_before[i])),
+                    overlap_mid: mtu.overlap_at(0.5 * (l_m + self.lm_before[i]), memo.a[i]),
                     fibre_length_change: l_m - self.lm_before[i],
                 };
                 mtu.ce.after_substep(&motion, &mut self.y[own..o + n]);

@@ -115,7 +115,8 @@ pub enum AttachmentMeta {
         initial_force: f64,
     },
     /// The configuration's limb with driven joints (those marked in `config`), their motion
-    /// from a scenario's schedules (recorded as applied, on `~/applied/joint_motion`).
+    /// from a scenario's schedules or a measured trial's lengths (`predict --out`), recorded as
+    /// applied, on `~/applied/joint_motion`.
     Driven,
 }
 

@@ -18,6 +18,7 @@ pub mod load;
 pub mod metadata;
 pub mod replay;
 pub mod simulate;
+pub mod subject;
 pub mod writer;
 
 /// The channels of a run, for the node (`muscle_actuator::ros`) and the tests, which name them

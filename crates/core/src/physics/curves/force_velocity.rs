@@ -51,7 +51,10 @@ pub enum HillForceVelocity {
         /// The curve of ṽ.
         curve: Arc<SegmentedBezier>,
     },
-    /// The muscle's own points, interpolated as CEINMS does.
+    /// The muscle's own points, interpolated as CEINMS does, read at ṽ within [−1, 1] as CEINMS
+    /// reads them (lib/NMSmodel/Lloyd2003Muscle `calculateNormalisedFiberVelocity`): flat beyond
+    /// ±vmax, whatever the spline does in the padding there, so that the equilibrium fibre's
+    /// balance never falls as v rises.
     Tabulated {
         /// vmax, m/s.
         v_max: f64,
@@ -127,7 +130,14 @@ impl HillForceVelocity {
                 thelen2003::force_velocity_derivative(v / v_max, activation, shape) / v_max
             }
             HillForceVelocity::Millard2012 { v_max, ref curve } => curve.slope(v / v_max) / v_max,
-            HillForceVelocity::Tabulated { v_max, ref curve } => curve.slope(v / v_max) / v_max,
+            HillForceVelocity::Tabulated { v_max, ref curve } => {
+                let x = v / v_max;
+                if x.abs() > 1.0 {
+                    0.0
+                } else {
+                    curve.slope(x) / v_max
+                }
+            }
         }
     }
 
@@ -163,7 +173,9 @@ impl HillForceVelocity {
             // end (the default slopes at ±vmax are 0) saturates at ±vmax.
             HillForceVelocity::Millard2012 { v_max, ref curve } => curve.argument_at(g) * v_max,
             // Its rising part's inverse (the flat padding is never inverted).
-            HillForceVelocity::Tabulated { v_max, ref curve } => curve.argument_at(g) * v_max,
+            HillForceVelocity::Tabulated { v_max, ref curve } => {
+                curve.argument_at(g).clamp(-1.0, 1.0) * v_max
+            }
         };
         let bound = BALANCE_VELOCITY_BOUND * self.v_max();
         v.clamp(-bound, bound)
@@ -236,7 +248,9 @@ impl HillForceVelocity {
                 thelen2003::force_velocity(v / v_max, activation, shape)
             }
             HillForceVelocity::Millard2012 { v_max, ref curve } => curve.value(v / v_max),
-            HillForceVelocity::Tabulated { v_max, ref curve } => curve.value(v / v_max),
+            HillForceVelocity::Tabulated { v_max, ref curve } => {
+                curve.value((v / v_max).clamp(-1.0, 1.0))
+            }
         }
     }
 }

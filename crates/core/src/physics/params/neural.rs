@@ -10,6 +10,11 @@ use crate::emg::nonlinearity::{MAX_SHAPE_FACTOR, MIN_SHAPE_FACTOR};
 impl MuscleParams {
     /// Appends one error per broken activation rule.
     pub(super) fn validate_activation(&self, c: &mut Checker<'_>) {
+        if let Some(s) = self.optimal_length_shift {
+            if !(s.is_finite() && (0.0..1.0).contains(&s)) {
+                c.fail("optimal_length_shift", s, "must be >= 0 and < 1");
+            }
+        }
         let keys = [
             ("c1", self.c1),
             ("c2", self.c2),
