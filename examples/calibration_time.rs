@@ -25,11 +25,7 @@ const TRIALS: [&str; 6] = [
 
 /// Evaluations of one trial timed per model: the median of `rounds`.
 fn unit_tick_us(t: &PreparedTrial, subject: &SubjectModel, model: ModelKind, rounds: usize) -> f64 {
-    let params: Vec<_> = t
-        .units
-        .iter()
-        .map(|u| subject.unit(u).unwrap().params.clone())
-        .collect();
+    let params = subject.params_of(&t.units).unwrap();
     let mut times: Vec<f64> = (0..rounds)
         .map(|_| {
             let t0 = Instant::now();

@@ -249,16 +249,8 @@ fn calibrated_on_three_trials_the_person_s_other_three_are_predicted() {
     let calibrated = problem.calibrated(&subject, &outcome, &settings);
     for name in held_out {
         let t = prepared(&calibrated, &data().join(name));
-        let params: Vec<_> = t
-            .units
-            .iter()
-            .map(|u| calibrated.unit(u).unwrap().params.clone())
-            .collect();
-        let before: Vec<_> = t
-            .units
-            .iter()
-            .map(|u| subject.unit(u).unwrap().params.clone())
-            .collect();
+        let params = calibrated.params_of(&t.units).unwrap();
+        let before = subject.params_of(&t.units).unwrap();
         let r = |params: &[_]| {
             let p = t.run(params, model, default_stepping(model)).unwrap();
             rate(&p.measured[0], &p.moment[0]).unwrap()

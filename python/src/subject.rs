@@ -13,7 +13,6 @@ use crate::error_kinds::{drive_error_in, subject_file_error, ToPyErr};
 use crate::errors::{config_error, input_error, unknown_name, ErrorKind};
 use muscle_actuator_core::measured::rating::rate;
 use muscle_actuator_core::measured::{ExcitationMap, MeasuredError, Trial};
-use muscle_actuator_core::physics::params::MuscleParams;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::subject::calibrate::{CalibrateError, Outcome, Problem, Settings};
 use muscle_actuator_core::subject::{DriveError, Prediction, PreparedTrial, SubjectModel};
@@ -244,24 +243,6 @@ fn prepare(
     PreparedTrial::new(subject, map, &trial, &dofs).map_err(|e| Failure::drive(dir, e))
 }
 
-/// The subject's parameters of the prepared trial's units, in order.
-fn unit_params(
-    subject: &SubjectModel,
-    prepared: &PreparedTrial,
-    dir: &Path,
-) -> Result<Vec<MuscleParams>, Failure> {
-    prepared
-        .units
-        .iter()
-        .map(|u| {
-            subject
-                .unit(u)
-                .map(|m| m.params.clone())
-                .ok_or_else(|| Failure::drive(dir, DriveError::UnitNotInSubject(excerpt(u))))
-        })
-        .collect()
-}
-
 /// A subject driven through a trial: moments, forces, activations and fibre lengths at the
 /// trial's kinematic samples.
 #[pyclass(module = "muscle_actuator._core", name = "Prediction", frozen)]
@@ -437,7 +418,9 @@ pub fn _predict(
         .detach(|| {
             let map = ExcitationMap::read(&map_path).map_err(Failure::measured)?;
             let prepared = prepare(&subject, &map, &dir, dofs.as_deref())?;
-            let params = unit_params(&subject, &prepared, &dir)?;
+            let params = subject
+                .params_of(&prepared.units)
+                .map_err(|e| Failure::drive(&dir, e))?;
             let p = prepared
                 .run(&params, kind, default_stepping(kind))
                 .map_err(|e| Failure::drive(&dir, e))?;

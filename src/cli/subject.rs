@@ -174,7 +174,12 @@ pub fn predict(a: &PredictArgs, model: ModelKind) -> Result<Vec<(String, Rating)
     let subject = SubjectModel::read(&a.subject)?;
     let map = ExcitationMap::read(&a.excitations)?;
     let prepared = prepare(&subject, &map, &a.trial, None)?;
-    let params = unit_params(&subject, &prepared)?;
+    let params = subject
+        .params_of(&prepared.units)
+        .map_err(|error| SubjectError::Drive {
+            path: prepared.name.clone(),
+            error: Box::new(error),
+        })?;
     let (p, recording) = drive(a, model, &prepared, &params)?;
     let ratings = ratings(&p)?;
     if let Some(plot) = &a.plot {
@@ -270,26 +275,6 @@ fn not_drawn(plot: &Path, error: FigureError) -> SubjectError {
         path: shown(&path),
         reason,
     }
-}
-
-/// The subject's parameters of the prepared trial's units, in order.
-fn unit_params(
-    subject: &SubjectModel,
-    prepared: &PreparedTrial,
-) -> Result<Vec<crate::physics::params::MuscleParams>, SubjectError> {
-    prepared
-        .units
-        .iter()
-        .map(|u| {
-            subject
-                .unit(u)
-                .map(|m| m.params.clone())
-                .ok_or_else(|| SubjectError::Drive {
-                    path: prepared.name.clone(),
-                    error: Box::new(DriveError::UnitNotInSubject(excerpt(u))),
-                })
-        })
-        .collect()
 }
 
 /// Per degree of freedom, its rating.

@@ -243,6 +243,15 @@ impl Mtu {
         }
     }
 
+    /// The tendon force at muscle state `s`, N: [`Mtu::fibre_state`]'s, without the equilibrium
+    /// fibre's velocity balance, which an elastic tendon's force does not need.
+    pub fn tendon_force(&self, activation: f64, s: &[f64], end: TendonEnd) -> f64 {
+        match self.mechanics {
+            Mechanics::Massed | Mechanics::Equilibrium => self.elastic_tendon(s[0], end).1,
+            Mechanics::Rigid => self.fibre_state(activation, s, end).tendon_force,
+        }
+    }
+
     /// The fibre and tendon at muscle state `s`, activation a and tendon end `end`
     /// (docs/model.md §5b).
     pub fn fibre_state(&self, activation: f64, s: &[f64], end: TendonEnd) -> FibreState {

@@ -276,6 +276,12 @@ impl Plant {
         }
     }
 
+    /// Muscle i's tendon force at state y under activation a, N (as [`Self::fibre_state`]'s).
+    pub fn tendon_force(&self, y: &[f64], i: usize, activation: f64, inputs: &Inputs) -> f64 {
+        let end = self.tendon_end(y, i, inputs);
+        self.mtus[i].tendon_force(activation, self.muscle_state(y, i), end)
+    }
+
     /// Muscle i's fibre and tendon at state y under activation a (docs/model.md §5b).
     pub fn fibre_state(&self, y: &[f64], i: usize, activation: f64, inputs: &Inputs) -> FibreState {
         let end = self.tendon_end(y, i, inputs);

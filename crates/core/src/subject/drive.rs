@@ -247,10 +247,9 @@ impl PreparedTrial {
                       fib: &mut [Vec<f64>]| {
             let (plant, y, a, inp) = (sim.plant(), sim.state(), sim.activations(), sim.inputs());
             for i in 0..n {
-                let s = plant.fibre_state(y, i, a[i], inp);
-                force[i].push(s.tendon_force);
+                force[i].push(plant.tendon_force(y, i, a[i], inp));
                 act[i].push(a[i]);
-                fib[i].push(s.ce.fibre_length);
+                fib[i].push(plant.fibre_length(y, i, inp));
             }
         };
         record(&sim, &mut force, &mut activation, &mut fibre);

@@ -26,7 +26,9 @@ use crate::physics::params::tabulated::{Points, TabulatedCurves};
 use crate::physics::params::JointParams;
 use crate::physics::params::MuscleParams;
 use crate::subject::bounds::Bounds;
+use crate::subject::error::DriveError;
 use crate::subject::record::CalibrationRecord;
+use crate::text::excerpt;
 
 /// CEINMS's maximum contraction velocity, optimal fibre lengths per second.
 pub const MAX_VELOCITY_LOPT_PER_S: f64 = 10.0;
@@ -121,6 +123,19 @@ impl SubjectModel {
             Err(other) => Err(other.to_string()),
             Ok(()) => Ok(()),
         }
+    }
+
+    /// The parameters of the units named `units`, in their order (the prepared trial's
+    /// units, `crate::subject::PreparedTrial::units`); the first one the subject lacks refused.
+    pub fn params_of(&self, units: &[String]) -> Result<Vec<MuscleParams>, DriveError> {
+        units
+            .iter()
+            .map(|u| {
+                self.unit(u)
+                    .map(|m| m.params.clone())
+                    .ok_or_else(|| DriveError::UnitNotInSubject(excerpt(u)))
+            })
+            .collect()
     }
 
     /// The unit named `name`.

@@ -123,11 +123,7 @@ impl Problem {
     ) -> Result<Problem, DriveError> {
         let bounds = &subject.bounds;
         let units = trials.first().ok_or(DriveError::NoDof)?.units.clone();
-        let base: Vec<MuscleParams> = units
-            .iter()
-            .map(|u| subject.unit(u).map(|m| m.params.clone()))
-            .collect::<Option<_>>()
-            .ok_or_else(|| DriveError::UnitNotInSubject(String::new()))?;
+        let base = subject.params_of(&units)?;
         let mean_length: Vec<f64> = (0..units.len())
             .map(|i| trials.iter().map(|t| t.mean_length(i)).sum::<f64>() / trials.len() as f64)
             .collect();
