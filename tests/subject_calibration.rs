@@ -121,6 +121,7 @@ fn identifiable(model: ModelKind, evaluations: usize) {
             Quantity::Strength => [1.6, 0.8, 1.3][k % 3],
             Quantity::SlackFibreLength => [0.9, 1.0, 1.1][k % 3],
             Quantity::OptimalFibreLength => [1.05, 0.95, 1.0][k % 3],
+            Quantity::MaxVelocity => 20.0,
         })
         .collect();
     let dirs = synthetic_trials(
@@ -188,6 +189,7 @@ fn identifiable(model: ModelKind, evaluations: usize) {
             Quantity::Strength => 0.1 * t,
             Quantity::SlackFibreLength => 0.05,
             Quantity::OptimalFibreLength => 0.15,
+            Quantity::MaxVelocity => 0.1 * t,
         };
         assert!((v - t).abs() <= tolerance, "{}: {}", model.name(), show());
     }
@@ -251,7 +253,10 @@ fn calibrated_on_three_trials_the_person_s_other_three_are_predicted() {
         let t = prepared(&calibrated, &data().join(name));
         let params = calibrated.params_of(&t.units).unwrap();
         let before = subject.params_of(&t.units).unwrap();
+        // As `predict` does: lengths a little beyond a fibre's reach held at it.
         let r = |params: &[_]| {
+            let mut t = t.clone();
+            t.hold_within_reach(params).unwrap();
             let p = t.run(params, model, default_stepping(model)).unwrap();
             rate(&p.measured[0], &p.moment[0]).unwrap()
         };

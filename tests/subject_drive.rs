@@ -281,3 +281,42 @@ fn bad_inputs_are_refused_cleanly() {
         &["bad_map.xml", "\"x\""],
     );
 }
+
+/// A length a little beyond the reach of the unit's fibre (2 l_opt with the tendon at slack) is
+/// held at the reach by `predict`, counted on standard error, and drives the unit exactly as
+/// the reach itself does; one further beyond is refused (`bad_inputs_are_refused_cleanly`).
+#[test]
+fn lengths_a_little_beyond_reach_are_held() {
+    let params = MuscleParams::default();
+    let reach = params.l_ts + 2.0 * params.l_opt;
+    let predict = |name: &str, length: f64| {
+        let dir = temp_dir(name);
+        let (subject, map, trial) = isometric_files(&dir, params.clone(), length);
+        let (csv, muscles) = (dir.join("moments.csv"), dir.join("muscles.csv"));
+        let o = run_ok(
+            bin()
+                .args(["predict", "--model", "hill", "--subject"])
+                .arg(&subject)
+                .arg("--excitations")
+                .arg(&map)
+                .arg("--trial")
+                .arg(&trial)
+                .arg("--csv")
+                .arg(&csv)
+                .arg("--muscles-csv")
+                .arg(&muscles),
+        );
+        let read = |p: &Path| std::fs::read_to_string(p).unwrap();
+        (stderr(&o), read(&csv), read(&muscles))
+    };
+    let (said, moments, forces) = predict("subject_held", reach + 0.001);
+    let (quiet, at_moments, at_forces) = predict("subject_at_reach", reach);
+    // 400 ticks at 1 kHz: 401 length samples, every one held.
+    assert!(
+        said.contains("401 length samples") && said.contains("held") && said.contains("\"m\""),
+        "{said}"
+    );
+    assert!(!quiet.contains("held"), "{quiet}");
+    assert_eq!(moments, at_moments);
+    assert_eq!(forces, at_forces);
+}

@@ -251,6 +251,7 @@ pub struct PyPrediction {
     trial: String,
     model: String,
     clamped_excitations: usize,
+    held_lengths: usize,
 }
 
 /// Rows of `series` (one per unit) as a 2-D array (units, samples).
@@ -290,6 +291,12 @@ impl PyPrediction {
     #[getter]
     fn clamped_excitations(&self) -> usize {
         self.clamped_excitations
+    }
+    /// Length samples beyond their unit's fibre's reach that were held at it (docs/emg.md
+    /// "Prediction").
+    #[getter]
+    fn held_lengths(&self) -> usize {
+        self.held_lengths
     }
     /// The kinematic samples' times, s.
     #[getter]
@@ -414,17 +421,20 @@ pub fn _predict(
     let map_path = path_of(py, excitations, "excitations")?;
     let dir = path_of(py, trial, "trial")?;
     let dofs = dofs.filter(|d| !d.is_none()).map(dof_names).transpose()?;
-    let (p, prepared) = py
+    let (p, prepared, held_lengths) = py
         .detach(|| {
             let map = ExcitationMap::read(&map_path).map_err(Failure::measured)?;
-            let prepared = prepare(&subject, &map, &dir, dofs.as_deref())?;
+            let mut prepared = prepare(&subject, &map, &dir, dofs.as_deref())?;
             let params = subject
                 .params_of(&prepared.units)
+                .map_err(|e| Failure::drive(&dir, e))?;
+            let held = prepared
+                .hold_within_reach(&params)
                 .map_err(|e| Failure::drive(&dir, e))?;
             let p = prepared
                 .run(&params, kind, default_stepping(kind))
                 .map_err(|e| Failure::drive(&dir, e))?;
-            Ok((p, prepared))
+            Ok((p, prepared, held.map_or(0, |h| h.samples)))
         })
         .map_err(|e: Failure| e.into_py(py))?;
     Ok(PyPrediction {
@@ -432,6 +442,7 @@ pub fn _predict(
         trial: prepared.name,
         model: kind.name().to_string(),
         clamped_excitations: prepared.clamped_excitations,
+        held_lengths,
     })
 }
 

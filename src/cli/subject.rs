@@ -173,11 +173,17 @@ pub fn predict(a: &PredictArgs, model: ModelKind) -> Result<Vec<(String, Rating)
     check_outputs(a)?;
     let subject = SubjectModel::read(&a.subject)?;
     let map = ExcitationMap::read(&a.excitations)?;
-    let prepared = prepare(&subject, &map, &a.trial, None)?;
+    let mut prepared = prepare(&subject, &map, &a.trial, None)?;
     let params = subject
         .params_of(&prepared.units)
         .map_err(|error| SubjectError::Drive {
             path: prepared.name.clone(),
+            error: Box::new(error),
+        })?;
+    let held = prepared
+        .hold_within_reach(&params)
+        .map_err(|error| SubjectError::Drive {
+            path: shown(&a.trial),
             error: Box::new(error),
         })?;
     let (p, recording) = drive(a, model, &prepared, &params)?;
@@ -198,6 +204,9 @@ pub fn predict(a: &PredictArgs, model: ModelKind) -> Result<Vec<(String, Rating)
             "warning: {} excitation samples above 1 were clamped to 1",
             prepared.clamped_excitations
         );
+    }
+    if let Some(held) = held {
+        eprintln!("warning: {}: {held}", prepared.name);
     }
     Ok(ratings)
 }

@@ -25,6 +25,9 @@ pub struct Bounds {
     pub slack_fibre_length: [f64; 2],
     /// Multiplier of a group's optimal fibre lengths (±15 %).
     pub optimal_fibre_length: [f64; 2],
+    /// The Hill force–velocity curve's reach `v_max / l_opt`, optimal lengths per second, for
+    /// every unit (Hill model only).
+    pub max_velocity: [f64; 2],
 }
 
 impl Default for Bounds {
@@ -37,13 +40,14 @@ impl Default for Bounds {
             strength: [0.5, 2.5],
             slack_fibre_length: [0.5, 1.5],
             optimal_fibre_length: [0.85, 1.15],
+            max_velocity: [10.0, 500.0],
         }
     }
 }
 
 impl Bounds {
     /// Each bound's name and value.
-    pub fn named(&self) -> [(&'static str, [f64; 2]); 7] {
+    pub fn named(&self) -> [(&'static str, [f64; 2]); 8] {
         [
             ("c1", self.c1),
             ("c2", self.c2),
@@ -52,6 +56,7 @@ impl Bounds {
             ("strength", self.strength),
             ("slack_fibre_length", self.slack_fibre_length),
             ("optimal_fibre_length", self.optimal_fibre_length),
+            ("max_velocity", self.max_velocity),
         ]
     }
 

@@ -16,7 +16,7 @@
 //!   read at the kinematic samples' times (linearly between the ticks' ends around them).
 
 pub use super::error::DriveError;
-use super::limits::MAX_FIBRE_LOPT;
+use super::limits::{HELD_REACH_FRACTION, MAX_FIBRE_LOPT};
 use crate::config::{ActuatorConfig, ConfigError, MuscleConfig, SpanConfig};
 use crate::physics::models::ModelKind;
 use crate::physics::moment_arm::MomentArm;
@@ -59,6 +59,34 @@ pub struct PreparedTrial {
     pub measured: Vec<Vec<f64>>,
 }
 
+/// Lengths a prediction held at their unit's reach ([`PreparedTrial::hold_within_reach`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldLengths {
+    /// Length samples held (one per tick and unit).
+    pub samples: usize,
+    /// The first unit held.
+    pub unit: String,
+    /// When it was first held, s.
+    pub time_s: f64,
+    /// The longest `(l_mt − l_ts) / l_opt` asked of a held unit.
+    pub fibre_lopt: f64,
+}
+
+impl std::fmt::Display for HeldLengths {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} length samples beyond their fibre's reach ({MAX_FIBRE_LOPT} optimal lengths with the tendon at slack, asked up to {:.3}) were held at it, the first of unit {:?} at {} s",
+            self.samples, self.fibre_lopt, self.unit, self.time_s
+        )
+    }
+}
+
+/// The longest unit length a fibre of `p` reaches with its tendon at slack, m.
+fn reach(p: &MuscleParams) -> f64 {
+    p.l_ts + MAX_FIBRE_LOPT * p.l_opt
+}
+
 /// What a drive gives at the kinematic samples' times.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Prediction {
@@ -89,20 +117,63 @@ impl PreparedTrial {
 
     /// Every unit's every length within its fibre's reach ([`DriveError::OutOfReach`]).
     fn check_reach(&self, params: &[MuscleParams]) -> Result<(), DriveError> {
-        for (i, p) in params.iter().enumerate() {
-            let reach = p.l_ts + MAX_FIBRE_LOPT * p.l_opt;
-            if let Some(k) = self.length[i].iter().position(|&l| l > reach) {
-                let length_m = self.length[i][k];
-                return Err(DriveError::OutOfReach {
-                    trial: self.name.clone(),
-                    unit: excerpt(&self.units[i]),
-                    time_s: self.start_s + k as f64 / self.rate_hz,
-                    length_m,
-                    fibre_lopt: (length_m - p.l_ts) / p.l_opt,
-                });
+        self.beyond_reach(params, 0.0).map(|_| ())
+    }
+
+    /// Holds at the reach of its fibre every length of a unit that passes it by at most
+    /// [`HELD_REACH_FRACTION`] of the unit's resting length, for a prediction (docs/emg.md
+    /// "Prediction"); a length further beyond is refused ([`DriveError::OutOfReach`]) and
+    /// nothing is changed. The samples held, if any.
+    pub fn hold_within_reach(
+        &mut self,
+        params: &[MuscleParams],
+    ) -> Result<Option<HeldLengths>, DriveError> {
+        let held = self.beyond_reach(params, HELD_REACH_FRACTION)?;
+        for (lengths, p) in self.length.iter_mut().zip(params) {
+            let reach = reach(p);
+            for l in lengths.iter_mut() {
+                *l = l.min(reach);
             }
         }
-        Ok(())
+        Ok(held)
+    }
+
+    /// The lengths beyond their unit's reach, refused if any passes it by more than `margin`
+    /// of the unit's resting length.
+    fn beyond_reach(
+        &self,
+        params: &[MuscleParams],
+        margin: f64,
+    ) -> Result<Option<HeldLengths>, DriveError> {
+        let mut held: Option<HeldLengths> = None;
+        for (i, p) in params.iter().enumerate() {
+            let reach = reach(p);
+            let limit = reach + margin * (p.l_opt + p.l_ts);
+            for (k, &length_m) in self.length[i].iter().enumerate() {
+                if length_m <= reach {
+                    continue;
+                }
+                let time_s = self.start_s + k as f64 / self.rate_hz;
+                if length_m > limit {
+                    return Err(DriveError::OutOfReach {
+                        trial: self.name.clone(),
+                        unit: excerpt(&self.units[i]),
+                        time_s,
+                        length_m,
+                        fibre_lopt: (length_m - p.l_ts) / p.l_opt,
+                    });
+                }
+                let h = held.get_or_insert_with(|| HeldLengths {
+                    samples: 0,
+                    unit: excerpt(&self.units[i]),
+                    time_s,
+                    fibre_lopt: 0.0,
+                });
+                h.samples += 1;
+                h.fibre_lopt = h.fibre_lopt.max((length_m - p.l_ts) / p.l_opt);
+            }
+        }
+        Ok(held)
     }
 
     /// The first unit that, driven alone, fails by tick `tick` (the diagnosis of a failed drive).

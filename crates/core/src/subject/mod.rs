@@ -24,6 +24,6 @@ mod prepare;
 pub mod record;
 pub mod units;
 
-pub use drive::{DriveError, Prediction, PreparedTrial};
+pub use drive::{DriveError, HeldLengths, Prediction, PreparedTrial};
 pub use file::{CalibrationRecord, SubjectFileError};
 pub use units::{unit_params, NoTendonCurve, SubjectModel, UnitModel};

@@ -6,6 +6,9 @@
 //! configuration and Lloyd & Besier 2003):
 //! - Lloyd & Besier's C1 and C2, the shape factor A and the electromechanical delay, shared by
 //!   every unit;
+//! - with the Hill model, `max_velocity`: every unit's `v_max` in optimal lengths per second,
+//!   between Lloyd & Besier's 10 and the effective 500 of CEINMS's toolbox code (its fibre
+//!   velocity enters the force–velocity curve as `0.002 v / l_opt`), shared by every unit;
 //! - per group of units, a strength (a multiplier of each unit's maximum isometric force), a
 //!   slack fibre length λ̄ (each unit's tendon slack length set so that its fibre is λ̄ optimal
 //!   lengths long at the unit's mean length over the trials with the tendon at slack) and a
@@ -71,6 +74,9 @@ pub enum Quantity {
     SlackFibreLength,
     /// A group's optimal fibre length multiplier.
     OptimalFibreLength,
+    /// The Hill force–velocity curve's reach, optimal lengths per second: every unit's `v_max`
+    /// is this many of its optimal lengths per second (Hill model only).
+    MaxVelocity,
 }
 
 /// One calibrated parameter.
@@ -153,6 +159,15 @@ impl Problem {
                 first.em_delay,
             ),
         ];
+        if model == ModelKind::HILL {
+            let start = first.v_max / first.l_opt;
+            parameters.push(global(
+                "max_velocity",
+                Quantity::MaxVelocity,
+                bounds.max_velocity,
+                Some(start),
+            ));
+        }
         for (group, members) in groups(map, &units) {
             parameters.push(Parameter {
                 name: format!("strength.{group}"),
@@ -229,7 +244,7 @@ impl Problem {
                         m.f_max *= v;
                         m.b_m *= v;
                     }
-                    Quantity::SlackFibreLength => {}
+                    Quantity::SlackFibreLength | Quantity::MaxVelocity => {}
                     Quantity::OptimalFibreLength => {
                         m.l_opt *= v;
                         m.v_max *= v;
@@ -238,12 +253,22 @@ impl Problem {
                 }
             }
         }
-        // The tendon slack lengths last: they follow the optimal fibre lengths.
+        // The tendon slack lengths and maximum velocities last: they follow the optimal fibre
+        // lengths.
         for (p, &v) in self.parameters.iter().zip(values) {
-            if p.quantity == Quantity::SlackFibreLength {
-                for &i in &p.units {
-                    let m = &mut out[i];
-                    m.l_ts = self.mean_length[i] - fibre_along_tendon(m, v);
+            for &i in &p.units {
+                let m = &mut out[i];
+                match p.quantity {
+                    Quantity::SlackFibreLength => {
+                        m.l_ts = self.mean_length[i] - fibre_along_tendon(m, v);
+                    }
+                    Quantity::MaxVelocity => {
+                        // The damping keeps its share of force at a given v / v_max.
+                        let v_max = v * m.l_opt;
+                        m.b_m *= m.v_max / v_max;
+                        m.v_max = v_max;
+                    }
+                    _ => {}
                 }
             }
         }
