@@ -11,6 +11,7 @@ use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::simulation::default_stepping;
 use muscle_actuator::subject::calibrate::{Problem, Settings};
 use muscle_actuator::subject::{PreparedTrial, SubjectModel};
+use std::ops::ControlFlow;
 use std::path::Path;
 use std::time::Instant;
 
@@ -85,7 +86,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ..Settings::default()
             };
             let t0 = Instant::now();
-            let outcome = problem.calibrate(&settings, |_, _| {})?;
+            let outcome = problem.calibrate(&settings, |_, _| ControlFlow::Continue(()))?;
             let wall = t0.elapsed().as_secs_f64();
             println!(
                 "calibration {:<8} {n} thread(s): {wall:.1} s, {} evaluations, mean 1 - R2 {:.4} (from {:.4})",

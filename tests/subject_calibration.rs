@@ -16,6 +16,7 @@ use muscle_actuator::physics::models::ModelKind;
 use muscle_actuator::sim::simulation::default_stepping;
 use muscle_actuator::subject::calibrate::{Problem, Quantity, Settings};
 use muscle_actuator::subject::{PreparedTrial, SubjectModel};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
 fn data() -> PathBuf {
@@ -139,7 +140,9 @@ fn identifiable(model: ModelKind, evaluations: usize) {
         threads: 2,
         ..Settings::default()
     };
-    let outcome = problem.calibrate(&settings, |_, _| {}).unwrap();
+    let outcome = problem
+        .calibrate(&settings, |_, _| ControlFlow::Continue(()))
+        .unwrap();
     let show = || {
         problem
             .parameters
@@ -247,7 +250,9 @@ fn calibrated_on_three_trials_the_person_s_other_three_are_predicted() {
         threads: 2,
         ..Settings::default()
     };
-    let outcome = problem.calibrate(&settings, |_, _| {}).unwrap();
+    let outcome = problem
+        .calibrate(&settings, |_, _| ControlFlow::Continue(()))
+        .unwrap();
     let calibrated = problem.calibrated(&subject, &outcome, &settings);
     for name in held_out {
         let t = prepared(&calibrated, &data().join(name));

@@ -21,6 +21,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
 /// Most objective evaluations a calibration may ask (the command line's `--evaluations`).
@@ -532,6 +533,7 @@ pub fn _calibrate<'py>(
     let map_path = path_of(py, excitations, "excitations")?;
     let dirs = trial_dirs(py, trials)?;
     let dofs = dof_names(dofs)?;
+    let interrupted: std::sync::Mutex<Option<PyErr>> = std::sync::Mutex::new(None);
     let (problem, outcome) = py
         .detach(|| {
             let map = ExcitationMap::read(&map_path).map_err(Failure::measured)?;
@@ -541,12 +543,33 @@ pub fn _calibrate<'py>(
                 .collect::<Result<Vec<_>, _>>()?;
             let problem = Problem::new(&subject, &map, prepared, kind, default_stepping(kind))
                 .map_err(|e| Failure::drive(&dirs[0], e))?;
+            // Ctrl-C between generations stops it, as KeyboardInterrupt (the GIL taken back
+            // for the check only).
             let outcome = problem
-                .calibrate(&settings, |_, _| {})
+                .calibrate(&settings, |_, _| {
+                    match Python::attach(|py| py.check_signals()) {
+                        Ok(()) => ControlFlow::Continue(()),
+                        Err(e) => {
+                            *interrupted.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
+                            ControlFlow::Break(())
+                        }
+                    }
+                })
                 .map_err(Failure::Calibrate)?;
             Ok((problem, outcome))
         })
-        .map_err(|e: Failure| e.into_py(py))?;
+        .map_err(|e: Failure| {
+            let signal = interrupted.lock().unwrap_or_else(|p| p.into_inner()).take();
+            match (signal, e) {
+                (Some(signal), Failure::Calibrate(stopped)) => {
+                    let _ = signal
+                        .value(py)
+                        .call_method1("add_note", (stopped.to_string(),));
+                    signal
+                }
+                (_, e) => e.into_py(py),
+            }
+        })?;
     let calibrated = problem.calibrated(&subject, &outcome, &settings);
     let result = outcome_dict(py, &problem, &outcome)?;
     Ok((PySubject { model: calibrated }, result))

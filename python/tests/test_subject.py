@@ -6,10 +6,13 @@ envelope."""
 
 from __future__ import annotations
 
+import _thread
 import importlib.util
 import inspect
 import pickle
+import re
 import sys
+import threading
 
 import numpy as np
 import pytest
@@ -75,7 +78,7 @@ def test_predict_equals_the_command_lines_csv(cli, subject, tmp_path):
     assert p.trial == TRIAL.name and p.model == "hill"
 
 
-def test_predict_of_chosen_dofs_takes_their_units_only(subject):
+def test_predict_of_chosen_dofs_takes_their_units_only(cli, subject, tmp_path):
     p = ma.predict(SUBJECT, MAP, TRIAL, dofs=KNEE)
     assert p.dofs == [KNEE]
     assert set(p.units) == set(subject.dofs[KNEE])
@@ -83,6 +86,16 @@ def test_predict_of_chosen_dofs_takes_their_units_only(subject):
     # a unit's course does not depend on which others are driven beside it
     for i, u in enumerate(p.units):
         assert_bits_equal(p.force[i], full.force[full.units.index(u)], u)
+    # the command line's --dofs: the same degrees of freedom and units, bit for bit
+    moments_csv, muscles_csv = tmp_path / "moments.csv", tmp_path / "muscles.csv"
+    cli("predict", "--subject", str(SUBJECT), "--excitations", str(MAP), "--trial", str(TRIAL),
+        "--dofs", KNEE, "--csv", str(moments_csv), "--muscles-csv", str(muscles_csv))
+    want_m, want_u = columns(moments_csv), columns(muscles_csv)
+    assert list(want_m) == ["time", KNEE, f"{KNEE}_measured"]
+    assert_bits_equal(p.moment[KNEE], want_m[KNEE], KNEE)
+    assert [c[: -len(".force")] for c in want_u if c.endswith(".force")] == p.units
+    for i, u in enumerate(p.units):
+        assert_bits_equal(p.force[i], want_u[f"{u}.force"], u)
 
 
 # --- (b) calibrate -------------------------------------------------------------------------
@@ -106,6 +119,21 @@ def test_calibrate_is_repeatable_for_a_seed_and_does_not_worsen(subject, calibra
     assert result["cost"] == pytest.approx(min(best[-1], result["start_cost"]), rel=1e-9)
     other_cal, other = ma.calibrate(subject, MAP, TWO_TRIALS, [KNEE], seed=8, evaluations=30, threads=2)
     assert other["parameters"] != result["parameters"]   # the seed is used
+
+
+def test_ctrl_c_stops_a_calibration_between_generations(subject):
+    # interrupt_main is Ctrl-C. Run to its end, this calibration would take minutes and then
+    # raise KeyboardInterrupt without the note that it stopped.
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt) as caught:
+            ma.calibrate(subject, MAP, TWO_TRIALS, [KNEE], seed=7, evaluations=3000, threads=2)
+    finally:
+        timer.cancel()
+    note = " ".join(getattr(caught.value, "__notes__", []))
+    stopped = re.search(r"stopped after (\d+) of 3000 evaluations", note)
+    assert stopped and 0 < int(stopped.group(1)) < 3000, note
 
 
 def test_calibrate_gives_the_file_the_command_line_writes(cli, calibrated, tmp_path):

@@ -149,6 +149,10 @@ pub struct PredictArgs {
     /// The trial's folder (emg.txt, lmt.txt, <dof>Ma.txt, <dof>Torque.txt).
     #[arg(long)]
     pub trial: PathBuf,
+    /// Only these degrees of freedom, comma-separated (default: every one the trial has),
+    /// driving only the units that span them.
+    #[arg(long)]
+    pub dofs: Option<String>,
     /// CSV of the moments: time, then per degree of freedom <dof> and <dof>_measured (N m).
     #[arg(long)]
     pub csv: PathBuf,
@@ -173,7 +177,8 @@ pub fn predict(a: &PredictArgs, model: ModelKind) -> Result<Vec<(String, Rating)
     check_outputs(a)?;
     let subject = SubjectModel::read(&a.subject)?;
     let map = ExcitationMap::read(&a.excitations)?;
-    let mut prepared = prepare(&subject, &map, &a.trial, None)?;
+    let dofs = a.dofs.as_deref().map(parse_dofs).transpose()?;
+    let mut prepared = prepare(&subject, &map, &a.trial, dofs.as_deref())?;
     let params = subject
         .params_of(&prepared.units)
         .map_err(|error| SubjectError::Drive {
@@ -433,6 +438,7 @@ pub fn calibrate(a: &CalibrateArgs) -> Result<(), SubjectError> {
     let outcome = problem.calibrate(s, |evaluations, best| {
         bar.set_position(evaluations as u64);
         bar.set_message(format!("{best:.4}"));
+        std::ops::ControlFlow::Continue(())
     })?;
     bar.finish_and_clear();
     let calibrated = problem.calibrated(&subject, &outcome, s);

@@ -4,6 +4,7 @@
 
 use super::{Problem, FAILED_COST};
 use cmaes::{CMAESOptions, DVector};
+use std::ops::ControlFlow;
 
 /// The optimiser's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,11 +75,12 @@ impl Problem {
     }
 
     /// Calibrates: CMA-ES from the starting values under `settings`, `progress` told the
-    /// evaluations so far and the best cost after each generation.
+    /// evaluations so far and the best cost after each generation; a `Break` from it stops the
+    /// calibration ([`CalibrateError::Stopped`]).
     pub fn calibrate(
         &self,
         settings: &Settings,
-        mut progress: impl FnMut(usize, f64),
+        mut progress: impl FnMut(usize, f64) -> ControlFlow<()>,
     ) -> Result<Outcome, CalibrateError> {
         let start = self.start();
         let start_cost = self.cost(&start);
@@ -104,7 +106,12 @@ impl Problem {
                 }
             }
             history.push((cmaes.function_evals(), best));
-            progress(cmaes.function_evals(), best);
+            if progress(cmaes.function_evals(), best).is_break() {
+                return Err(CalibrateError::Stopped {
+                    evaluations: cmaes.function_evals(),
+                    of: settings.max_evaluations,
+                });
+            }
             if done.is_some() {
                 break;
             }
@@ -135,4 +142,12 @@ pub enum CalibrateError {
     /// CMA-ES refuses its options.
     #[error("the optimiser refuses its options: {0}")]
     Options(String),
+    /// The progress callback asked to stop.
+    #[error("calibration stopped after {evaluations} of {of} evaluations")]
+    Stopped {
+        /// Evaluations made.
+        evaluations: usize,
+        /// Evaluations it would have made at most.
+        of: usize,
+    },
 }
