@@ -5,9 +5,15 @@
 #      halves swapped: every trial once predicted by a subject that never saw it.
 # Prints one line per (model, calibration, trial): R2, r2, RMSE, RMSE/peak of R_knee_fe.
 #   scripts/emg_validation.sh OUT_DIR [EVALUATIONS] [MODEL...]   (defaults: 1000, hill huxley)
+# SUBJECT names another subject file to start from (default: the uncalibrated CEINMS subject),
+# e.g. one `muscle_actuator subject` wrote with its [bounds] edited.
 set -euo pipefail
+usage="usage: scripts/emg_validation.sh OUT_DIR [EVALUATIONS] [MODEL...]"
+mkdir -p "${1:?$usage}"
+out=$(readlink -f "$1")
+subject=$(readlink -f "${SUBJECT:-$(dirname "${BASH_SOURCE[0]}")/../data/ceinms/uncalibratedSubject.xml}")
+[ -z "${MUSCLE_ACTUATOR_BIN:-}" ] || MUSCLE_ACTUATOR_BIN=$(readlink -f "$MUSCLE_ACTUATOR_BIN")
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-out=${1:?usage: scripts/emg_validation.sh OUT_DIR [EVALUATIONS] [MODEL...]}
 evaluations=${2:-1000}
 shift $(( $# > 1 ? 2 : 1 ))
 models=("$@")
@@ -15,12 +21,10 @@ models=("$@")
 bin=${MUSCLE_ACTUATOR_BIN:-target/release/muscle_actuator}
 [ -x "$bin" ] || cargo build --release --quiet
 data=data/ceinms
-subject=$data/uncalibratedSubject.xml
 map=$data/emgGenerator-16To34.xml
 all=(_FastWalking_ _FastWalking1_ _FastWalking9_ _CrossOvers1_ _CrossOvers6_ _CrossOvers7_)
 half_a=(_FastWalking_ _FastWalking9_ _CrossOvers1_)
 half_b=(_FastWalking1_ _CrossOvers6_ _CrossOvers7_)
-mkdir -p "$out"
 calibrate() { # model name trials...
     local model=$1 name=$2; shift 2
     local dirs=(); for t in "$@"; do dirs+=("$data/$t"); done
