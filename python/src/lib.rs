@@ -21,6 +21,7 @@ mod error_kinds;
 mod errors;
 mod inputs;
 mod outputs;
+mod prediction;
 mod rollout;
 mod runs;
 mod subject;
@@ -40,7 +41,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runs::_read_recording, m)?)?;
     m.add_function(wrap_pyfunction!(runs::_compare, m)?)?;
     m.add_class::<subject::PySubject>()?;
-    m.add_class::<subject::PyPrediction>()?;
+    m.add_class::<prediction::PyPrediction>()?;
     m.add_function(wrap_pyfunction!(subject::_predict, m)?)?;
     m.add_function(wrap_pyfunction!(subject::_calibrate, m)?)?;
     m.add_function(wrap_pyfunction!(emg::_emg_envelope, m)?)?;

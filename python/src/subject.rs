@@ -11,14 +11,12 @@
 use crate::config::{count, parse_model};
 use crate::error_kinds::{drive_error_in, subject_file_error, ToPyErr};
 use crate::errors::{config_error, input_error, unknown_name, ErrorKind};
-use muscle_actuator_core::measured::rating::rate;
+use crate::prediction::PyPrediction;
 use muscle_actuator_core::measured::{ExcitationMap, MeasuredError, Trial};
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::subject::calibrate::{CalibrateError, Outcome, Problem, Settings};
-use muscle_actuator_core::subject::{DriveError, Prediction, PreparedTrial, SubjectModel};
+use muscle_actuator_core::subject::{DriveError, PreparedTrial, SubjectModel};
 use muscle_actuator_core::text::excerpt;
-use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use std::ops::ControlFlow;
@@ -242,167 +240,6 @@ fn prepare(
         None => trial.dofs().map(str::to_string).collect(),
     };
     PreparedTrial::new(subject, map, &trial, &dofs).map_err(|e| Failure::drive(dir, e))
-}
-
-/// A subject driven through a trial: moments, forces, activations and fibre lengths at the
-/// trial's kinematic samples.
-#[pyclass(module = "muscle_actuator._core", name = "Prediction", frozen)]
-pub struct PyPrediction {
-    p: Prediction,
-    trial: String,
-    model: String,
-    clamped_excitations: usize,
-    held_lengths: usize,
-}
-
-/// Rows of `series` (one per unit) as a 2-D array (units, samples).
-fn rows<'py>(py: Python<'py>, series: &[Vec<f64>], samples: usize) -> PyResult<Bound<'py, PyAny>> {
-    let flat: Vec<f64> = series.iter().flatten().copied().collect();
-    Ok(PyArray1::from_vec(py, flat)
-        .reshape([series.len(), samples])?
-        .into_any())
-}
-
-/// Per name, its series as a 1-D array.
-fn by_name<'py>(
-    py: Python<'py>,
-    names: &[String],
-    series: &[Vec<f64>],
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    for (n, s) in names.iter().zip(series) {
-        d.set_item(n, PyArray1::from_slice(py, s))?;
-    }
-    Ok(d)
-}
-
-#[pymethods]
-impl PyPrediction {
-    /// The trial's name.
-    #[getter]
-    fn trial(&self) -> String {
-        self.trial.clone()
-    }
-    /// The contractile model.
-    #[getter]
-    fn model(&self) -> String {
-        self.model.clone()
-    }
-    /// Excitation samples above 1 that were clamped to 1.
-    #[getter]
-    fn clamped_excitations(&self) -> usize {
-        self.clamped_excitations
-    }
-    /// Length samples beyond their unit's fibre's reach that were held at it (docs/emg.md
-    /// "Prediction").
-    #[getter]
-    fn held_lengths(&self) -> usize {
-        self.held_lengths
-    }
-    /// The kinematic samples' times, s.
-    #[getter]
-    fn time<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.p.times)
-    }
-    #[getter]
-    fn dofs(&self) -> Vec<String> {
-        self.p.dofs.clone()
-    }
-    #[getter]
-    fn units(&self) -> Vec<String> {
-        self.p.units.clone()
-    }
-    /// Per degree of freedom, the predicted moment `Σ F r`, N m.
-    #[getter]
-    fn moment<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        by_name(py, &self.p.dofs, &self.p.moment)
-    }
-    /// Per degree of freedom, the measured (inverse-dynamics) moment, N m.
-    #[getter]
-    fn measured<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        by_name(py, &self.p.dofs, &self.p.measured)
-    }
-    /// Tendon forces, N, (units, samples).
-    #[getter]
-    fn force<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        rows(py, &self.p.force, self.p.times.len())
-    }
-    /// Activations, (units, samples).
-    #[getter]
-    fn activation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        rows(py, &self.p.activation, self.p.times.len())
-    }
-    /// Fibre lengths, m, (units, samples).
-    #[getter]
-    fn fibre_length<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        rows(py, &self.p.fibre_length, self.p.times.len())
-    }
-    /// Per degree of freedom, the rating of the predicted moment against the measured one:
-    /// `r2` (coefficient of determination), `pearson_r2`, `rmse` (N m), `rmse_over_peak`.
-    fn ratings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let out = PyDict::new(py);
-        for (dof, (m, q)) in self
-            .p
-            .dofs
-            .iter()
-            .zip(self.p.measured.iter().zip(&self.p.moment))
-        {
-            let r = rate(m, q).map_err(|e| input_error(format!("{dof}: {e}")))?;
-            let d = PyDict::new(py);
-            d.set_item("r2", r.r_squared)?;
-            d.set_item("pearson_r2", r.pearson_r_squared)?;
-            d.set_item("rmse", r.rmse)?;
-            d.set_item("rmse_over_peak", r.rmse_over_peak)?;
-            out.set_item(dof, d)?;
-        }
-        Ok(out)
-    }
-    /// Two DataFrames with the command line's CSV columns: the moments (`time`, `<dof>`,
-    /// `<dof>_measured`) and the units (`time`, `<unit>.force`, `<unit>.activation`,
-    /// `<unit>.fibre_length`). Needs pandas.
-    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-        let pd = py.import("pandas").map_err(|e| {
-            let err =
-                PyImportError::new_err("Prediction.to_pandas needs pandas: pip install pandas");
-            err.set_cause(py, Some(e));
-            err
-        })?;
-        let moments = PyDict::new(py);
-        moments.set_item("time", self.time(py))?;
-        for (d, (q, m)) in self
-            .p
-            .dofs
-            .iter()
-            .zip(self.p.moment.iter().zip(&self.p.measured))
-        {
-            moments.set_item(d, PyArray1::from_slice(py, q))?;
-            moments.set_item(format!("{d}_measured"), PyArray1::from_slice(py, m))?;
-        }
-        let muscles = PyDict::new(py);
-        muscles.set_item("time", self.time(py))?;
-        for (i, u) in self.p.units.iter().enumerate() {
-            muscles.set_item(
-                format!("{u}.force"),
-                PyArray1::from_slice(py, &self.p.force[i]),
-            )?;
-            let a = PyArray1::from_slice(py, &self.p.activation[i]);
-            muscles.set_item(format!("{u}.activation"), a)?;
-            let l = PyArray1::from_slice(py, &self.p.fibre_length[i]);
-            muscles.set_item(format!("{u}.fibre_length"), l)?;
-        }
-        let frame = pd.getattr("DataFrame")?;
-        Ok((frame.call1((moments,))?, frame.call1((muscles,))?))
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "Prediction(trial {:?}, {}, {} samples, dofs [{}], {} units)",
-            self.trial,
-            self.model,
-            self.p.times.len(),
-            self.p.dofs.join(", "),
-            self.p.units.len()
-        )
-    }
 }
 
 /// `muscle_actuator predict`: the subject driven through the trial in the folder `trial`, its

@@ -78,6 +78,26 @@ def test_predict_equals_the_command_lines_csv(cli, subject, tmp_path):
     assert p.trial == TRIAL.name and p.model == "hill"
 
 
+def test_a_prediction_survives_pickle_and_a_tampered_state_is_refused(subject):
+    p = ma.predict(subject, MAP, TRIAL, model="hill", dofs=KNEE)
+    q = pickle.loads(pickle.dumps(p))
+    assert (q.trial, q.model, q.dofs, q.units) == (p.trial, p.model, p.dofs, p.units)
+    assert (q.clamped_excitations, q.held_lengths) == (p.clamped_excitations, p.held_lengths)
+    assert_bits_equal(q.time, p.time, "time")
+    for field in ("force", "activation", "fibre_length"):
+        assert_bits_equal(getattr(q, field).ravel(), getattr(p, field).ravel(), field)
+    assert_bits_equal(q.moment[KNEE], p.moment[KNEE], KNEE)
+    assert_bits_equal(q.measured[KNEE], p.measured[KNEE], KNEE)
+    assert q.ratings() == p.ratings()
+    # a state whose series disagree in length, or that is not one at all
+    _, (state,) = p.__reduce__()
+    meta, (times, *rest) = state
+    with pytest.raises(ma.InputError, match="a sample per time"):
+        ma.Prediction._from_state((meta, (times[:-1], *rest)))
+    with pytest.raises(ma.InputError, match="layout"):
+        ma.Prediction._from_state("not a state")
+
+
 def test_predict_of_chosen_dofs_takes_their_units_only(cli, subject, tmp_path):
     p = ma.predict(SUBJECT, MAP, TRIAL, dofs=KNEE)
     assert p.dofs == [KNEE]
