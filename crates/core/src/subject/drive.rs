@@ -145,6 +145,13 @@ impl PreparedTrial {
         params: &[MuscleParams],
         margin: f64,
     ) -> Result<Option<HeldLengths>, DriveError> {
+        if params.len() != self.units.len() {
+            return Err(DriveError::Plant(format!(
+                "{} parameter sets for {} units",
+                params.len(),
+                self.units.len()
+            )));
+        }
         let mut held: Option<HeldLengths> = None;
         for (i, p) in params.iter().enumerate() {
             let reach = reach(p);
