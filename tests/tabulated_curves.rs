@@ -131,19 +131,11 @@ fn the_subjects_curves_balance_where_they_say() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let subject = Subject::read(&root.join("data/ceinms/uncalibratedSubject.xml")).unwrap();
     let c = &subject.defaults.curves;
-    let points = |curve: &muscle_actuator::measured::Curve| -> Points {
-        curve
-            .x()
-            .iter()
-            .zip(curve.y())
-            .map(|(&x, &y)| [x, y])
-            .collect()
-    };
     let table = TabulatedCurves {
-        active_force_length: points(&c.active_force_length),
-        passive_force_length: points(&c.passive_force_length),
-        force_velocity: points(&c.force_velocity),
-        tendon_force_strain: points(c.tendon_force_strain.as_ref().unwrap()),
+        active_force_length: c.active_force_length.points(),
+        passive_force_length: c.passive_force_length.points(),
+        force_velocity: c.force_velocity.points(),
+        tendon_force_strain: c.tendon_force_strain.as_ref().unwrap().points(),
     };
     let curve = |p: &Points| {
         let (x, y): (Vec<f64>, Vec<f64>) = p.iter().map(|&[x, y]| (x, y)).unzip();

@@ -36,7 +36,7 @@ pub struct Chart<'a> {
 static FONT: Once = Once::new();
 
 /// The embedded font (DejaVu Sans) for PNG text: no system fonts are needed.
-fn register_font() {
+pub(super) fn register_font() {
     FONT.call_once(|| {
         // The bytes are a valid TrueType font shipped by the `dejavu` crate.
         let _ = plotters::style::register_font(

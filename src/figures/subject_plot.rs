@@ -5,14 +5,13 @@
 
 use super::error::{FigureError, PlotError};
 use super::palette::{BLACK, BLUE};
-use super::plot::{write_panels, Chart, Panel, Series};
+use super::plot::{register_font, write_panels, Chart, Panel, Series};
 use crate::files::AtomicFile;
 use crate::measured::rating::Rating;
 use crate::subject::Prediction;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
-use std::sync::Once;
 
 /// The forces chart's size without its legend, and the legend column's width, pixels.
 const FORCES_PX: (u32, u32) = (1100, 640);
@@ -120,19 +119,6 @@ fn moments_figure(
         })
         .collect();
     write_panels(dir, stem, &panels)
-}
-
-static FONT: Once = Once::new();
-
-/// The embedded font (DejaVu Sans) for the PNG's text, as the other figures register it.
-fn register_font() {
-    FONT.call_once(|| {
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            dejavu::sans::regular(),
-        );
-    });
 }
 
 /// The forces figure drawn as `stem.png` and `stem.svg` in `dir` under temporary names, not

@@ -46,6 +46,11 @@ impl Curve {
         &self.y
     }
 
+    /// The points as `[x, y]` pairs, in order (a tabulated curve's form).
+    pub fn points(&self) -> Vec<[f64; 2]> {
+        self.x.iter().zip(&self.y).map(|(&x, &y)| [x, y]).collect()
+    }
+
     /// The number of points (two or more).
     pub fn len(&self) -> usize {
         self.x.len()

@@ -18,11 +18,11 @@
 //!   `optimal_length_shift`.
 
 use crate::config::{ActuatorConfig, ConfigError, MuscleConfig, SpanConfig};
-use crate::measured::{Curve, Subject, Unit};
+use crate::measured::{Subject, Unit};
 use crate::physics::moment_arm::MomentArm;
 use crate::physics::params::curve_set::CurveSet;
 use crate::physics::params::formulation::{ActivationKind, FibreKind, TendonKind};
-use crate::physics::params::tabulated::{Points, TabulatedCurves};
+use crate::physics::params::tabulated::TabulatedCurves;
 use crate::physics::params::JointParams;
 use crate::physics::params::MuscleParams;
 use crate::subject::bounds::Bounds;
@@ -176,10 +176,10 @@ pub fn unit_params(subject: &Subject, unit: &Unit) -> Option<MuscleParams> {
         b_m: d.damping * f_max / v_max,
         curves: CurveSet::Tabulated,
         tabulated: Some(TabulatedCurves {
-            active_force_length: points(&d.curves.active_force_length),
-            passive_force_length: points(&d.curves.passive_force_length),
-            force_velocity: points(&d.curves.force_velocity),
-            tendon_force_strain: points(tendon),
+            active_force_length: d.curves.active_force_length.points(),
+            passive_force_length: d.curves.passive_force_length.points(),
+            force_velocity: d.curves.force_velocity.points(),
+            tendon_force_strain: tendon.points(),
         }),
         fibre: FibreKind::Equilibrium,
         tendon: TendonKind::Elastic,
@@ -191,14 +191,4 @@ pub fn unit_params(subject: &Subject, unit: &Unit) -> Option<MuscleParams> {
         neural_rate_hz: None,
         ..MuscleParams::default()
     })
-}
-
-/// A curve's points.
-fn points(curve: &Curve) -> Points {
-    curve
-        .x()
-        .iter()
-        .zip(curve.y())
-        .map(|(&x, &y)| [x, y])
-        .collect()
 }
