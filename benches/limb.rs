@@ -20,10 +20,10 @@
 mod bank;
 
 use bank::{bank, Lcg};
-use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::formulation::{FibreKind, TendonKind};
+use muscle_actuator_core::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;
 

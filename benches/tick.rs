@@ -2,12 +2,12 @@
 //! `simulate pulse` run. `cargo bench --bench tick`.
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
-use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::physics::params::MuscleParams;
-use muscle_actuator::sim::scenario::Scenario;
-use muscle_actuator::sim::simulation::default_stepping;
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::sim::scenario::Scenario;
+use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::Actuator;
 use std::hint::black_box;
 
 /// An actuator in a representative working state: co-contracted, moving, after 200 ticks.

@@ -14,17 +14,17 @@
 //! `target/work-precision`): a panel per load, a curve per formulation, log10 of the error
 //! against log10 of the µs per tick, the model's default tolerance marked.
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../crates/core/tests/common/mod.rs"]
 mod common;
 
-use muscle_actuator::config::ActuatorConfig;
 use muscle_actuator::figures::palette::{BLACK, BLUE, RED};
 use muscle_actuator::figures::plot::{write_panels, Chart, Markers, Panel, Series};
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
-use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator::sim::schedule::Schedule;
-use muscle_actuator::sim::simulation::{default_stepping, Stepping};
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::formulation::{FibreKind, TendonKind};
+use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
+use muscle_actuator_core::sim::schedule::Schedule;
+use muscle_actuator_core::sim::simulation::{default_stepping, Stepping};
 use plotters::chart::SeriesLabelPosition;
 use std::path::PathBuf;
 use std::time::Instant;

@@ -12,8 +12,8 @@
 mod bank;
 
 use bank::{bank, Lcg};
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;
 

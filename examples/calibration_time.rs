@@ -6,11 +6,11 @@
 //!   cargo run --release --example calibration_time -- [EVALUATIONS] [THREADS] [MODEL...]
 //!   (defaults: 1000 evaluations, 2 threads, hill and huxley)
 
-use muscle_actuator::measured::{ExcitationMap, Subject, Trial};
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::sim::simulation::default_stepping;
-use muscle_actuator::subject::calibrate::{Problem, Settings};
-use muscle_actuator::subject::{PreparedTrial, SubjectModel};
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_measured::measured::{ExcitationMap, Subject, Trial};
+use muscle_actuator_measured::subject::calibrate::{Problem, Settings};
+use muscle_actuator_measured::subject::{PreparedTrial, SubjectModel};
 use std::ops::ControlFlow;
 use std::path::Path;
 use std::time::Instant;

@@ -5,14 +5,14 @@
 //! Fmax·f(l_m), and the steady force at half vmax against the closed-form oracle; cost: wall time
 //! per tick of the pulse (one muscle) on this machine.
 
-use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::contractile::calibration::calibrate_exact;
-use muscle_actuator::physics::contractile::force_length::force_length;
-use muscle_actuator::physics::contractile::huxley_exact;
-use muscle_actuator::physics::contractile::huxley_grid::CrossBridgeGrid;
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::sim::scenario::Scenario;
-use muscle_actuator::sim::simulation::Stepping;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::contractile::calibration::calibrate_exact;
+use muscle_actuator_core::physics::contractile::force_length::force_length;
+use muscle_actuator_core::physics::contractile::huxley_exact;
+use muscle_actuator_core::physics::contractile::huxley_grid::CrossBridgeGrid;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::scenario::Scenario;
+use muscle_actuator_core::sim::simulation::Stepping;
 use std::time::Instant;
 
 fn main() {

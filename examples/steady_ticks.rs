@@ -6,10 +6,10 @@
 //!   cargo run --release --example steady_ticks -- MODEL TICKS [FORMULATION]
 //!
 //! MODEL: hill, huxley; FORMULATION (docs/model.md §5b): massed (the default), equilibrium, rigid.
-use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::physics::params::formulation::{FibreKind, TendonKind};
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::formulation::{FibreKind, TendonKind};
+use muscle_actuator_core::sim::Actuator;
 use std::hint::black_box;
 
 fn main() {

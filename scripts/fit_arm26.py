@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fit the built-in `arm` configuration (configs/arm.toml) from OpenSim's arm26 model.
+"""Fit the built-in `arm` configuration (crates/core/configs/arm.toml) from OpenSim's arm26 model.
 
 arm26 is the reduced Holzbaur et al. (2005) upper-limb model shipped by OpenSim: two
 revolute coordinates (r_shoulder_elev, r_elbow_flex) and six Thelen2003 muscles (TRIlong,
@@ -25,7 +25,7 @@ Getting the inputs
 Running
 -------
       /tmp/osim-venv/bin/python scripts/fit_arm26.py --osim /tmp/arm26.osim \
-          --out configs/arm.toml
+          --out crates/core/configs/arm.toml
 
 Conventions
 -----------
@@ -353,7 +353,7 @@ def write_toml(path, source, joints, muscles, coupling):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--osim", required=True, help="path to arm26.osim")
-    ap.add_argument("--out", required=True, help="TOML to write, e.g. configs/arm.toml")
+    ap.add_argument("--out", required=True, help="TOML to write, e.g. crates/core/configs/arm.toml")
     ap.add_argument("--source", default=DEFAULT_SOURCE,
                     help="where the .osim came from (written into the TOML header)")
     args = ap.parse_args()

@@ -2,7 +2,7 @@
 """Reference values of Forsythe, Malcolm & Moler's cubic spline (Computer Methods for
 Mathematical Computations, 1977, the SPLINE routine), the interpolation CEINMS gives the curves
 of its subject files (lib/Curve/Curve.cpp), for crates/core/src/physics/curves/tabulated/tests/.
-Writes two tables to tests/reference/tabulated/:
+Writes two tables to crates/core/tests/reference/tabulated/:
 
   - fmm_points.csv: `curve,index,x,y`, the points of each curve: the four curves of
     data/ceinms/uncalibratedSubject.xml (read from the file) and five made-up ones (two, three,
@@ -31,7 +31,7 @@ Rerun (R 4.2.2, SciPy 1.17.1 and NumPy 2.4.6 wrote the committed tables):
 
     apt-get install --no-install-recommends r-base-core
     python3.11 -m venv /tmp/venv-sp && /tmp/venv-sp/bin/pip install scipy numpy
-    /tmp/venv-sp/bin/python scripts/fmm_spline_reference.py [--out-dir tests/reference/tabulated]
+    /tmp/venv-sp/bin/python scripts/fmm_spline_reference.py [--out-dir crates/core/tests/reference/tabulated]
 
 The Rust test needs only the committed tables, not R or SciPy.
 """
@@ -159,7 +159,7 @@ def r_version():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out-dir", default=str(ROOT / "tests" / "reference" / "tabulated"))
+    parser.add_argument("--out-dir", default=str(ROOT / "crates" / "core" / "tests" / "reference" / "tabulated"))
     args = parser.parse_args()
     out = Path(args.out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -2,13 +2,13 @@
 """OpenSim's own evaluation of the curve sets `degroote2016`, `thelen2003` and `millard2012`, the
 reference that
 crates/core/tests/opensim_curves.rs compares the Rust curves (crates/core/src/physics/curves/)
-against. Writes tests/reference/opensim_curves.csv: a comment line naming the OpenSim version and
+against. Writes crates/core/tests/reference/opensim_curves.csv: a comment line naming the OpenSim version and
 this command, then `set,curve,x,value`, one row per point, numbers in Python's shortest
 round-trip form (exact doubles).
 
 Needs OpenSim's Python package (PyPI `opensim` 4.6), which scripts/py-env.sh installs in .venv:
 
-    .venv/bin/python scripts/opensim_curves.py [--out tests/reference/opensim_curves.csv]
+    .venv/bin/python scripts/opensim_curves.py [--out crates/core/tests/reference/opensim_curves.csv]
 
 python/tests/test_opensim_curves.py runs it in the test command and requires the committed table.
 
@@ -191,7 +191,7 @@ def millard_rows():
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--out", default=os.path.join(ROOT, "tests", "reference", "opensim_curves.csv"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "crates", "core", "tests", "reference", "opensim_curves.csv"))
     args = ap.parse_args()
     osim.Logger.setLevelString("warn")
     rows = degroote_rows() + thelen_rows() + millard_rows()

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """The OpenSim references of the muscle cross-validation (docs/validation.md "Against OpenSim"):
-for every configuration `tests/opensim/*.config.toml` (one muscle on a driven slider) and every
-motion `tests/opensim/*.scenario.toml`, the engine's run gives the inputs, the activation and the
+for every configuration `crates/core/tests/opensim/*.config.toml` (one muscle on a driven slider) and every
+motion `crates/core/tests/opensim/*.scenario.toml`, the engine's run gives the inputs, the activation and the
 path length after each tick, and OpenSim 4.6 simulates the same muscle on them
-(scripts/opensim_muscle.py). Writes `tests/reference/opensim/CONFIG__MOTION.csv`: a comment line
+(scripts/opensim_muscle.py). Writes `crates/core/tests/reference/opensim/CONFIG__MOTION.csv`: a comment line
 naming the OpenSim version, then `t,activation,mtu_length,tendon_force,fiber_length`, a row per
 tick (OpenSim's tendon force and fibre length; the inputs as OpenSim read them back), numbers in
 Python's shortest round-trip form.
@@ -11,7 +11,7 @@ Python's shortest round-trip form.
     .venv/bin/python scripts/opensim_validation.py [--out DIR] [--only NAME...]
 
 The engine side is the installed `muscle_actuator` package (`simulate`, the Hill model, the
-configuration's default stepping). crates/../tests/opensim_muscles.rs runs the same
+configuration's default stepping). crates/core/tests/opensim_muscles.rs runs the same
 configurations and motions and compares them with these files; python/tests/
 test_opensim_muscles.py regenerates the files and requires them equal to the committed ones.
 
@@ -36,8 +36,8 @@ import numpy as np
 import muscle_actuator as ma
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CASES = os.path.join(ROOT, "tests", "opensim")
-OUT = os.path.join(ROOT, "tests", "reference", "opensim")
+CASES = os.path.join(ROOT, "crates", "core", "tests", "opensim")
+OUT = os.path.join(ROOT, "crates", "core", "tests", "reference", "opensim")
 ACTIVATION_FLOOR = 0.01
 # The slider's geometry in every configuration: L = PATH - ARM * angle.
 PATH, ARM = 0.3, 0.02

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """SciPy's own Butterworth filters, the reference that crates/core/src/emg/tests/scipy_reference.rs
-compares the Rust filters (crates/core/src/emg/) against. Writes two tables to tests/reference/emg/:
+compares the Rust filters (crates/core/src/emg/) against. Writes two tables to crates/core/tests/reference/emg/:
 
   - scipy_butter_sos.csv: `case,btype,order,low_hz,high_hz,fs_hz,section,b0,b1,b2,a0,a1,a2`, the
     second-order sections of `scipy.signal.butter(order, cut-off(s), btype, fs=fs_hz,
@@ -19,7 +19,7 @@ slow sine, so the filters meet an offset, a low frequency and broadband content.
 Rerun (SciPy 1.17.1 and NumPy 2.4.6 wrote the committed tables; any venv will do):
 
     python3.11 -m venv /tmp/venv-scipy && /tmp/venv-scipy/bin/pip install scipy numpy
-    /tmp/venv-scipy/bin/python scripts/scipy_emg_filters.py [--out-dir tests/reference/emg]
+    /tmp/venv-scipy/bin/python scripts/scipy_emg_filters.py [--out-dir crates/core/tests/reference/emg]
 
 The Rust test needs only the committed tables, not SciPy.
 """
@@ -68,7 +68,7 @@ def input_signal():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out-dir", default=str(ROOT / "tests" / "reference" / "emg"))
+    parser.add_argument("--out-dir", default=str(ROOT / "crates" / "core" / "tests" / "reference" / "emg"))
     args = parser.parse_args()
     out = Path(args.out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Every test of the project, on a fresh machine or an old one (idempotent, reuses what is built):
 #   0. lint: rustfmt's check and clippy with every warning an error, on every crate and target,
-#      and the core's and recording crate's documentation built without a warning;
-#   1. the Rust tests of every crate of the workspace (crates/core, crates/recording, the node's
-#      and the CLI's): unit, integration (physics against closed forms, the adaptive reference
+#      and the engine's, measured-data and recording crates' documentation built without a
+#      warning;
+#   1. the Rust tests of every crate of the workspace (crates/core, crates/measured,
+#      crates/recording, the node's and the CLI's): unit, integration (physics against closed forms, the adaptive reference
 #      solver, conservation laws; the CLI), and the benchmarks compiled and run once in test mode;
 #      then the fourth model's tests (the `test-model` feature);
 #   2. the structure checks of every crate's sources (scripts/check-structure.py: file sizes,
@@ -20,9 +21,10 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 echo "== Lint: cargo fmt --check, cargo clippy -D warnings (every crate, every target)" >&2
 cargo fmt --all --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
-# The core's and the recording crate's API documentation, every link resolved (their
-# missing_docs lint, part of clippy above, asks for a doc on every public item).
-RUSTDOCFLAGS="-D warnings" cargo doc --quiet --no-deps -p muscle_actuator_core -p muscle_actuator_recording
+# The engine's, the measured-data and the recording crates' API documentation, every link
+# resolved (their missing_docs lint, part of clippy above, asks for a doc on every public item).
+RUSTDOCFLAGS="-D warnings" cargo doc --quiet --no-deps -p muscle_actuator_core -p muscle_actuator_measured \
+    -p muscle_actuator_recording
 echo "== Rust tests" >&2
 cargo test --workspace --exclude muscle_actuator_python --all-targets
 echo "== The fourth model (a model only the tests know, reached by name everywhere)" >&2
@@ -30,6 +32,7 @@ cargo test --features test-model --lib -q fourth
 echo "== Structure checks (scripts/check-structure.py)" >&2
 python3 scripts/check-structure.py
 python3 scripts/check-structure.py --src crates/core/src --crate-name muscle_actuator_core
+python3 scripts/check-structure.py --src crates/measured/src --crate-name muscle_actuator_measured
 python3 scripts/check-structure.py --src crates/recording/src --crate-name muscle_actuator_recording
 python3 scripts/check-structure.py --src python/src --crate-name _core
 echo "== benches/without_energetics.patch still applies (the tick without its energetics)" >&2

@@ -1,19 +1,20 @@
 //! The `muscle_actuator` command line: the offline commands (simulate, replay, compare, recover,
 //! export, figures, models, [`steady`](mod@steady)) and the node. Model names, the default model
-//! and the default sub-stepping in its help come from [`MODELS`](crate::physics::models::MODELS).
+//! and the default sub-stepping in its help come from [`MODELS`](muscle_actuator_core::physics::models::MODELS).
 
 mod error;
+mod prediction_run;
 pub mod steady;
 pub mod subject;
 
 pub use error::CliError;
 
-use crate::config::ActuatorConfig;
-use crate::physics::models::{join, ModelKind};
-use crate::physics::params::EnergyModel;
-use crate::physics::stepping::Stepping;
-use crate::sim::steady::{DEFAULT_POINTS, MAX_POINTS, MIN_POINTS};
 use clap::{Parser, Subcommand};
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::{join, ModelKind};
+use muscle_actuator_core::physics::params::EnergyModel;
+use muscle_actuator_core::physics::stepping::Stepping;
+use muscle_actuator_core::sim::steady::{DEFAULT_POINTS, MAX_POINTS, MIN_POINTS};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -262,9 +263,9 @@ fn with_energy_model(cfg: ActuatorConfig, name: Option<&str>) -> Result<Actuator
     }
 }
 
-/// Refuses an output that would overwrite one of `inputs` ([`crate::files::check_not_an_input`]).
+/// Refuses an output that would overwrite one of `inputs` ([`muscle_actuator_core::files::check_not_an_input`]).
 fn check_not_an_input(out: &Path, inputs: &[&Path]) -> Result<(), CliError> {
-    crate::files::check_not_an_input(out, inputs).map_err(CliError::from)
+    muscle_actuator_core::files::check_not_an_input(out, inputs).map_err(CliError::from)
 }
 
 /// Runs one parsed command.
@@ -301,19 +302,19 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         }
         Command::Compare { a, b, plot, json } => compare(&a, &b, plot.as_deref(), json),
         Command::Recover { input, output } => {
-            let r = crate::recording::recover::recover(&input, &output)?;
+            let r = muscle_actuator_recording::recording::recover::recover(&input, &output)?;
             if let Some(w) = &r.stopped_early {
                 eprintln!(
                     "warning: {} is truncated (no summary); reading stopped: {}",
                     input.display(),
-                    crate::text::excerpt(w)
+                    muscle_actuator_core::text::excerpt(w)
                 );
             }
             eprintln!("{}", r.line(&input, &output));
             Ok(())
         }
         Command::Export { input, csv } => {
-            let s = crate::runs::export::export_csv(&input, &csv)?;
+            let s = muscle_actuator_recording::runs::export::export_csv(&input, &csv)?;
             eprintln!(
                 "exported {} states of {} muscles from {}",
                 s.states,
@@ -354,7 +355,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
                 dofs: &dofs,
                 model: parse_model(&model)?,
                 out: &out,
-                settings: crate::subject::calibrate::Settings {
+                settings: muscle_actuator_measured::subject::calibrate::Settings {
                     seed,
                     max_evaluations: evaluations,
                     threads: threads.unwrap_or_else(rayon::current_num_threads),
@@ -370,7 +371,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             points,
             csv,
         } => {
-            crate::sim::steady::check_points(points)?;
+            muscle_actuator_core::sim::steady::check_points(points)?;
             if let Some(c) = &csv {
                 check_not_an_input(c, &read_files(&[config.as_deref()]))?;
             }
@@ -409,9 +410,11 @@ fn simulate(
     out: Option<&Path>,
 ) -> Result<(), CliError> {
     let model = parse_model(model)?;
-    let run = crate::runs::run_scenario(scenario, cfg, model, rate_hz, substeps, out)?;
+    let run = muscle_actuator_recording::runs::run_scenario(
+        scenario, cfg, model, rate_hz, substeps, out,
+    )?;
     if let Some(path) = csv {
-        crate::csv::write_csv_to(&run, path)?;
+        muscle_actuator_core::csv::write_csv_to(&run, path)?;
     }
     let last = run.last().ok_or(CliError::NoTicks)?;
     eprintln!(
@@ -428,7 +431,7 @@ fn simulate(
 
 /// `replay`: the recorded inputs through a model (the recorded one unless named).
 fn replay(input: &Path, model: Option<ModelKind>, out: &Path) -> Result<(), CliError> {
-    let s = crate::runs::replay(input, model, out)?;
+    let s = muscle_actuator_recording::runs::replay(input, model, out)?;
     if let Some(w) = &s.warning {
         eprintln!("warning: {w}");
     }
@@ -462,10 +465,10 @@ fn compare(a: &Path, b: &Path, plot: Option<&Path>, json: bool) -> Result<(), Cl
     let plot_to = plot.map(|p| {
         (
             p,
-            crate::figures::compare_plot::plot as crate::runs::compare::PlotFn,
+            crate::figures::compare_plot::plot as muscle_actuator_recording::runs::compare::PlotFn,
         )
     });
-    let c = crate::runs::compare::compare_files(a, b, plot_to)?;
+    let c = muscle_actuator_recording::runs::compare::compare_files(a, b, plot_to)?;
     for w in &c.warnings {
         eprintln!("warning: {w}");
     }

@@ -1,14 +1,14 @@
-//! A model is one file plus its line in [`MODELS`](crate::physics::models::MODELS): the fourth
+//! A model is one file plus its line in [`MODELS`](muscle_actuator_core::physics::models::MODELS): the fourth
 //! model the tests register there ([`test_model`], the Hill element under the name `hill-copy`
 //! with a stepping of its own) is reached by name from the command line (parser, help, listing),
 //! the node's parameters (start-up arguments, validation, usage), CSV output, recordings
 //! (written, read back, replayed) and the figures, with no other edit.
 
 use crate::cli::{self, Cli};
-use crate::physics::models::{test_model, ModelKind};
-use crate::physics::stepping::Stepping;
 use crate::ros::params::NodeParams;
 use clap::{CommandFactory, Parser};
+use muscle_actuator_core::physics::models::{test_model, ModelKind};
+use muscle_actuator_core::physics::stepping::Stepping;
 use ros2_client::ParameterValue;
 use std::path::{Path, PathBuf};
 
@@ -40,7 +40,7 @@ fn it_is_registered_with_its_own_spec() {
     assert_eq!(fourth().spec().name, test_model::SPEC.name);
     assert!(std::ptr::eq(fourth().spec(), &test_model::SPEC));
     assert_eq!(
-        crate::sim::simulation::default_stepping(fourth()),
+        muscle_actuator_core::sim::simulation::default_stepping(fourth()),
         test_model::SPEC.stepping
     );
 }
@@ -97,7 +97,7 @@ fn simulate_writes_csv_and_a_recording_that_replays() {
     assert_eq!(csv("hill-copy"), csv("hill"));
 
     let recorded = dir.join("hill-copy.mcap");
-    let run = crate::runs::load_run(&recorded).unwrap();
+    let run = muscle_actuator_recording::runs::load_run(&recorded).unwrap();
     assert_eq!(run.meta.model, fourth());
     assert_eq!(
         run.meta.stepping,
@@ -110,7 +110,7 @@ fn simulate_writes_csv_and_a_recording_that_replays() {
     assert!(run.states.iter().all(|s| s.model == "hill-copy"));
 
     let replayed = dir.join("replayed.mcap");
-    let s = crate::runs::replay(&recorded, None, &replayed).unwrap();
+    let s = muscle_actuator_recording::runs::replay(&recorded, None, &replayed).unwrap();
     assert_eq!(s.model, fourth());
     assert!(s.compared == 3001 && s.identical == s.compared, "{s:?}");
     run_cli(&["replay", path(&recorded), "--out", path(&replayed)]).unwrap();

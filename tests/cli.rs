@@ -2,8 +2,8 @@
 //! panic (exit code 101). And the CSV it writes: header and rows as documented, the columns
 //! those of the message definitions (`msg/msg/*.msg`).
 
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use std::path::PathBuf;
 use std::process::Output;
 
@@ -252,10 +252,13 @@ fn csv_has_the_documented_columns_and_one_row_per_tick_per_muscle() {
 #[test]
 fn names_with_commas_and_quotes_keep_the_csv_columns() {
     let (muscle, joint) = (r#"a,"b""#, r#"el,"bow""#);
-    let elbow = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/configs/elbow.toml"))
-        .unwrap()
-        .replace(r#"name = "flexor""#, &format!("name = '{muscle}'"))
-        .replace(r#""elbow""#, &format!("'{joint}'"));
+    let elbow = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/crates/core/configs/elbow.toml"
+    ))
+    .unwrap()
+    .replace(r#"name = "flexor""#, &format!("name = '{muscle}'"))
+    .replace(r#""elbow""#, &format!("'{joint}'"));
     assert_eq!(elbow.matches(joint).count(), 3, "{elbow}");
     let cfg = tmp("quoted_names.toml", &elbow);
     let scenario = tmp(

@@ -3,12 +3,12 @@
 //! something computed another way: a clamped muscle, a free run's own motion, the energy the
 //! motion puts in, a limb without the driven joint.
 
-use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator::sim::schedule::Schedule;
-use muscle_actuator::sim::simulation::default_stepping;
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
+use muscle_actuator_core::sim::schedule::Schedule;
+use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::Actuator;
 
 #[path = "common/cli.rs"]
 mod cli;
@@ -429,10 +429,10 @@ fn driven_example_simulates_and_replays_bit_for_bit() {
                 .args(["simulate", example, "--model", model, "--out"])
                 .arg(&mcap),
         );
-        let run = muscle_actuator::runs::load_run(&mcap).unwrap();
+        let run = muscle_actuator_recording::runs::load_run(&mcap).unwrap();
         assert_eq!(
             run.meta.attachment,
-            muscle_actuator::runs::AttachmentMeta::Driven
+            muscle_actuator_recording::runs::AttachmentMeta::Driven
         );
         assert!(run.meta.config.joints[0].driven);
         // The sine starts at 0.1 rad moving at 0.5 · 2π rad/s: not the configuration's initial
@@ -447,11 +447,12 @@ fn driven_example_simulates_and_replays_bit_for_bit() {
         );
         assert!((angles[0] - (0.1 + 0.5 * (w * 0.25).sin())).abs() < 1e-12);
         let again = dir.join(format!("again_{model}.mcap"));
-        let s = muscle_actuator::runs::replay(&mcap, None, &again).unwrap();
+        let s = muscle_actuator_recording::runs::replay(&mcap, None, &again).unwrap();
         assert_eq!((s.ticks, s.compared), (1000, 1001), "{s:?}");
         assert_eq!(s.identical, s.compared, "{s:?}");
         // The replay's own recording replays bit for bit too.
-        let s2 = muscle_actuator::runs::replay(&again, None, &dir.join("third.mcap")).unwrap();
+        let s2 =
+            muscle_actuator_recording::runs::replay(&again, None, &dir.join("third.mcap")).unwrap();
         assert_eq!(s2.identical, 1001, "{s2:?}");
     }
 }

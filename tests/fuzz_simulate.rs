@@ -247,8 +247,8 @@ const SCENARIOS: [(&str, Option<&str>); 4] = [
 
 /// The configuration files with a (short) scenario that runs on each.
 const CONFIGS: [(&str, &str); 3] = [
-    ("configs/elbow.toml", "scenarios/example.toml"),
-    ("configs/arm.toml", "scenarios/arm_biceps.toml"),
+    ("crates/core/configs/elbow.toml", "scenarios/example.toml"),
+    ("crates/core/configs/arm.toml", "scenarios/arm_biceps.toml"),
     ("configs/four_joints.toml", "scenarios/four_joints.toml"),
 ];
 

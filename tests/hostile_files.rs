@@ -23,8 +23,10 @@ mod child;
 mod cli;
 
 use child::{Ended, Rng};
-use muscle_actuator::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
-use muscle_actuator::recording::{decode_cdr, encode_cdr, read_recording};
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::{
+    ActivationCommand, ActuatorState, ExternalLoad,
+};
+use muscle_actuator_recording::recording::{decode_cdr, encode_cdr, read_recording};
 use std::collections::BTreeMap;
 use std::ffi::OsString;
 use std::io::Cursor;
@@ -472,7 +474,7 @@ fn hostile_ticks_and_values(c: &mut Corpus, r: &Rebuild) {
     let b = r.with(|_, msgs| {
         map_states(msgs, |_, s| {
             s.tick += SHIFT;
-            s.header.stamp = muscle_actuator::msgs::Time::from_nanos(
+            s.header.stamp = muscle_actuator_recording::msgs::Time::from_nanos(
                 s.header.stamp.to_nanos() + 1_000_000_000_000_000_000,
             );
         });
@@ -507,7 +509,7 @@ fn hostile_ticks_and_values(c: &mut Corpus, r: &Rebuild) {
     let b = r.with(|_, msgs| {
         for m in msgs.iter_mut().filter(|m| m.schema_name == ACTIVATION_TYPE) {
             let mut a: ActivationCommand = decode_cdr(&m.data).unwrap();
-            a.header.stamp = muscle_actuator::msgs::Time::from_nanos(-5_000_000_000);
+            a.header.stamp = muscle_actuator_recording::msgs::Time::from_nanos(-5_000_000_000);
             m.data = encode_cdr(&a).unwrap();
         }
     });

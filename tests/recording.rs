@@ -1,9 +1,9 @@
 //! Recordings: the MCAP file as rosbag2 readers expect it (read back with the `mcap` crate),
 //! replay bit for bit, compare Hill vs Huxley, and clean errors on damaged files.
 
-use muscle_actuator::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState};
-use muscle_actuator::recording::{self, decode_cdr, read_recording, schema::SEPARATOR};
-use muscle_actuator::runs::{self, compare, load_run};
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState};
+use muscle_actuator_recording::recording::{self, decode_cdr, read_recording, schema::SEPARATOR};
+use muscle_actuator_recording::runs::{self, compare, load_run};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -81,7 +81,7 @@ fn file_is_rosbag2_mcap() {
 
 #[test]
 fn recorder_round_trip_and_errors() {
-    use muscle_actuator::recording::{Recorder, RecorderOptions, RecorderState};
+    use muscle_actuator_recording::recording::{Recorder, RecorderOptions, RecorderState};
     let path = dir().join("round_trip.mcap");
     let ch = runs::channel("/x", runs::ACTIVATION_TYPE).unwrap();
     let rec = Recorder::start(&path, vec![ch.clone()], vec![], RecorderOptions::default()).unwrap();
@@ -170,7 +170,10 @@ fn replay_is_bit_identical() {
     );
     let a = load_run(&src).unwrap();
     let b = load_run(&out).unwrap();
-    assert_eq!(b.meta.time_base, muscle_actuator::time::TimeBase::Simulated);
+    assert_eq!(
+        b.meta.time_base,
+        muscle_actuator_core::time::TimeBase::Simulated
+    );
     assert_eq!(a.states, b.states);
     assert_eq!(a.activations, b.activations);
 
@@ -388,7 +391,7 @@ fn limb_runs_record_replay_and_compare() {
     assert_eq!(run.meta.muscles.len(), 6);
     assert_eq!(
         run.meta.config,
-        muscle_actuator::config::ActuatorConfig::resolve("arm").unwrap()
+        muscle_actuator_core::config::ActuatorConfig::resolve("arm").unwrap()
     );
     let last = run.states.last().unwrap();
     assert_eq!(last.joints.len(), 2);
@@ -404,7 +407,7 @@ fn limb_runs_record_replay_and_compare() {
     let as_dm = dir().join("arm_as_huxley.mcap");
     runs::replay(
         &arm,
-        Some(muscle_actuator::physics::models::ModelKind::HUXLEY),
+        Some(muscle_actuator_core::physics::models::ModelKind::HUXLEY),
         &as_dm,
     )
     .unwrap();

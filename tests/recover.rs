@@ -198,8 +198,9 @@ fn truncated_recordings_are_read_and_recovered() {
             );
         }
         // Header profile and the metadata records that were written.
-        let back = muscle_actuator::recording::read_recording(&recovered, false).unwrap();
-        let cut_rec = muscle_actuator::recording::read_recording(&truncated, true).unwrap();
+        let back = muscle_actuator_recording::recording::read_recording(&recovered, false).unwrap();
+        let cut_rec =
+            muscle_actuator_recording::recording::read_recording(&truncated, true).unwrap();
         assert_eq!(back.profile, "ros2");
         assert_eq!(back.library, cut_rec.library);
         assert!(
@@ -230,7 +231,7 @@ fn truncated_recordings_are_read_and_recovered() {
         Options::ValidateChunkCrcs.into(),
     );
     assert!(complete && got == all);
-    let back = muscle_actuator::recording::read_recording(&whole, false).unwrap();
+    let back = muscle_actuator_recording::recording::read_recording(&whole, false).unwrap();
     assert!(back.metadata.contains_key("rosbag2"));
 }
 

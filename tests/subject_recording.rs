@@ -6,14 +6,14 @@
 
 #[path = "common/cli.rs"]
 mod cli;
-#[path = "common/trials.rs"]
+#[path = "../crates/measured/tests/common/trials.rs"]
 mod trials;
 
 use cli::{assert_clean_failure, bin, read_csv, run_ok, stderr, temp_dir};
-use muscle_actuator::physics::params::MuscleParams;
-use muscle_actuator::runs::{load_run, AttachmentMeta};
-use muscle_actuator::subject::calibrate::Bounds;
-use muscle_actuator::subject::{SubjectModel, UnitModel};
+use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_measured::subject::calibrate::Bounds;
+use muscle_actuator_measured::subject::{SubjectModel, UnitModel};
+use muscle_actuator_recording::runs::{load_run, AttachmentMeta};
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 use std::process::Output;

@@ -1,9 +1,9 @@
 //! What the bank benchmarks share (`benches/limb.rs`, `examples/bank_threads.rs`): the bank of
 //! independent elbows and the generator of their random excitations.
 
-use muscle_actuator::config::{ActuatorConfig, MuscleConfig, SpanConfig};
-use muscle_actuator::physics::moment_arm::MomentArm;
-use muscle_actuator::physics::params::{JointParams, MuscleParams};
+use muscle_actuator_core::config::{ActuatorConfig, MuscleConfig, SpanConfig};
+use muscle_actuator_core::physics::moment_arm::MomentArm;
+use muscle_actuator_core::physics::params::{JointParams, MuscleParams};
 
 /// k antagonistic elbows, independent.
 pub fn bank(k: usize) -> ActuatorConfig {

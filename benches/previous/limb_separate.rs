@@ -9,9 +9,9 @@
 //! load (new random excitations every 100 ms, the actuators' phases spread). That program counts
 //! no linear solves or sub-steps: those columns print as NaN.
 
-use muscle_actuator::config::ActuatorConfig;
-use muscle_actuator::physics::models::ModelKind;
-use muscle_actuator::sim::Actuator;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;
 

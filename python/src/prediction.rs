@@ -2,8 +2,8 @@
 //! "Subjects"): arrays, ratings, DataFrames, and pickling for Ray workers.
 
 use crate::errors::input_error;
-use muscle_actuator_core::measured::rating::rate;
-use muscle_actuator_core::subject::Prediction;
+use muscle_actuator_measured::measured::rating::rate;
+use muscle_actuator_measured::subject::Prediction;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyImportError;
 use pyo3::prelude::*;

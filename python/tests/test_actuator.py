@@ -148,8 +148,8 @@ def test_energy_model_and_overrides_change_what_they_name():
     stiff = ma.Actuator("elbow", "hill", overrides={"muscle.*.k_t": 5e6}).rollout(u, outputs=["tendon_length"])
     soft = ma.Actuator("elbow", "hill").rollout(u, outputs=["tendon_length"])
     assert stiff["tendon_length"][-1, 0] < soft["tendon_length"][-1, 0]
-    assert (ROOT / "configs/elbow.toml").exists()
-    from_file = ma.Actuator(ROOT / "configs/elbow.toml", "hill").rollout(u, outputs=["force"])
+    assert (ROOT / "crates/core/configs/elbow.toml").exists()
+    from_file = ma.Actuator(ROOT / "crates/core/configs/elbow.toml", "hill").rollout(u, outputs=["force"])
     assert_bits_equal(from_file["force"], ma.Actuator("elbow", "hill").rollout(u, outputs=["force"])["force"], "path")
 
 

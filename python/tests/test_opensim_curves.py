@@ -1,7 +1,7 @@
 """OpenSim 4.6 itself, evaluated now, against the curve table the Rust tests read.
 
 crates/core/tests/opensim_curves.rs checks the project's DeGroote-Fregly 2016 and Thelen 2003
-curves (crates/core/src/physics/curves/) against tests/reference/opensim_curves.csv; this test
+curves (crates/core/src/physics/curves/) against crates/core/tests/reference/opensim_curves.csv; this test
 regenerates that table with the installed OpenSim (scripts/opensim_curves.py) and requires it to
 be the committed one, value for value: the Rust tests compare against OpenSim's numbers, not
 against a copy that could drift from them."""
@@ -13,7 +13,7 @@ import sys
 
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-TABLE = os.path.join(ROOT, "tests", "reference", "opensim_curves.csv")
+TABLE = os.path.join(ROOT, "crates", "core", "tests", "reference", "opensim_curves.csv")
 
 
 

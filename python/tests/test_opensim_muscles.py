@@ -1,8 +1,8 @@
 """OpenSim 4.6 itself, simulated now, against the muscle references the Rust tests read.
 
-tests/opensim_muscles.rs compares the engine's equilibrium Hill muscles (DeGroote-Fregly 2016,
+crates/core/tests/opensim_muscles.rs compares the engine's equilibrium Hill muscles (DeGroote-Fregly 2016,
 Thelen 2003 and Millard 2012 curves, elastic and rigid tendons, pennation 0 and 0.2 rad) with
-tests/reference/opensim/*.csv; this test regenerates those files with the installed OpenSim
+crates/core/tests/reference/opensim/*.csv; this test regenerates those files with the installed OpenSim
 (scripts/opensim_validation.py: the installed engine's run gives the inputs, OpenSim simulates the
 muscle on them) and requires them to be the committed ones: the inputs exactly, OpenSim's
 outputs within what its integrator's accuracy moves them (1e-12 against 1e-14: 3e-6 N, 1e-10 m).
@@ -15,7 +15,7 @@ import sys
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-REFERENCES = os.path.join(ROOT, "tests", "reference", "opensim")
+REFERENCES = os.path.join(ROOT, "crates", "core", "tests", "reference", "opensim")
 
 
 def read(path):

@@ -1,15 +1,15 @@
 //! Why a command failed. `main` prints it as one line after `error: `.
 
 use super::steady::SteadyError;
-use crate::config::ConfigError;
-use crate::csv::CsvWriteError;
 use crate::figures::FigureError;
-use crate::files::OverwritesInput;
-use crate::physics::energetics::params::UnknownEnergyModel;
-use crate::physics::models::UnknownModel;
-use crate::recording::RecordingError;
 use crate::ros::NodeError;
-use crate::runs::RunError;
+use muscle_actuator_core::config::ConfigError;
+use muscle_actuator_core::csv::CsvWriteError;
+use muscle_actuator_core::files::OverwritesInput;
+use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
+use muscle_actuator_core::physics::models::UnknownModel;
+use muscle_actuator_recording::recording::RecordingError;
+use muscle_actuator_recording::runs::RunError;
 
 /// Why a command failed.
 #[derive(Debug, thiserror::Error)]
@@ -28,7 +28,7 @@ pub enum CliError {
     OutputIsInput(#[from] OverwritesInput),
     /// `--points` out of its rules.
     #[error(transparent)]
-    Points(#[from] crate::sim::steady::SteadyError),
+    Points(#[from] muscle_actuator_core::sim::steady::SteadyError),
     /// The CSV cannot be written.
     #[error(transparent)]
     Csv(#[from] CsvWriteError),

@@ -1,12 +1,12 @@
 //! `steady`: one muscle's isovelocity steady states at full activation and optimal length
-//! ([`crate::sim::steady`], docs/model.md §11.5), a table of selected velocities on standard
+//! ([`muscle_actuator_core::sim::steady`], docs/model.md §11.5), a table of selected velocities on standard
 //! output and, with `--csv`, every row as CSV (columns [`SteadyRow::FIELDS`], units in the
 //! names).
 
-use crate::config::{ActuatorConfig, MuscleConfig};
-use crate::physics::models::ModelKind;
-use crate::sim::steady::{steady_table, SteadyRow};
-use crate::text::{excerpt, one_line};
+use muscle_actuator_core::config::{ActuatorConfig, MuscleConfig};
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::steady::{steady_table, SteadyRow};
+use muscle_actuator_core::text::{excerpt, one_line};
 use std::io::Write;
 use std::path::Path;
 
@@ -37,11 +37,11 @@ pub enum SteadyError {
         muscle: String,
         /// Why.
         #[source]
-        reason: crate::sim::steady::SteadyError,
+        reason: muscle_actuator_core::sim::steady::SteadyError,
     },
     /// The CSV cannot be written.
     #[error(transparent)]
-    Csv(#[from] crate::csv::CsvWriteError),
+    Csv(#[from] muscle_actuator_core::csv::CsvWriteError),
 }
 
 /// Runs `steady` for the muscle named `muscle` (default: the first) of `cfg`: computes the rows,
@@ -177,7 +177,7 @@ fn unsigned_zero(x: f64, decimals: i32) -> f64 {
 /// Every row as CSV: a header of [`SteadyRow::FIELDS`], then the names and the values
 /// ([`csv_number`]).
 pub fn write_csv(rows: &[SteadyRow], out: &mut impl Write) -> std::io::Result<()> {
-    let mut w = crate::csv::writer(out);
+    let mut w = muscle_actuator_core::csv::writer(out);
     w.write_record(SteadyRow::FIELDS)?;
     for r in rows {
         w.write_field(r.model.name())?;
@@ -203,7 +203,8 @@ pub fn csv_number(x: f64) -> String {
 
 /// The CSV to the file `path` (`-`: standard output).
 fn write_csv_to(rows: &[SteadyRow], path: &Path) -> Result<(), SteadyError> {
-    crate::csv::write_text_to(path, |out| write_csv(rows, out)).map_err(SteadyError::from)
+    muscle_actuator_core::csv::write_text_to(path, |out| write_csv(rows, out))
+        .map_err(SteadyError::from)
 }
 
 #[cfg(test)]

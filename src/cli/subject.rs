@@ -2,18 +2,20 @@
 //! `predict` (a subject driven through a trial: moments against the measured ones, rated) and
 //! `calibrate` (a subject's parameters fitted to trials' moments).
 
+use super::prediction_run::{record_prediction, PredictionRunError};
 use crate::figures::FigureError;
-use crate::files::{write_atomically, OverwritesInput};
-use crate::measured::rating::{rate, Rating, RatingError};
-use crate::measured::{ExcitationMap, MeasuredError, Trial};
-use crate::physics::models::ModelKind;
-use crate::physics::params::MuscleParams;
-use crate::runs::subject::{record_prediction, PredictionRecording, PredictionRunError};
-use crate::runs::RunError;
-use crate::sim::simulation::default_stepping;
-use crate::subject::calibrate::{CalibrateError, Problem, Settings};
-use crate::subject::{DriveError, Prediction, PreparedTrial, SubjectFileError, SubjectModel};
-use crate::text::{excerpt, one_line};
+use muscle_actuator_core::files::{write_atomically, OverwritesInput};
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::text::{excerpt, one_line};
+use muscle_actuator_measured::measured::rating::{rate, Rating, RatingError};
+use muscle_actuator_measured::measured::{ExcitationMap, MeasuredError, Trial};
+use muscle_actuator_measured::subject::calibrate::{CalibrateError, Problem, Settings};
+use muscle_actuator_measured::subject::{
+    DriveError, Prediction, PreparedTrial, SubjectFileError, SubjectModel,
+};
+use muscle_actuator_recording::runs::{ObservedRun, RunError};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -118,7 +120,7 @@ fn write(path: &Path, text: &str) -> Result<(), SubjectError> {
 /// `subject FILE --out OUT.toml`: the subject (CEINMS XML or the project's TOML) as the
 /// project's TOML.
 pub fn convert(file: &Path, out: &Path) -> Result<(), SubjectError> {
-    crate::files::check_not_an_input(out, &[file])?;
+    muscle_actuator_core::files::check_not_an_input(out, &[file])?;
     let subject = SubjectModel::read(file)?;
     let text = subject
         .to_toml_string()
@@ -232,7 +234,7 @@ fn check_outputs(a: &PredictArgs) -> Result<(), SubjectError> {
     };
     let named = [Some(&a.csv), a.muscles_csv.as_ref(), a.out.as_ref()];
     for out in named.into_iter().flatten().chain(&figures) {
-        crate::files::check_not_an_input(out, &inputs)?;
+        muscle_actuator_core::files::check_not_an_input(out, &inputs)?;
         inputs.push(out);
     }
     Ok(())
@@ -245,7 +247,7 @@ fn drive(
     model: ModelKind,
     prepared: &PreparedTrial,
     params: &[MuscleParams],
-) -> Result<(Prediction, Option<PredictionRecording>), SubjectError> {
+) -> Result<(Prediction, Option<ObservedRun>), SubjectError> {
     let stepping = default_stepping(model);
     let failed = |error| SubjectError::Drive {
         path: shown(&a.trial),
@@ -408,7 +410,7 @@ pub fn calibrate(a: &CalibrateArgs) -> Result<(), SubjectError> {
             s.threads
         )));
     }
-    crate::files::check_not_an_input(a.out, &[a.subject, a.excitations])?;
+    muscle_actuator_core::files::check_not_an_input(a.out, &[a.subject, a.excitations])?;
     let subject = SubjectModel::read(a.subject)?;
     let map = ExcitationMap::read(a.excitations)?;
     let trials = a

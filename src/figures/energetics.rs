@@ -1,7 +1,7 @@
 //! The steady-state energetics figure (docs/model.md §11.3, §11.5): steady force, metabolic
 //! (chemical) power and efficiency against v_s / vmax at full activation and optimal length, for
 //! the Hill model with Umberger (the default energy model) and with Bhargava, and for the
-//! cross-bridge energetics of the DM and the full Huxley model ([`crate::sim::steady`]). Over the
+//! cross-bridge energetics of the DM and the full Huxley model ([`muscle_actuator_core::sim::steady`]). Over the
 //! full model: Hill's (1938) heat coefficient, the line of slope `P0 + a` through its isometric
 //! rate, and Huxley's (1957) closed form `Ė/Ė0 = 1 + (f1/g1)(1 - e^{-φ})/φ` at 1/4, 1/2 and
 //! 1 vmax. Its key numbers go to the summary.
@@ -9,13 +9,15 @@
 use super::error::FigureError;
 use super::palette::{color, BLACK, ORANGE};
 use super::plot::{write_panels, Chart, Markers, Panel, Series};
-use crate::physics::contractile::calibration::calibrate_exact;
-use crate::physics::energetics::bridge_power::{activation_heat_w, BridgeEnergyScale};
-use crate::physics::energetics::huxley_steady::energy_rate_ratio;
-use crate::physics::energetics::steady::{exact_isometric_bridge_w, exact_point};
-use crate::physics::models::ModelKind;
-use crate::physics::params::{EnergyModel, MuscleParams};
-use crate::sim::steady::{steady_table, EnergySource, SteadyRow};
+use muscle_actuator_core::physics::contractile::calibration::calibrate_exact;
+use muscle_actuator_core::physics::energetics::bridge_power::{
+    activation_heat_w, BridgeEnergyScale,
+};
+use muscle_actuator_core::physics::energetics::huxley_steady::energy_rate_ratio;
+use muscle_actuator_core::physics::energetics::steady::{exact_isometric_bridge_w, exact_point};
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::{EnergyModel, MuscleParams};
+use muscle_actuator_core::sim::steady::{steady_table, EnergySource, SteadyRow};
 use plotters::prelude::SeriesLabelPosition;
 use plotters::style::RGBColor;
 use std::fmt::Write as _;

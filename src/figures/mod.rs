@@ -13,16 +13,18 @@ pub mod plot;
 pub mod samples;
 pub mod subject_plot;
 
-use crate::config::ActuatorConfig;
-use crate::physics::contractile::calibration::{calibrate_distribution_moment, calibrate_exact};
-use crate::physics::contractile::distribution_moment::steady_curve;
-use crate::physics::contractile::hill_equation::force_velocity;
-use crate::physics::contractile::huxley_exact::steady_q1;
-use crate::physics::models::ModelKind;
-use crate::physics::params::MuscleParams;
-use crate::sim::scenario::Run;
-use crate::sim::MuscleSnapshot;
 pub use error::{FigureError, PlotError};
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::contractile::calibration::{
+    calibrate_distribution_moment, calibrate_exact,
+};
+use muscle_actuator_core::physics::contractile::distribution_moment::steady_curve;
+use muscle_actuator_core::physics::contractile::hill_equation::force_velocity;
+use muscle_actuator_core::physics::contractile::huxley_exact::steady_q1;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::sim::scenario::Run;
+use muscle_actuator_core::sim::MuscleSnapshot;
 use palette::{color, BLUE, RED};
 use plot::{write_chart, Chart, Series};
 use samples::{at, run, series};
@@ -59,7 +61,7 @@ fn swing(run: &Run, t0: f64, t1: f64, f: impl Fn(&MuscleSnapshot) -> f64) -> f64
 }
 
 /// Writes every figure and `summary.md` into `dir`, each file whole or not at all
-/// ([`crate::files::AtomicFile`]).
+/// ([`muscle_actuator_core::files::AtomicFile`]).
 pub fn write_all(dir: &Path) -> Result<(), FigureError> {
     std::fs::create_dir_all(dir).map_err(|source| FigureError::CreateDir {
         path: dir.to_path_buf(),
@@ -73,7 +75,7 @@ pub fn write_all(dir: &Path) -> Result<(), FigureError> {
     energetics::steady_energetics_figure(dir, &cfg.muscles[0].params, &mut summary)?;
     cost::stiffness_cost_figure(dir, &cfg, &mut summary)?;
     let path = dir.join("summary.md");
-    crate::files::write_atomically(&path, summary.as_bytes())
+    muscle_actuator_core::files::write_atomically(&path, summary.as_bytes())
         .map_err(|source| FigureError::Write { path, source })?;
     print!("{summary}");
     Ok(())

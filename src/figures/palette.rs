@@ -1,7 +1,7 @@
-//! The figures' colours: each model's by its place in [`MODELS`](crate::physics::models::MODELS),
+//! The figures' colours: each model's by its place in [`MODELS`](muscle_actuator_core::physics::models::MODELS),
 //! and the named ones the figures share.
 
-use crate::physics::models::ModelKind;
+use muscle_actuator_core::physics::models::ModelKind;
 use plotters::style::RGBColor;
 
 /// Red, the first model's.
@@ -15,7 +15,7 @@ pub const BLACK: RGBColor = RGBColor(0x00, 0x00, 0x00);
 /// Orange, a second curve of one model.
 pub const ORANGE: RGBColor = RGBColor(0xff, 0x7f, 0x0e);
 
-/// The models' colours, by their position in [`MODELS`](crate::physics::models::MODELS)
+/// The models' colours, by their position in [`MODELS`](muscle_actuator_core::physics::models::MODELS)
 /// (repeating after the sixth).
 const PALETTE: [RGBColor; 6] = [
     RED,

@@ -2,7 +2,7 @@
 //! by side as the panels of one figure, with markers over their curves.
 
 use super::error::{FigureError, PlotError};
-use crate::files::AtomicFile;
+use muscle_actuator_core::files::AtomicFile;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;

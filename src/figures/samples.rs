@@ -2,11 +2,11 @@
 //! muscle's signal as a time series or at one time.
 
 use super::error::FigureError;
-use crate::config::ActuatorConfig;
-use crate::physics::models::ModelKind;
-use crate::sim::scenario::{Run, Scenario};
-use crate::sim::simulation::default_stepping;
-use crate::sim::MuscleSnapshot;
+use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::scenario::{Run, Scenario};
+use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::MuscleSnapshot;
 
 /// The built-in scenario `name` with `model` on `cfg`, at 1 kHz with the model's stepping.
 pub fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, FigureError> {

@@ -6,9 +6,9 @@
 use super::error::{FigureError, PlotError};
 use super::palette::{BLACK, BLUE};
 use super::plot::{register_font, write_panels, Chart, Panel, Series};
-use crate::files::AtomicFile;
-use crate::measured::rating::Rating;
-use crate::subject::Prediction;
+use muscle_actuator_core::files::AtomicFile;
+use muscle_actuator_measured::measured::rating::Rating;
+use muscle_actuator_measured::subject::Prediction;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 //! whole ticks it covers ([`ticks_covered`]). Every stamp the node writes (states,
 //! `/diagnostics`, `/rosout`, the recording's log times) reads [`NodeClock::now_ns`].
 
-use crate::time::{self, TimeBase};
+use muscle_actuator_core::time::{self, TimeBase};
 use std::sync::atomic::{AtomicI64, Ordering};
 
 /// How ticks are paced.
@@ -73,7 +73,7 @@ impl std::str::FromStr for ClockMode {
             "sim" => Ok(ClockMode::Sim),
             "lockstep" => Ok(ClockMode::Lockstep),
             other => Err(UnknownClock {
-                name: crate::text::excerpt(other),
+                name: muscle_actuator_core::text::excerpt(other),
             }),
         }
     }

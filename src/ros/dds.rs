@@ -9,12 +9,14 @@ use super::clock::ClockMode;
 use super::endpoints::{spec_of, Direction, Endpoint, Endpoint as E, Names, Qos, When, ENDPOINTS};
 use super::logging::Logger;
 use super::setup::Setup;
-use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
-use crate::msgs::{
+use muscle_actuator_core::sim::input;
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::{
+    ActivationCommand, ActuatorState, ExternalLoad,
+};
+use muscle_actuator_recording::msgs::{
     Clock, DiagnosticArray, Float64, Float64MultiArray, Int64, JointState, StepRequest,
     StepResponse, TriggerRequest, TriggerResponse,
 };
-use crate::sim::input;
 use ros2_client::qos::{Durability, History, Reliability, WhenFull};
 use ros2_client::service::Server;
 use ros2_client::{

@@ -10,11 +10,11 @@ use super::params::NodeParams;
 use super::record::{self, RecordTx};
 use super::severity::Severity;
 use super::tick::TickStats;
-use crate::msgs::Time;
-use crate::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
-use crate::recording::{Recorder, RecorderState};
-use crate::runs::Channel;
-use crate::sim::input::Rejection;
+use muscle_actuator_core::sim::input::Rejection;
+use muscle_actuator_recording::msgs::Time;
+use muscle_actuator_recording::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
+use muscle_actuator_recording::recording::{Recorder, RecorderState};
+use muscle_actuator_recording::runs::Channel;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
@@ -152,7 +152,7 @@ fn diagnostics(
     };
     DiagnosticArray {
         header: Header {
-            stamp: Time::from_nanos(crate::time::now_ns()),
+            stamp: Time::from_nanos(muscle_actuator_core::time::now_ns()),
             frame_id: String::new(),
         },
         status: vec![
@@ -396,7 +396,7 @@ fn services_status(fqn: &str, c: rustdds::HeldReplyCounts) -> DiagnosticStatus {
 
 /// The live view's `/diagnostics` status: clients, what was dropped for slow clients, who was
 /// disconnected for what they sent.
-fn live_status(fqn: &str, s: &LiveStatus<'_>) -> crate::msgs::DiagnosticStatus {
+fn live_status(fqn: &str, s: &LiveStatus<'_>) -> muscle_actuator_recording::msgs::DiagnosticStatus {
     let (level, message, values) = match s {
         LiveStatus::Off => (
             DiagnosticStatus::OK,

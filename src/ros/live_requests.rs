@@ -13,11 +13,11 @@ use super::sample_messages::sample_to_msgs;
 use super::severity::Severity;
 use super::tasks::{self, InputContext};
 use super::tick::Command;
-use crate::msgs::{StepRequest, StepResponse};
-use crate::recording::{decode_cdr, encode_cdr};
 use futures::future::LocalBoxFuture;
 use futures::stream::FuturesUnordered;
 use futures::{FutureExt, StreamExt};
+use muscle_actuator_recording::msgs::{StepRequest, StepResponse};
+use muscle_actuator_recording::recording::{decode_cdr, encode_cdr};
 use ros2_client::{Node, ParameterValue};
 use serde_json::{json, Value};
 use std::cell::Cell;
@@ -287,7 +287,7 @@ fn set_parameters(node: &Node, params: &[ParameterIn], id: Option<&str>, answer:
                 Level::Error,
                 &format!(
                     "parameter {} not set: {}",
-                    crate::text::excerpt(&p.name),
+                    muscle_actuator_core::text::excerpt(&p.name),
                     bounded(&why)
                 ),
                 id,

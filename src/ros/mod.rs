@@ -1,6 +1,6 @@
 //! The ROS 2 node (`muscle_actuator node`): docs/ros-interface.md.
 //!
-//! Thin wiring around [`crate::sim::Actuator`], which knows nothing of DDS. Its public face is
+//! Thin wiring around [`muscle_actuator_core::sim::Actuator`], which knows nothing of DDS. Its public face is
 //! [`run_node`]; the modules are the crate's own. Start-up:
 //! - `args`: the standard ROS 2 command-line arguments, name expansion and remapping;
 //! - `setup`: what the command line asks of the node, resolved before DDS starts;
@@ -16,7 +16,7 @@
 //! - `threads`: the tick loop, the publisher and the applied-inputs recorder, started and stopped
 //!   together;
 //! - `tasks`: the executor's tasks: the input topics, the services, the loop's events;
-//! - incoming commands are validated by [`crate::sim::input`] (the core crate's rules, shared
+//! - incoming commands are validated by [`muscle_actuator_core::sim::input`] (the core crate's rules, shared
 //!   with the Python package);
 //! - `diagnostics`: `/diagnostics`, once a second;
 //! - `logging`: stderr, `/rosout` and the recording's log, at a `severity`;

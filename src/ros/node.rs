@@ -18,9 +18,9 @@ use super::signals::StopSignals;
 use super::tasks::{self, InputContext};
 use super::threads::{self, ThreadInputs, Threads};
 use super::tick::{self, Event, Pacing};
-use crate::physics::models::ModelKind;
-use crate::recording::RecorderState;
 use futures::FutureExt;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_recording::recording::RecorderState;
 use ros2_client::{NodeName, NodeOptions, ParameterValue, Spinner};
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::Receiver;
@@ -336,7 +336,7 @@ fn stop(
 
 /// `~/joint_states_in` when there are driven joints; otherwise nothing, for ever.
 async fn joint_states_in(
-    sub: Option<&ros2_client::Subscription<crate::msgs::JointState>>,
+    sub: Option<&ros2_client::Subscription<muscle_actuator_recording::msgs::JointState>>,
     cx: &InputContext<'_>,
 ) {
     match sub {
@@ -355,7 +355,7 @@ async fn live_in(rx: Option<&smol::channel::Receiver<Request>>, cx: &live_reques
 
 /// `/clock` when following one (`use_sim_time`); otherwise nothing, for ever.
 async fn clock_in(
-    sub: Option<&ros2_client::Subscription<crate::msgs::Clock>>,
+    sub: Option<&ros2_client::Subscription<muscle_actuator_recording::msgs::Clock>>,
     cx: &InputContext<'_>,
 ) {
     match sub {
@@ -382,7 +382,7 @@ fn logger(setup: &Setup, node: &ros2_client::Node, clock: &Arc<NodeClock>) -> Lo
 fn start_recording(
     setup: &Setup,
     names: &Names,
-    actuator: &crate::sim::Actuator,
+    actuator: &muscle_actuator_core::sim::Actuator,
     clock: &Arc<NodeClock>,
     tick_origin_ns: i64,
     logger: &Logger,

@@ -5,7 +5,7 @@
 use super::logging::Logger;
 use super::params::NodeParams;
 use super::tick::{self, Command};
-use crate::sim::Actuator;
+use muscle_actuator_core::sim::Actuator;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, OnceLock, RwLock};
 

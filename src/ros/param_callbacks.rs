@@ -5,7 +5,7 @@
 use super::node_state::{Names, NodeState};
 use super::params::{self, BuildError, NodeParams, OnChange, ParameterError};
 use super::tick::Command;
-use crate::sim::Actuator;
+use muscle_actuator_core::sim::Actuator;
 use ros2_client::NodeOptions;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc;
@@ -207,8 +207,10 @@ fn apply_change(
     drop(p);
     if let Some(l) = shared.log() {
         let shown = match value {
-            ros2_client::ParameterValue::String(s) => format!("{:?}", crate::text::excerpt(s)),
-            other => crate::text::excerpt(&format!("{other:?}")),
+            ros2_client::ParameterValue::String(s) => {
+                format!("{:?}", muscle_actuator_core::text::excerpt(s))
+            }
+            other => muscle_actuator_core::text::excerpt(&format!("{other:?}")),
         };
         l.info(&format!("parameter {name} set to {shown}"));
     }

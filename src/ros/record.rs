@@ -9,13 +9,15 @@ use super::clock::NodeClock;
 use super::endpoints::Names;
 use super::params::NodeParams;
 use super::tick::{Applied, AppliedInput};
-use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
-use crate::msgs::Time;
-use crate::msgs::{DiagnosticStatus, Header, KeyValue};
-use crate::recording::{encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState};
-use crate::runs::{self, AttachmentMeta, Channel, Layout, RunMeta};
-use crate::sim::Actuator;
-use crate::time::{self, TimeBase};
+use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::time::{self, TimeBase};
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use muscle_actuator_recording::msgs::Time;
+use muscle_actuator_recording::msgs::{DiagnosticStatus, Header, KeyValue};
+use muscle_actuator_recording::recording::{
+    encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState,
+};
+use muscle_actuator_recording::runs::{self, AttachmentMeta, Channel, Layout, RunMeta};
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::Receiver;
@@ -79,13 +81,13 @@ impl RecordTx {
 pub enum RecordError {
     /// A channel of the layout is refused (a name or type).
     #[error(transparent)]
-    Layout(#[from] crate::recording::schema::SchemaError),
+    Layout(#[from] muscle_actuator_recording::recording::schema::SchemaError),
     /// The run's metadata cannot be written as a record.
     #[error(transparent)]
-    Metadata(#[from] crate::runs::metadata::MetadataError),
+    Metadata(#[from] muscle_actuator_recording::runs::metadata::MetadataError),
     /// The file cannot be created or written.
     #[error(transparent)]
-    Start(#[from] crate::recording::RecordingError),
+    Start(#[from] muscle_actuator_recording::recording::RecordingError),
 }
 
 /// A running recording.
@@ -332,7 +334,7 @@ mod tests {
         let r = start(&p, fqn, &names, &actuator, &clock, 0).unwrap();
         let path = r.recorder.stats().path.clone();
         r.recorder.finish();
-        let file = crate::recording::read_recording(&path, false).unwrap();
+        let file = muscle_actuator_recording::recording::read_recording(&path, false).unwrap();
         let _ = std::fs::remove_dir_all(&dir);
         let channels: Vec<(String, String)> = file
             .channels

@@ -2,8 +2,10 @@
 //! `~/joint_efforts`), for the publisher thread, the `~/step` answers and the live view.
 
 use super::tick::Sample;
-use crate::msgs::muscle_actuator_msgs::ActuatorState;
-use crate::msgs::{state_messages, Float64MultiArray, JointState, MultiArrayLayout};
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::ActuatorState;
+use muscle_actuator_recording::msgs::{
+    state_messages, Float64MultiArray, JointState, MultiArrayLayout,
+};
 
 /// Converts a sample into the two published messages.
 pub(crate) fn sample_to_msgs(s: &Sample) -> (ActuatorState, JointState) {

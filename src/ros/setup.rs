@@ -65,7 +65,7 @@ pub(crate) fn setup(argv: &[String]) -> Result<Option<Setup>, SetupError> {
         if a.name != params::table::USE_SIM_TIME && params::spec(&a.name).is_none() {
             ignored.push(format!(
                 "ignoring undeclared parameter {:?} (from {})",
-                crate::text::excerpt(&a.name),
+                muscle_actuator_core::text::excerpt(&a.name),
                 a.source
             ));
             continue;

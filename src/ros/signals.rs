@@ -1,7 +1,7 @@
 //! SIGINT and SIGTERM: the first asks for a clean stop; one more, well after the first while
 //! the stop is stuck, finishes the recording at once and exits with status 130.
 
-use crate::recording::RecordSender;
+use muscle_actuator_recording::recording::RecordSender;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 

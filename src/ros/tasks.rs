@@ -12,15 +12,17 @@ use super::record::RecordTx;
 use super::sample_messages::sample_to_msgs;
 use super::severity::Severity;
 use super::tick::{Command, Event, Sample, TickStats};
-use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ActuatorState, ExternalLoad};
-use crate::msgs::{
+use futures::{FutureExt, StreamExt};
+use muscle_actuator_core::sim::input::{self, Rejection};
+use muscle_actuator_core::time;
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::{
+    ActivationCommand, ActuatorState, ExternalLoad,
+};
+use muscle_actuator_recording::msgs::{
     Clock, Float64, Float64MultiArray, Int64, JointState, StepRequest, StepResponse,
     TriggerRequest, TriggerResponse,
 };
-use crate::runs::Channel;
-use crate::sim::input::{self, Rejection};
-use crate::time;
-use futures::{FutureExt, StreamExt};
+use muscle_actuator_recording::runs::Channel;
 use ros2_client::{RmwRequestId, Server, Subscription};
 use serde::de::DeserializeOwned;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -172,7 +174,7 @@ pub(crate) fn on_activation_array(cx: &InputContext<'_>, msg: Float64MultiArray)
             "activation_array rejected: {} values for {} muscles (in order: {})",
             msg.data.len(),
             known.len(),
-            crate::text::excerpt(&known.join(", "))
+            muscle_actuator_core::text::excerpt(&known.join(", "))
         );
         cx.rejected(&cx.stats.activation_rejected, &rej, m);
         return;
@@ -252,7 +254,7 @@ pub(crate) async fn joint_states_in(sub: &Subscription<JointState>, cx: &InputCo
                 "joint_state_unmatched",
                 format!(
                     "joint state ignored: it names none of the driven joints ({})",
-                    crate::text::excerpt(
+                    muscle_actuator_core::text::excerpt(
                         &driven
                             .iter()
                             .map(|(_, n)| n.as_str())

@@ -11,9 +11,9 @@ use super::sample_messages::{efforts_msg, sample_to_msgs};
 use super::tick::{
     self, Applied, CommandReceiver, Event, LoopIo, Output, Pacing, RunSummary, TickStats,
 };
-use crate::msgs::Clock;
-use crate::msgs::Time;
-use crate::sim::Actuator;
+use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_recording::msgs::Clock;
+use muscle_actuator_recording::msgs::Time;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver};

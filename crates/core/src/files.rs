@@ -3,7 +3,7 @@
 //! every output of an offline command written whole or not at all ([`AtomicFile`]).
 
 /// Largest configuration or scenario file read, bytes.
-pub(crate) const MAX_FILE_BYTES: u64 = 1 << 20;
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
 
 /// Reads `path` if it is a regular file of at most `max_bytes` bytes. The type and size are
 /// checked before reading, so a device (`/dev/zero`), a FIFO or a directory is refused instead of
@@ -12,7 +12,6 @@ pub(crate) const MAX_FILE_BYTES: u64 = 1 << 20;
 /// names the file).
 pub fn read_regular_file(path: &std::path::Path, max_bytes: u64) -> std::io::Result<Vec<u8>> {
     use std::io::{Error, ErrorKind, Read};
-    use std::os::unix::fs::OpenOptionsExt;
     let check = |meta: &std::fs::Metadata| -> std::io::Result<()> {
         if !meta.is_file() {
             return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
@@ -29,12 +28,11 @@ pub fn read_regular_file(path: &std::path::Path, max_bytes: u64) -> std::io::Res
         Ok(())
     };
     check(&std::fs::metadata(path)?)?;
-    // Non-blocking open: should the path become a FIFO after the check above, opening it does
-    // not wait for a writer; the check is repeated on the open file.
-    let file = std::fs::OpenOptions::new()
-        .read(true)
-        .custom_flags(libc::O_NONBLOCK)
-        .open(path)?;
+    // The check is repeated on the open file, so a path that changed kind meanwhile is still
+    // refused. Only a path turned into a FIFO between the two calls could make the open wait
+    // for a writer; avoiding that takes a platform's non-blocking open flag, which the engine
+    // does without so that it builds on every platform std supports.
+    let file = std::fs::File::open(path)?;
     let meta = file.metadata()?;
     check(&meta)?;
     let mut buf = Vec::with_capacity(meta.len() as usize);
@@ -48,12 +46,15 @@ pub fn read_regular_file(path: &std::path::Path, max_bytes: u64) -> std::io::Res
     Ok(buf)
 }
 
-/// Whether `a` and `b` name the same file: the same device and inode where both exist (a hard
-/// link, a symbolic link, `./x` and `x`), else the same canonical path, else equal paths.
+/// Whether `a` and `b` name the same file: on Unix the same device and inode where both exist
+/// (a hard link, a symbolic link, `./x` and `x`), else the same canonical path, else equal paths.
 pub fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
-        return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+        }
     }
     match (a.canonicalize(), b.canonicalize()) {
         (Ok(x), Ok(y)) => x == y,
@@ -128,7 +129,11 @@ impl AtomicFile {
             committed: false,
         };
         let dest = match std::fs::metadata(target) {
-            Ok(m) if m.is_dir() => return Err(Error::from_raw_os_error(libc::EISDIR)),
+            // Refused with the platform's own error for writing a directory (EISDIR on Unix).
+            Ok(m) if m.is_dir() => {
+                let open = std::fs::OpenOptions::new().write(true).open(target);
+                return Err(open.err().unwrap_or_else(|| ErrorKind::IsADirectory.into()));
+            }
             Ok(m) if !m.is_file() => {
                 return Ok(direct(
                     std::fs::OpenOptions::new().write(true).open(target)?,
@@ -309,7 +314,7 @@ mod tests {
         assert!(AtomicFile::create(&missing).is_err());
         assert!(write_atomically(&missing, b"x").is_err());
         let e = AtomicFile::create(&d).unwrap_err();
-        assert_eq!(e.raw_os_error(), Some(libc::EISDIR));
+        assert_eq!(e.kind(), std::io::ErrorKind::IsADirectory);
         // A name as long as the file system allows still gets a temporary.
         let long = d.join(format!("{}.csv", "n".repeat(250)));
         write_atomically(&long, b"x").unwrap();
@@ -320,6 +325,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(unix)]
     fn a_link_is_followed_and_a_device_written_directly() {
         let d = dir("link");
         std::fs::create_dir_all(d.join("real")).unwrap();

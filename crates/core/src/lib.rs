@@ -10,10 +10,6 @@
 //!   envelope, neural activation and its nonlinearity (Lloyd & Besier 2003), no I/O.
 //! - [`config`]: the configuration file: schema, the antagonistic-pair form, parsing, validation.
 //! - [`csv`]: a run as CSV (`simulate --csv`, `export`).
-//! - [`measured`]: measured data of people as CEINMS lays it out (EMG, muscle–tendon lengths,
-//!   moment arms, joint moments, the subject's parameters, the EMG-to-unit map), read and checked.
-//! - [`subject`]: a person's muscle–tendon units (a CEINMS subject) driven by measured
-//!   lengths and EMG, their joint moments, prediction and calibration.
 //! - [`time`]: the time base of a run (ticks ↔ stamps), now, ISO 8601 dates (neutral).
 //! - [`text`]: user text as messages quote it: excerpts, one-line messages (neutral).
 //! - [`files`]: bounded reading of the files a user names, files written whole (neutral).
@@ -26,10 +22,8 @@ pub mod csv;
 pub mod emg;
 pub mod files;
 pub mod integrator;
-pub mod measured;
 pub mod physics;
 pub mod sim;
 pub mod state_bytes;
-pub mod subject;
 pub mod text;
 pub mod time;

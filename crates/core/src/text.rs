@@ -19,7 +19,7 @@ pub fn one_line(message: &str) -> String {
 
 /// A TOML parse error of `text` as `line L, column C: message` on one line (the parser's own
 /// rendering quotes the whole offending line, however long).
-pub(crate) fn toml_error(e: &toml::de::Error, text: &str) -> String {
+pub fn toml_error(e: &toml::de::Error, text: &str) -> String {
     let at = match e.span() {
         Some(span) => {
             let before = &text.as_bytes()[..span.start.min(text.len())];

@@ -1,6 +1,6 @@
 //! The curve sets `degroote2016`, `thelen2003` and `millard2012` against OpenSim 4.6's own
 //! evaluation of them,
-//! tests/reference/opensim_curves.csv (written by scripts/opensim_curves.py): every row, every
+//! crates/core/tests/reference/opensim_curves.csv (written by scripts/opensim_curves.py): every row, every
 //! curve OpenSim exposes, within `REL_TOL` of OpenSim's value relative to the curve's scale
 //! (Millard's derivatives and integrals within looser bounds, [`tolerance`], and the integrals
 //! also against an independent quadrature).
@@ -11,7 +11,7 @@ use muscle_actuator_core::physics::curves::{
 };
 use std::collections::BTreeMap;
 
-const REFERENCE: &str = include_str!("../../../tests/reference/opensim_curves.csv");
+const REFERENCE: &str = include_str!("reference/opensim_curves.csv");
 
 /// Allowed difference, relative to `max(|OpenSim's value|, FLOOR)`.
 const REL_TOL: f64 = 1e-12;

@@ -1,9 +1,9 @@
 //! Why the node's command line cannot be read: an argument, a remap rule, a `-p` value or a
-//! parameters file. Quoted user text is an excerpt ([`crate::text::excerpt`]), so that every
+//! parameters file. Quoted user text is an excerpt ([`muscle_actuator_core::text::excerpt`]), so that every
 //! message stays one short line.
 
 use super::names::NameError;
-use crate::physics::models::MODELS;
+use muscle_actuator_core::physics::models::MODELS;
 
 /// Why a command-line argument of `muscle_actuator node` is refused.
 #[derive(Debug, thiserror::Error)]

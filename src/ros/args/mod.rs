@@ -15,7 +15,7 @@ pub use names::{
 pub use params_file::{parse_param_rule, read_params_file};
 
 use super::severity::Severity;
-use crate::text::excerpt;
+use muscle_actuator_core::text::excerpt;
 use ros2_client::ParameterValue;
 use std::path::Path;
 

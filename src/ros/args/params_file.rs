@@ -4,7 +4,7 @@
 
 use super::error::{ArgsError, FlowTooDeep, ParamsFileError, ValueError};
 use super::ParamAssignment;
-use crate::{files::read_regular_file, text::excerpt};
+use muscle_actuator_core::{files::read_regular_file, text::excerpt};
 use ros2_client::ParameterValue;
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! applied), one list for the recording, the live view and the start-up line.
 
 use super::table::{spec_of, Endpoint, EndpointSpec, Live, ENDPOINTS};
-use crate::runs::channels::Channel;
+use muscle_actuator_recording::runs::channels::Channel;
 
 /// One endpoint as made: its entry, which instance (the k-th muscle topic) and its name.
 #[derive(Debug, Clone)]

@@ -10,7 +10,7 @@
 //! `publish_loop` for an output); its row in docs/ros-interface.md follows.
 
 use super::live_kinds::{InputTopic, Service};
-use crate::runs::channels::{
+use muscle_actuator_recording::runs::channels::{
     Channel, ACTIVATION_TYPE, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE,
     LOAD_TYPE, LOG_TYPE, STATE_TYPE,
 };

@@ -3,9 +3,9 @@
 //! ones, the endpoints' table says ([`crate::ros::endpoints::Live`]).
 
 use super::error::LiveError;
-use crate::msgs::definition;
-use crate::recording::schema::ros2msg_schema;
 use crate::ros::endpoints::{Live, Names};
+use muscle_actuator_recording::msgs::definition;
+use muscle_actuator_recording::recording::schema::ros2msg_schema;
 use serde_json::{json, Value};
 
 pub(crate) use crate::ros::endpoints::{InputTopic, Outlet, Service, OUTLETS};
@@ -136,7 +136,7 @@ impl Catalogue {
             [pkg, ty] => format!("{pkg}/msg/{ty}"),
             _ => type_name.to_string(),
         };
-        let excerpt = crate::text::excerpt;
+        let excerpt = muscle_actuator_core::text::excerpt;
         match self.inputs.iter().find(|(t, _, _)| t == topic) {
             Some((_, kind, ty)) if *ty == normal => Ok(*kind),
             Some((_, _, ty)) => Err(InputRefused::WrongType {
@@ -209,7 +209,7 @@ mod tests {
     use super::*;
 
     use crate::ros::endpoints::{Endpoint as E, ENDPOINTS};
-    use crate::runs::channels::STATE_TYPE;
+    use muscle_actuator_recording::runs::channels::STATE_TYPE;
 
     /// A node `/m` (`prefix`) with one muscle, `/clock` when `clock`.
     fn names_under(prefix: &str, clock: bool) -> Names {
@@ -291,7 +291,8 @@ mod tests {
                 "/clock"
             ]
         );
-        let state = crate::runs::channels::channel("/m/state", STATE_TYPE).unwrap();
+        let state =
+            muscle_actuator_recording::runs::channels::channel("/m/state", STATE_TYPE).unwrap();
         assert_eq!(c.channels[0].schema, state.schema);
         assert!(c.channels[4]
             .schema
@@ -321,7 +322,7 @@ mod tests {
     /// its schema has; its publish panel names an input topic with its type.
     #[test]
     fn the_layout_file_names_real_channels_and_fields() {
-        use crate::recording::schema::field_names;
+        use muscle_actuator_recording::recording::schema::field_names;
         let layout: Value =
             serde_json::from_str(include_str!("../../../docs/foxglove-layout.json")).unwrap();
         let c = Catalogue::new(&names_under("/muscle_actuator", false)).unwrap();

@@ -263,7 +263,7 @@ impl Connection {
                                 Level::Error,
                                 &format!(
                                     "encoding {} is not supported (cdr or json)",
-                                    crate::text::excerpt(other)
+                                    muscle_actuator_core::text::excerpt(other)
                                 ),
                                 None,
                             );
@@ -344,7 +344,7 @@ impl Connection {
                     None => fail(&format!("no service with id {service_id}")),
                     Some(_) if encoding != "cdr" => fail(&format!(
                         "encoding {} is not supported (cdr)",
-                        crate::text::excerpt(encoding)
+                        muscle_actuator_core::text::excerpt(encoding)
                     )),
                     Some(service) => self.ask(Request::Call {
                         service,

@@ -6,9 +6,9 @@
 
 use super::channels::InputTopic;
 use super::request::Input;
-use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
-use crate::msgs::{Float64, Float64MultiArray};
-use crate::recording::decode_cdr;
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use muscle_actuator_recording::msgs::{Float64, Float64MultiArray};
+use muscle_actuator_recording::recording::decode_cdr;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use serde_json::Value;
@@ -25,7 +25,7 @@ pub(crate) struct Unreadable {
 pub(crate) enum DecodeError {
     /// Not the type's CDR.
     #[error(transparent)]
-    Cdr(#[from] crate::recording::CdrError),
+    Cdr(#[from] muscle_actuator_recording::recording::CdrError),
     /// Not JSON; the parser's message as an excerpt.
     #[error("not JSON: {0}")]
     NotJson(String),
@@ -68,7 +68,7 @@ impl InputMessage for Float64 {}
 impl InputMessage for Float64MultiArray {}
 
 fn decode<T: InputMessage>(json: bool, payload: &[u8]) -> Result<T, DecodeError> {
-    let excerpt = |e: serde_json::Error| crate::text::excerpt(&e.to_string());
+    let excerpt = |e: serde_json::Error| muscle_actuator_core::text::excerpt(&e.to_string());
     if !json {
         return decode_cdr(payload).map_err(DecodeError::Cdr);
     }
@@ -99,7 +99,7 @@ fn merge(base: &mut Value, given: Value) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::recording::encode_cdr;
+    use muscle_actuator_recording::recording::encode_cdr;
 
     #[test]
     fn cdr_and_json_give_the_same_message() {

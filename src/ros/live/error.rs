@@ -8,7 +8,7 @@ use std::net::SocketAddr;
 pub enum LiveError {
     /// A channel's or service's schema cannot be assembled (a type without a definition).
     #[error(transparent)]
-    Schema(#[from] crate::recording::schema::SchemaError),
+    Schema(#[from] muscle_actuator_recording::recording::schema::SchemaError),
     /// The port cannot be bound or set non-blocking.
     #[error("cannot listen on {addr}: {source}")]
     Listen {

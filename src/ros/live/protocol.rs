@@ -115,8 +115,8 @@ impl ClientOp {
             obj.insert("op".into(), Value::String(r.into()));
         }
         serde_json::from_value(v).map_err(|e| FrameError::BadOp {
-            op: crate::text::excerpt(&op),
-            reason: crate::text::excerpt(&e.to_string()),
+            op: muscle_actuator_core::text::excerpt(&op),
+            reason: muscle_actuator_core::text::excerpt(&e.to_string()),
         })
     }
 }

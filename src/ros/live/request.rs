@@ -3,8 +3,8 @@
 use super::channels::Service;
 use super::protocol::ParameterIn;
 use super::queue::{Client, Frame, LiveStats};
-use crate::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
-use crate::msgs::{Float64, Float64MultiArray};
+use muscle_actuator_recording::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
+use muscle_actuator_recording::msgs::{Float64, Float64MultiArray};
 use std::sync::Arc;
 
 /// A message a client published on an input topic, decoded.

@@ -78,7 +78,7 @@ impl LiveView {
             "capabilities": capabilities,
             "supportedEncodings": ["cdr", "json"],
             "metadata": {"ROS_DISTRO": "kilted"},
-            "sessionId": crate::time::now_ns().to_string(),
+            "sessionId": muscle_actuator_core::time::now_ns().to_string(),
         })
         .to_string();
         let hub = Arc::new(Hub::new(o.catalogue, server_info, tx));

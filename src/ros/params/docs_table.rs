@@ -52,7 +52,7 @@ fn defaults_pass_their_checks_and_read_back() {
     }
     assert_eq!(
         super::spec("model").unwrap().default,
-        DefaultValue::Str(crate::physics::models::ModelKind::DEFAULT.name())
+        DefaultValue::Str(muscle_actuator_core::physics::models::ModelKind::DEFAULT.name())
     );
     // Names are unique.
     let mut names = super::table::names();

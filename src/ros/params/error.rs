@@ -3,9 +3,9 @@
 //! quotes long values as excerpts.
 
 use super::limits::{MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
-use crate::physics::energetics::params::UnknownEnergyModel;
-use crate::physics::models::UnknownModel;
 use crate::ros::clock::UnknownClock;
+use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
+use muscle_actuator_core::physics::models::UnknownModel;
 
 /// Why a parameter value is refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

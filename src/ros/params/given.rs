@@ -4,7 +4,7 @@
 
 use super::error::ParameterError;
 use super::limits::{MAX_NAME_CHARS, MAX_PATH_BYTES};
-use crate::text::excerpt;
+use muscle_actuator_core::text::excerpt;
 use ros2_client::ParameterValue;
 
 /// A parameter's ROS type; strings are limited by what they hold.

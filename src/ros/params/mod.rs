@@ -14,9 +14,9 @@ pub use given::Given;
 pub use node_params::{BuildError, NodeParams};
 pub use table::{spec, OnChange, PARAMETERS};
 
-use crate::physics::models::ModelKind;
 use crate::ros::clock::ClockMode;
-use crate::text::excerpt;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::text::excerpt;
 use ros2_client::ParameterValue;
 
 impl Default for NodeParams {
@@ -89,7 +89,7 @@ impl NodeParams {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::params::EnergyModel;
+    use muscle_actuator_core::physics::params::EnergyModel;
 
     #[test]
     fn rules() {

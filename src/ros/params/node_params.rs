@@ -1,10 +1,10 @@
 //! The values of the node's parameters, and what they build.
 
-use crate::config::{ActuatorConfig, ConfigError};
-use crate::physics::models::ModelKind;
-use crate::physics::params::EnergyModel;
 use crate::ros::clock::ClockMode;
-use crate::sim::Actuator;
+use muscle_actuator_core::config::{ActuatorConfig, ConfigError};
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::EnergyModel;
+use muscle_actuator_core::sim::Actuator;
 
 /// Why the parameters give no actuator.
 #[derive(Debug, thiserror::Error)]
@@ -14,7 +14,7 @@ pub enum BuildError {
     Config(#[from] ConfigError),
     /// The actuator cannot be set up (model, rate, limb).
     #[error(transparent)]
-    Actuator(#[from] crate::sim::SetupError),
+    Actuator(#[from] muscle_actuator_core::sim::SetupError),
 }
 
 /// The values of the node's parameters.

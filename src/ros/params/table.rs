@@ -12,8 +12,8 @@ use super::error::ParameterError;
 use super::given::{Given, Kind};
 use super::limits::{DEFAULT_FOXGLOVE_PORT, MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
 use super::node_params::NodeParams;
-use crate::physics::models::ModelKind;
-use crate::physics::params::EnergyModel;
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::params::EnergyModel;
 use ros2_client::ParameterValue;
 
 /// A default value (a constant, unlike [`ParameterValue`]).
@@ -139,7 +139,10 @@ pub const PARAMETERS: &[ParameterSpec] = &[
         on_change: OnChange::Rebuild,
         description: "the limb: a TOML file or built in, \"\" = elbow",
         choices: Some(|| {
-            let names: Vec<&str> = crate::config::BUILT_IN.iter().map(|(n, _)| *n).collect();
+            let names: Vec<&str> = muscle_actuator_core::config::BUILT_IN
+                .iter()
+                .map(|(n, _)| *n)
+                .collect();
             format!("built in: {}", names.join("|"))
         }),
         get: |p| ParameterValue::String(p.config.clone()),

@@ -10,8 +10,8 @@ use super::super::clock::{ticks_covered, ClockMode};
 use super::messages::{AppliedInput, Command, Event};
 use super::pacing::wall_ns;
 use super::tick_loop::{Names, TickLoop};
-use crate::sim::Actuator;
-use crate::time::TimeBase;
+use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::time::TimeBase;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
@@ -130,7 +130,8 @@ impl TickLoop {
             None => {
                 // The first clock message: the tick reached (0) is at its time.
                 self.clock = TimeBase::WallOrigin {
-                    tick_origin_ns: ns - crate::time::tick_ns(self.actuator.tick(), rate) as i64,
+                    tick_origin_ns: ns
+                        - muscle_actuator_core::time::tick_ns(self.actuator.tick(), rate) as i64,
                 };
                 self.event(Event::ClockAnchored {
                     origin_ns: self.clock.tick_origin_ns(),

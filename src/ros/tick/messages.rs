@@ -2,8 +2,8 @@
 //! the next tick boundary), [`Output`]s and [`Event`]s out (states and times to publish, lines
 //! to log), and the [`Applied`] inputs for the recording (docs/ros-interface.md).
 
-use crate::physics::models::ModelKind;
-use crate::sim::{Actuator, StateSnapshot};
+use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::sim::{Actuator, StateSnapshot};
 use std::sync::Arc;
 
 /// A request for the tick loop, applied at the next tick boundary.

@@ -32,7 +32,7 @@ pub use queue::{command_channel, CommandReceiver, CommandSender};
 pub use stats::{RunSummary, TickStats};
 pub use tick_loop::LoopIo;
 
-use crate::sim::Actuator;
+use muscle_actuator_core::sim::Actuator;
 use tick_loop::TickLoop;
 
 /// Runs the loop on the calling thread until `io.stop` is set (or the command channel closes).

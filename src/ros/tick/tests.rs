@@ -2,7 +2,7 @@ use super::super::clock::{ClockMode, NodeClock};
 use super::queue::{command_channel_with, Drain};
 use super::stats::Histogram;
 use super::*;
-use crate::time::TimeBase;
+use muscle_actuator_core::time::TimeBase;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -180,7 +180,7 @@ fn states_and_applied_inputs_share_the_tick_clock() {
 }
 
 fn tick_ns_i64(ticks: u64, rate: f64) -> i64 {
-    crate::time::tick_ns(ticks, rate) as i64
+    muscle_actuator_core::time::tick_ns(ticks, rate) as i64
 }
 
 /// Lockstep: no tick until a step is asked for; steps run in order and each reply carries
@@ -226,7 +226,10 @@ fn lockstep_ticks_only_when_stepped() {
     let a = wait(a_rx);
     let b = wait(b_rx);
     assert_eq!((a.tick, b.tick), (10, 17));
-    assert_eq!(b.stamp_ns, crate::time::tick_ns(17, rate) as i64);
+    assert_eq!(
+        b.stamp_ns,
+        muscle_actuator_core::time::tick_ns(17, rate) as i64
+    );
     assert_eq!(clock.now_ns(), b.stamp_ns);
     std::thread::sleep(Duration::from_millis(100));
     assert_eq!(
@@ -244,7 +247,7 @@ fn lockstep_ticks_only_when_stepped() {
         .collect();
     let expected: Vec<i64> = [4, 8, 12, 16]
         .iter()
-        .map(|&k| crate::time::tick_ns(k, rate) as i64)
+        .map(|&k| muscle_actuator_core::time::tick_ns(k, rate) as i64)
         .collect();
     assert_eq!(clocks, expected);
 }
@@ -313,7 +316,7 @@ fn follow_steps_the_ticks_each_clock_time_covers() {
 #[test]
 fn inputs_stamped_ahead_wait_for_their_tick() {
     let l = TestLoop::start(ClockMode::Lockstep, 1);
-    let at = |tick: u64| crate::time::tick_ns(tick, 1000.0) as i64;
+    let at = |tick: u64| muscle_actuator_core::time::tick_ns(tick, 1000.0) as i64;
     let excite = |u: f64| Box::new(Command::Excitation(vec![(0, u)]));
     // Sent out of order: tick 7's before tick 4's (and one between two ticks: tick 9).
     l.tx.send(Command::Stamped(at(7), excite(0.7))).ok();

@@ -13,8 +13,8 @@ use std::path::Path;
 
 /// Built-in configurations: (name, TOML text). `elbow` is the embedded default.
 pub const BUILT_IN: &[(&str, &str)] = &[
-    ("elbow", include_str!("../../../../configs/elbow.toml")),
-    ("arm", include_str!("../../../../configs/arm.toml")),
+    ("elbow", include_str!("../../configs/elbow.toml")),
+    ("arm", include_str!("../../configs/arm.toml")),
 ];
 
 impl ActuatorConfig {

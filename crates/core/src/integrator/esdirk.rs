@@ -31,7 +31,7 @@ mod saved;
 
 /// Newton stops when the scaled error it estimates is left is below this fraction of the step's
 /// tolerance (and never above `NEWTON_TOL_MAX`): small enough that the DM elbow's joint scenario
-/// stays within tests/reference_runs.rs's bound (1e-6 m) of the reference CSV; smaller fractions
+/// stays within crates/core/tests/reference_runs.rs's bound (1e-6 m) of the reference CSV; smaller fractions
 /// add evaluations without a measurable gain.
 const NEWTON_TOL_FRACTION: f64 = 0.03;
 const NEWTON_TOL_MAX: f64 = 1e-5;

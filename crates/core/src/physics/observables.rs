@@ -4,7 +4,7 @@
 //! (a field added here and filled nowhere is a compile error), its energetics from the
 //! stepping's [`EnergeticsOutputs`]; the message
 //! conversion, the CSV, the recorder, `compare` and replay iterate these lists
-//! (`tests/msg_definitions.rs` keeps them in step with the `.msg` files).
+//! (`crates/recording/tests/msg_definitions.rs` keeps them in step with the `.msg` files).
 
 /// Defines a struct of named `f64` observables together with its field list.
 macro_rules! observables {

@@ -247,24 +247,25 @@ pub struct TriggerResponse {
 ros2_message!(TriggerResponse);
 
 /// The `.msg` definitions of the recorded types (`pkg/msg/Type` → text), for the `ros2msg`
-/// schemas of recordings: ours from `msg/msg/`, the standard ones as in ROS 2 kilted (fields
+/// schemas of recordings: ours from `crates/recording/msg/` (copies of the interface package's
+/// `msg/msg/`, kept equal by tests/msg_copies.rs), the standard ones as in ROS 2 kilted (fields
 /// only).
 pub(crate) const DEFINITIONS: &[(&str, &str)] = &[
     (
         "muscle_actuator_msgs/msg/ActivationCommand",
-        include_str!("../../../../msg/msg/ActivationCommand.msg"),
+        include_str!("../../msg/ActivationCommand.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/ExternalLoad",
-        include_str!("../../../../msg/msg/ExternalLoad.msg"),
+        include_str!("../../msg/ExternalLoad.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/MuscleState",
-        include_str!("../../../../msg/msg/MuscleState.msg"),
+        include_str!("../../msg/MuscleState.msg"),
     ),
     (
         "muscle_actuator_msgs/msg/ActuatorState",
-        include_str!("../../../../msg/msg/ActuatorState.msg"),
+        include_str!("../../msg/ActuatorState.msg"),
     ),
     (
         "std_msgs/msg/Header",

@@ -16,9 +16,9 @@ pub mod export;
 pub mod limits;
 pub mod load;
 pub mod metadata;
+pub mod observed;
 pub mod replay;
 pub mod simulate;
-pub mod subject;
 pub mod writer;
 
 /// The channels of a run, for the node (`muscle_actuator::ros`) and the tests, which name them
@@ -34,6 +34,7 @@ pub use load::{load_run, InputsAt, InvalidRun, JointMotionAt, LoadError, LoadedR
 pub use metadata::{
     driven_motion, AttachmentMeta, BuildError, MetadataError, RunMeta, METADATA_NAME,
 };
+pub use observed::ObservedRun;
 pub use replay::{replay, ReplaySummary};
 pub use simulate::{run_scenario, simulate_to_mcap};
 pub use writer::joint_motion_msg;

@@ -1,4 +1,4 @@
-//! The Butterworth design and both filters against SciPy (tests/reference/emg/, written by
+//! The Butterworth design and both filters against SciPy (crates/core/tests/reference/emg/, written by
 //! scripts/scipy_emg_filters.py with SciPy 1.17.1): every section's coefficients, and the causal
 //! (`sosfilt`) and zero-phase (`sosfiltfilt`) outputs of one seeded input, for low-, high- and
 //! band-pass filters of orders 2 to 5. Tolerance 1e-10, relative to the largest coefficient of
@@ -8,8 +8,8 @@ use crate::emg::butterworth::{butterworth, Band};
 use crate::emg::filter::{filter_causal, filter_zero_phase, SosFilter};
 use crate::emg::sos::Sos;
 
-const SOS_TABLE: &str = include_str!("../../../../../tests/reference/emg/scipy_butter_sos.csv");
-const FILTERED_TABLE: &str = include_str!("../../../../../tests/reference/emg/scipy_filtered.csv");
+const SOS_TABLE: &str = include_str!("../../../tests/reference/emg/scipy_butter_sos.csv");
+const FILTERED_TABLE: &str = include_str!("../../../tests/reference/emg/scipy_filtered.csv");
 const TOLERANCE: f64 = 1e-10;
 
 /// One filter of the table: its design and SciPy's sections (b0..a2 per row).

@@ -18,7 +18,7 @@
 //! [`CurveSet::evaluate`] evaluates one [`Curve`] of a set, with the set's default constants, at
 //! a normalised argument: fibre length `l̃ = l_M/l_opt`, fibre velocity `ṽ` (lengthening
 //! positive; 0 and 1 at ṽ = 0 and -1), tendon length `l̃_T = l_T/l_s`. The results are forces
-//! as fractions of the maximum isometric force. tests/reference/opensim_curves.csv holds
+//! as fractions of the maximum isometric force. crates/core/tests/reference/opensim_curves.csv holds
 //! OpenSim's own values of the three OpenSim sets (scripts/opensim_curves.py).
 
 pub mod degroote2016;
@@ -57,7 +57,7 @@ impl Curve {
         Curve::TendonForceLength,
     ];
 
-    /// Its name, as in tests/reference/opensim_curves.csv.
+    /// Its name, as in crates/core/tests/reference/opensim_curves.csv.
     pub fn name(self) -> &'static str {
         match self {
             Curve::ActiveForceLength => "active_force_length",

@@ -70,7 +70,7 @@
 //! Akima or quadratic slopes), `cubic-splines` (natural, periodic, given first or second
 //! derivatives) and `ndarray-interp` (natural, not-a-knot, clamped, periodic) each give a
 //! different spline through the same points. The tests compare with R's
-//! `splinefun(method = "fmm")` and SciPy (tests/reference/tabulated/, written by
+//! `splinefun(method = "fmm")` and SciPy (crates/core/tests/reference/tabulated/, written by
 //! scripts/fmm_spline_reference.py).
 //!
 //! Evaluation neither allocates nor panics: NaN gives NaN, ±∞ the held end values.

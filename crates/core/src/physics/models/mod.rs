@@ -3,7 +3,7 @@
 //! model, and [`MODELS`], the one place where they are named. Adding a model is its file plus
 //! its line in [`MODELS`]. Everything that names models (the command line's help and default,
 //! the node's `model` parameter and its usage text, figures, the `MODEL_*` constants of
-//! `ActuatorState.msg`, checked by `tests/msg_definitions.rs`) reads this list.
+//! `ActuatorState.msg`, checked by `crates/recording/tests/msg_definitions.rs`) reads this list.
 
 pub mod contractile_model;
 pub mod distribution_moment;
