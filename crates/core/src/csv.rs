@@ -65,7 +65,7 @@ impl CsvWriteError {
 }
 
 /// The header line's columns for a run with these joints.
-pub fn header(joint_names: &[String]) -> Vec<String> {
+pub(crate) fn header(joint_names: &[String]) -> Vec<String> {
     let mut cols = vec!["time".to_string(), "name".to_string()];
     cols.extend(MuscleSnapshot::FIELDS.iter().map(|f| f.to_string()));
     for j in joint_names {

@@ -107,7 +107,7 @@ pub(crate) trait SavedState {
 
 /// Writes values to a growing byte vector.
 #[derive(Debug, Default)]
-pub struct StateWriter {
+pub(crate) struct StateWriter {
     bytes: Vec<u8>,
 }
 
@@ -117,23 +117,23 @@ impl StateWriter {
         Self::default()
     }
     /// One byte.
-    pub fn u8(&mut self, v: u8) {
+    pub(crate) fn u8(&mut self, v: u8) {
         self.bytes.push(v);
     }
     /// A flag, as 0 or 1.
-    pub fn bool(&mut self, v: bool) {
+    pub(crate) fn bool(&mut self, v: bool) {
         self.u8(u8::from(v));
     }
     /// 8 bytes, little-endian.
-    pub fn u64(&mut self, v: u64) {
+    pub(crate) fn u64(&mut self, v: u64) {
         self.bytes.extend_from_slice(&v.to_le_bytes());
     }
     /// A size or an index, as a `u64`.
-    pub fn usize(&mut self, v: usize) {
+    pub(crate) fn usize(&mut self, v: usize) {
         self.u64(v as u64);
     }
     /// The bits of `v`.
-    pub fn f64(&mut self, v: f64) {
+    pub(crate) fn f64(&mut self, v: f64) {
         self.u64(v.to_bits());
     }
     /// The length, then each value.
@@ -144,27 +144,27 @@ impl StateWriter {
         }
     }
     /// The length in bytes, then the UTF-8 text.
-    pub fn str(&mut self, s: &str) {
+    pub(crate) fn str(&mut self, s: &str) {
         self.usize(s.len());
         self.bytes.extend_from_slice(s.as_bytes());
     }
     /// Raw bytes, as they are (no length).
-    pub fn raw(&mut self, b: &[u8]) {
+    pub(crate) fn raw(&mut self, b: &[u8]) {
         self.bytes.extend_from_slice(b);
     }
     /// What was written.
-    pub fn bytes(&self) -> &[u8] {
+    pub(crate) fn bytes(&self) -> &[u8] {
         &self.bytes
     }
     /// What was written, taken.
-    pub fn into_bytes(self) -> Vec<u8> {
+    pub(crate) fn into_bytes(self) -> Vec<u8> {
         self.bytes
     }
 }
 
 /// Reads values back, each read checked.
 #[derive(Debug)]
-pub struct StateReader<'a> {
+pub(crate) struct StateReader<'a> {
     bytes: &'a [u8],
     at: usize,
 }
@@ -185,12 +185,12 @@ impl<'a> StateReader<'a> {
     }
 
     /// Bytes not read yet.
-    pub fn remaining(&self) -> usize {
+    pub(crate) fn remaining(&self) -> usize {
         self.bytes.len() - self.at
     }
 
     /// The next `n` bytes.
-    pub fn raw(&mut self, n: usize, what: &str) -> Result<&'a [u8], StateError> {
+    pub(crate) fn raw(&mut self, n: usize, what: &str) -> Result<&'a [u8], StateError> {
         if n > self.remaining() {
             return Err(StateError::Truncated {
                 what: what.into(),
@@ -205,12 +205,12 @@ impl<'a> StateReader<'a> {
     }
 
     /// One byte.
-    pub fn u8(&mut self, what: &str) -> Result<u8, StateError> {
+    pub(crate) fn u8(&mut self, what: &str) -> Result<u8, StateError> {
         Ok(self.raw(1, what)?[0])
     }
 
     /// A flag (0 or 1).
-    pub fn bool(&mut self, what: &str) -> Result<bool, StateError> {
+    pub(crate) fn bool(&mut self, what: &str) -> Result<bool, StateError> {
         match self.u8(what)? {
             0 => Ok(false),
             1 => Ok(true),
@@ -222,13 +222,13 @@ impl<'a> StateReader<'a> {
     }
 
     /// 8 bytes, little-endian.
-    pub fn u64(&mut self, what: &str) -> Result<u64, StateError> {
+    pub(crate) fn u64(&mut self, what: &str) -> Result<u64, StateError> {
         let b = self.raw(8, what)?;
         Ok(u64::from_le_bytes(b.try_into().expect("8 bytes")))
     }
 
     /// A size or an index of at most `max`.
-    pub fn usize(&mut self, what: &str, max: usize) -> Result<usize, StateError> {
+    pub(crate) fn usize(&mut self, what: &str, max: usize) -> Result<usize, StateError> {
         let v = self.u64(what)?;
         match usize::try_from(v) {
             Ok(v) if v <= max => Ok(v),
@@ -241,7 +241,7 @@ impl<'a> StateReader<'a> {
     }
 
     /// A value from its bits.
-    pub fn f64(&mut self, what: &str) -> Result<f64, StateError> {
+    pub(crate) fn f64(&mut self, what: &str) -> Result<f64, StateError> {
         Ok(f64::from_bits(self.u64(what)?))
     }
 
@@ -284,7 +284,7 @@ impl<'a> StateReader<'a> {
     }
 
     /// A string of at most `max` bytes.
-    pub fn str(&mut self, what: &str, max: usize) -> Result<&'a str, StateError> {
+    pub(crate) fn str(&mut self, what: &str, max: usize) -> Result<&'a str, StateError> {
         let n = self.usize(what, max)?;
         let b = self.raw(n, what)?;
         std::str::from_utf8(b).map_err(|_| StateError::NotUtf8 { what: what.into() })
@@ -309,7 +309,7 @@ impl<'a> StateReader<'a> {
     }
 
     /// Err unless every byte was read.
-    pub fn finish(&self) -> Result<(), StateError> {
+    pub(crate) fn finish(&self) -> Result<(), StateError> {
         match self.remaining() {
             0 => Ok(()),
             n => Err(StateError::LeftOver(n)),

@@ -34,21 +34,22 @@
 //!   run.
 
 pub mod overrides;
-pub mod pair;
-pub mod parse;
-pub mod parse_error;
-pub mod schema;
-pub mod stepper;
-pub mod validate;
+pub(crate) mod pair;
+pub(crate) mod parse;
+pub(crate) mod parse_error;
+pub(crate) mod schema;
+pub(crate) mod stepper;
+pub(crate) mod validate;
 
 use crate::physics::params::ParamError;
-pub use overrides::{OverrideKeyError, OverridesError};
+pub use overrides::OverridesError;
 /// For src/main.rs, which quotes warnings with it; the text helpers are [`crate::text`]'s.
 pub use parse::BUILT_IN;
 pub use parse_error::ParseError;
-pub use schema::{
-    ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_PATH_PRESTRETCH, DEFAULT_RADIUS,
-};
+pub use schema::ActuatorConfig;
+pub use schema::MuscleConfig;
+pub use schema::SpanConfig;
+pub use schema::DEFAULT_RADIUS;
 pub use stepper::{StepperConfig, StepperError};
 
 /// Why a configuration could not be used.

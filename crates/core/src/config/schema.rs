@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 /// Pulley radius of the default elbow, m (docs/model.md §8).
 pub const DEFAULT_RADIUS: f64 = 0.03;
 /// Extra length of a default path over l_opt + l_ts with the joints at 0 rad, m (§8).
-pub const DEFAULT_PATH_PRESTRETCH: f64 = 0.002;
+pub(crate) const DEFAULT_PATH_PRESTRETCH: f64 = 0.002;
 
 /// A joint a muscle spans, by name, and its moment arm there.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

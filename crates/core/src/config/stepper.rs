@@ -20,9 +20,9 @@ use crate::physics::stepping::{Stepping, MAX_SUBSTEPS};
 use serde::{Deserialize, Serialize};
 
 /// Tightest `stepper.tolerance`: below it the error estimate is near the rounding of the state.
-pub const MIN_TOLERANCE: f64 = 1e-10;
+pub(crate) const MIN_TOLERANCE: f64 = 1e-10;
 /// Loosest `stepper.tolerance`: 10% of the state's scales per sub-step is no accuracy at all.
-pub const MAX_TOLERANCE: f64 = 0.1;
+pub(crate) const MAX_TOLERANCE: f64 = 0.1;
 
 /// The `[stepper]` table: the adaptive sub-steps' tolerance and most sub-steps per tick, each
 /// `None` for the model's own.
@@ -108,7 +108,7 @@ impl StepperConfig {
     /// The stepping of a run of `model` under this table: `substeps` fixed sub-steps if given,
     /// else the model's own stepping with this table's values in place of its defaults. A value
     /// set here with fixed sub-steps (given, or the model's only stepping) is refused.
-    pub fn stepping(
+    pub(crate) fn stepping(
         &self,
         model: ModelKind,
         substeps: Option<usize>,

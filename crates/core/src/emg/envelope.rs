@@ -110,18 +110,18 @@ impl Default for EnvelopeOptions {
 }
 
 /// `x` less its mean.
-pub fn remove_mean(x: &[f64]) -> Vec<f64> {
+pub(crate) fn remove_mean(x: &[f64]) -> Vec<f64> {
     let mean = x.iter().sum::<f64>() / x.len().max(1) as f64;
     x.iter().map(|v| v - mean).collect()
 }
 
 /// Full-wave rectification, `|x|`.
-pub fn rectify(x: &[f64]) -> Vec<f64> {
+pub(crate) fn rectify(x: &[f64]) -> Vec<f64> {
     x.iter().map(|v| v.abs()).collect()
 }
 
 /// The largest value of all the signals, or -∞ if there is none.
-pub fn peak(signals: &[Vec<f64>]) -> f64 {
+pub(crate) fn peak(signals: &[Vec<f64>]) -> f64 {
     signals
         .iter()
         .flatten()

@@ -48,7 +48,7 @@ fn section_steady_state(s: &Section) -> State {
 
 /// The sections' states in the steady state of a unit step (`scipy.signal.sosfilt_zi`): each
 /// section's own, scaled by the DC gain `Σb/Σa` of the sections before it.
-pub fn steady_state(sos: &Sos) -> Vec<[f64; 2]> {
+pub(crate) fn steady_state(sos: &Sos) -> Vec<[f64; 2]> {
     let mut scale = 1.0;
     sos.sections()
         .iter()
@@ -63,7 +63,7 @@ pub fn steady_state(sos: &Sos) -> Vec<[f64; 2]> {
 
 /// Samples of odd extension at each end for the zero-phase filter, SciPy's default
 /// `3 (2 n_sections + 1 - min(#b2 = 0, #a2 = 0))`.
-pub fn pad_len(sos: &Sos) -> usize {
+pub(crate) fn pad_len(sos: &Sos) -> usize {
     let n = sos.sections().len();
     let b_zeros = sos.sections().iter().filter(|s| s.b[2] == 0.0).count();
     let a_zeros = sos.sections().iter().filter(|s| s.a[2] == 0.0).count();

@@ -48,22 +48,22 @@ use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// Longest electromechanical delay accepted, s. Delays of 10 to 100 ms are usual (Lloyd &
 /// Besier 2003); this leaves room while bounding the delay line.
-pub const MAX_DELAY_S: f64 = 0.5;
+pub(crate) const MAX_DELAY_S: f64 = 0.5;
 /// Longest delay line, samples (0.5 s at 131 kHz).
-pub const MAX_DELAY_SAMPLES: usize = 1 << 16;
+pub(crate) const MAX_DELAY_SAMPLES: usize = 1 << 16;
 
 /// `β1 = C1 + C2` (Lloyd & Besier 2003, the recursion's coefficients).
-pub fn beta1(c1: f64, c2: f64) -> f64 {
+pub(crate) fn beta1(c1: f64, c2: f64) -> f64 {
     c1 + c2
 }
 
 /// `β2 = C1 C2` (Lloyd & Besier 2003, the recursion's coefficients).
-pub fn beta2(c1: f64, c2: f64) -> f64 {
+pub(crate) fn beta2(c1: f64, c2: f64) -> f64 {
     c1 * c2
 }
 
 /// `α = 1 + β1 + β2`, the gain that makes the steady state u = e (Lloyd & Besier 2003).
-pub fn alpha(beta1: f64, beta2: f64) -> f64 {
+pub(crate) fn alpha(beta1: f64, beta2: f64) -> f64 {
     1.0 + beta1 + beta2
 }
 
@@ -119,24 +119,24 @@ impl NeuralParams {
     }
 
     /// β1.
-    pub fn beta1(&self) -> f64 {
+    pub(crate) fn beta1(&self) -> f64 {
         beta1(self.c1, self.c2)
     }
 
     /// β2.
-    pub fn beta2(&self) -> f64 {
+    pub(crate) fn beta2(&self) -> f64 {
         beta2(self.c1, self.c2)
     }
 
     /// α.
-    pub fn alpha(&self) -> f64 {
+    pub(crate) fn alpha(&self) -> f64 {
         alpha(self.beta1(), self.beta2())
     }
 
     /// The coefficients for a recursion stepped every `to_period_s` instead of every
     /// `from_period_s`, by matching roots (module doc: approximate for the forced response).
     /// Refuses a positive C1 or C2 and periods that are not finite and above zero.
-    pub fn at_period(&self, from_period_s: f64, to_period_s: f64) -> Result<Self, EmgError> {
+    pub(crate) fn at_period(&self, from_period_s: f64, to_period_s: f64) -> Result<Self, EmgError> {
         let ratio = check_period(to_period_s)? / check_period(from_period_s)?;
         for (name, value) in [("C1", self.c1), ("C2", self.c2)] {
             if value > 0.0 {
@@ -234,7 +234,7 @@ impl NeuralActivation {
     /// The next neural activation for envelope sample `e`, as [`Self::step`] gives it, without
     /// taking the sample: for a caller that takes it ([`Self::take`]) only once the step it
     /// belongs to has been kept.
-    pub fn next(&self, e: f64) -> f64 {
+    pub(crate) fn next(&self, e: f64) -> f64 {
         // The input of d samples ago: the delay line's oldest, or e itself without delay.
         let e_d = self
             .line
@@ -246,7 +246,7 @@ impl NeuralActivation {
     }
 
     /// Takes sample `e`, whose output [`Self::next`] gave as `u`.
-    pub fn take(&mut self, e: f64, u: f64) {
+    pub(crate) fn take(&mut self, e: f64, u: f64) {
         if let Some(slot) = self.line.get_mut(self.head) {
             *slot = Self::admitted(e);
             self.head = (self.head + 1) % self.line.len();
@@ -257,20 +257,20 @@ impl NeuralActivation {
 
     /// The next neural activation for envelope sample `e` (clamped as [`Self::next`] says),
     /// the sample taken.
-    pub fn step(&mut self, e: f64) -> f64 {
+    pub(crate) fn step(&mut self, e: f64) -> f64 {
         let u = self.next(e);
         self.take(e, u);
         u
     }
 
     /// Back to rest.
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         self.settle(0.0);
     }
 
     /// The steady state of a constant input `e` (clamped to [0, 1]; NaN counts as 0): past
     /// outputs and delayed inputs all `e`.
-    pub fn settle(&mut self, e: f64) {
+    pub(crate) fn settle(&mut self, e: f64) {
         let e = if e.is_nan() { 0.0 } else { e.clamp(0.0, 1.0) };
         self.u1 = e;
         self.u2 = e;

@@ -22,12 +22,12 @@
 use crate::emg::error::EmgError;
 
 /// Lowest shape factor accepted.
-pub const MIN_SHAPE_FACTOR: f64 = -3.0;
+pub(crate) const MIN_SHAPE_FACTOR: f64 = -3.0;
 /// Highest shape factor accepted.
-pub const MAX_SHAPE_FACTOR: f64 = 3.0;
+pub(crate) const MAX_SHAPE_FACTOR: f64 = 3.0;
 /// Below this |A| the series replaces the quotient (the next term of the series, at most
 /// |A|³/384 over u in [0, 1], is then under 1e-17).
-pub const LINEAR_BELOW: f64 = 1e-5;
+pub(crate) const LINEAR_BELOW: f64 = 1e-5;
 
 /// The shape factor A, checked to lie in [[`MIN_SHAPE_FACTOR`], [`MAX_SHAPE_FACTOR`]].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -16,7 +16,7 @@ use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// One leaf's part of the Jacobian.
 #[derive(Debug, Clone, Default)]
-pub struct LeafJacobian {
+pub(crate) struct LeafJacobian {
     /// The leaf's own block D_i, row-major n_i × n_i.
     pub block: Vec<f64>,
     /// Entries of B_i: (core row, leaf column, ∂f_core/∂y_leaf).
@@ -27,7 +27,7 @@ pub struct LeafJacobian {
 
 /// The Jacobian of an arrowhead system, by blocks.
 #[derive(Debug, Clone, Default)]
-pub struct ArrowheadJacobian {
+pub(crate) struct ArrowheadJacobian {
     /// The core block A, row-major core × core.
     pub core: Vec<f64>,
     /// One per leaf, in order.
@@ -35,11 +35,7 @@ pub struct ArrowheadJacobian {
 }
 
 /// A system whose state is a core followed by leaf blocks, with a block-arrowhead Jacobian.
-pub trait ArrowheadSystem: OdeSystem {
-    /// Length of the core (the leading variables).
-    fn core_dim(&self) -> usize;
-    /// The leaf blocks' lengths, in order; they follow the core contiguously.
-    fn leaf_dims(&self, out: &mut Vec<usize>);
+pub(crate) trait ArrowheadSystem: OdeSystem {
     /// Evaluates the Jacobian at (t, y) (with `f0 = f(t, y)`) into `jac`, whose vectors are
     /// sized already (entry lists are cleared and refilled). Returns the work in equivalent
     /// right-hand-side evaluations.
@@ -63,7 +59,7 @@ const SMALL_CORE: usize = 8;
 
 /// `I - d J` of an arrowhead system, factorised by leaf elimination.
 #[derive(Debug, Clone)]
-pub struct ArrowheadMatrix {
+pub(crate) struct ArrowheadMatrix {
     core: usize,
     jac: ArrowheadJacobian,
     leaves: Vec<Leaf>,
@@ -72,7 +68,6 @@ pub struct ArrowheadMatrix {
     schur_inverse: Vec<f64>,
     d: f64,
     x_core: Vec<f64>,
-    dims: Vec<usize>,
 }
 
 impl ArrowheadMatrix {
@@ -111,25 +106,7 @@ impl ArrowheadMatrix {
             schur_inverse: vec![0.0; if core <= SMALL_CORE { core * core } else { 0 }],
             d: 0.0,
             x_core: vec![0.0; core],
-            dims: leaf_dims.to_vec(),
         }
-    }
-
-    /// For a system: storage sized by its structure.
-    pub fn for_system<S: ArrowheadSystem + ?Sized>(sys: &S) -> Self {
-        let mut dims = Vec::new();
-        sys.leaf_dims(&mut dims);
-        Self::new(sys.core_dim(), &dims)
-    }
-
-    /// The Jacobian last evaluated.
-    pub fn jacobian(&self) -> &ArrowheadJacobian {
-        &self.jac
-    }
-
-    /// The leaf lengths it was sized for.
-    pub fn leaf_dims(&self) -> &[usize] {
-        &self.dims
     }
 }
 
@@ -381,17 +358,10 @@ mod tests {
 
     struct Dummy;
     impl OdeSystem for Dummy {
-        fn dim(&self) -> usize {
-            0
-        }
         fn rhs(&self, _: f64, _: &[f64], _: &mut [f64]) {}
         fn scales(&self, _: &mut [f64]) {}
     }
     impl ArrowheadSystem for Dummy {
-        fn core_dim(&self) -> usize {
-            0
-        }
-        fn leaf_dims(&self, _: &mut Vec<usize>) {}
         fn eval_jacobian(&self, _: f64, _: &[f64], _: &[f64], _: &mut ArrowheadJacobian) -> u64 {
             0
         }

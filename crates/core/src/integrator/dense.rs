@@ -4,12 +4,15 @@
 // Index loops over several parallel vectors read better than zipped iterators here.
 #![allow(clippy::needless_range_loop)]
 
+#[cfg(test)]
 use crate::integrator::{IterationMatrix, OdeSystem};
 use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
-/// Dense `I - d J`, row-major, with its LU.
+/// Dense `I - d J`, row-major, with its LU: the general iteration matrix, which the tests check
+/// the plant's arrowhead one against.
+#[cfg(test)]
 #[derive(Debug, Clone)]
-pub struct DenseMatrix {
+pub(crate) struct DenseMatrix {
     n: usize,
     jac: Vec<f64>,
     lu: Lu,
@@ -18,6 +21,7 @@ pub struct DenseMatrix {
     scales: Vec<f64>,
 }
 
+#[cfg(test)]
 impl DenseMatrix {
     /// Storage for an n-dimensional system.
     pub fn new(n: usize) -> Self {
@@ -32,6 +36,7 @@ impl DenseMatrix {
     }
 }
 
+#[cfg(test)]
 impl<S: OdeSystem + ?Sized> IterationMatrix<S> for DenseMatrix {
     fn update_jacobian(&mut self, sys: &S, t: f64, y: &[f64], f0: &[f64]) -> u64 {
         let n = self.n;
@@ -73,7 +78,7 @@ impl<S: OdeSystem + ?Sized> IterationMatrix<S> for DenseMatrix {
 /// dynamic LU allocates on every factorisation), with the row-major layout that makes the
 /// substitutions plain dot products.
 #[derive(Debug, Clone)]
-pub struct Lu {
+pub(crate) struct Lu {
     n: usize,
     /// The matrix to factorise; after `factorise`, L (unit, below) and U (on and above).
     pub rows: Vec<f64>,
@@ -95,7 +100,7 @@ impl Lu {
     }
 
     /// Factorises `rows` in place; false if it is singular.
-    pub fn factorise(&mut self) -> bool {
+    pub(crate) fn factorise(&mut self) -> bool {
         let n = self.n;
         for (i, p) in self.perm.iter_mut().enumerate() {
             *p = i;
@@ -135,7 +140,7 @@ impl Lu {
     }
 
     /// Solves `A x = b` in place.
-    pub fn solve(&mut self, b: &mut [f64]) {
+    pub(crate) fn solve(&mut self, b: &mut [f64]) {
         let n = self.n;
         let x = &mut self.x;
         for i in 0..n {
@@ -189,7 +194,7 @@ impl SavedState for Lu {
 /// Inverts the n × n row-major matrix `a` into `inv` by Gauss–Jordan elimination with partial
 /// pivoting (`a` is overwritten); false if it is singular. For the small blocks of the
 /// arrowhead matrix, where a solve by the explicit inverse is one matrix–vector product.
-pub fn invert(a: &mut [f64], inv: &mut [f64], n: usize) -> bool {
+pub(crate) fn invert(a: &mut [f64], inv: &mut [f64], n: usize) -> bool {
     inv.fill(0.0);
     for i in 0..n {
         inv[i * n + i] = 1.0;

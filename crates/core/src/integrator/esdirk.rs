@@ -122,7 +122,7 @@ struct Work {
 
 /// An ESDIRK stepper with its iteration matrix kept across steps.
 #[derive(Debug, Clone)]
-pub struct Esdirk<M> {
+pub(crate) struct Esdirk<M> {
     n: usize,
     /// Shared, so that a step borrows it while the stages borrow the rest of `self` (no copy of
     /// the tableau per step).
@@ -183,7 +183,7 @@ impl<M> Esdirk<M> {
     /// With a second, higher-order tableau for `advance`'s sub-steps while the state moves
     /// fast: `advance` takes it for a call whose carried step is shorter than `HIGH_BELOW`
     /// times the call's span, and the base tableau for the others.
-    pub fn with_high_order(mut self, high: Tableau) -> Self {
+    pub(crate) fn with_high_order(mut self, high: Tableau) -> Self {
         while self.work.f.len() < high.stages {
             self.work.f.push(vec![0.0; self.n]);
         }
@@ -199,7 +199,7 @@ impl<M> Esdirk<M> {
     }
 
     /// Forgets the Jacobian (after a discontinuous change of the system).
-    pub fn invalidate(&mut self) {
+    pub(crate) fn invalidate(&mut self) {
         self.jac_valid = false;
         self.lu_valid = false;
         self.refresh_next = true;
@@ -425,7 +425,7 @@ impl<M> Esdirk<M> {
 
     /// One step of size h from (t, y); `y` is updated in place. On failure it refreshes the
     /// Jacobian and retries, then splits the step in halves (up to 2^6 pieces).
-    pub fn step<S: OdeSystem + ?Sized>(
+    pub(crate) fn step<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &S,
         t: f64,
@@ -457,7 +457,7 @@ impl<M> Esdirk<M> {
     /// minimum size is accepted whatever its estimate.
     #[allow(clippy::too_many_arguments)]
     #[inline]
-    pub fn advance<S: OdeSystem + ?Sized>(
+    pub(crate) fn advance<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &S,
         t0: f64,

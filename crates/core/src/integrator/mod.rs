@@ -7,15 +7,13 @@
 //! - [`tableau`]: its tableaux, TR-BDF2, ARK3(2)4L\[2\]SA and ESDIRK4(3)6L\[2\]SA.
 //! - [`dense`], [`arrowhead`]: iteration matrices, general and for the plant's structure.
 
-pub mod arrowhead;
-pub mod dense;
-pub mod esdirk;
-pub mod tableau;
+pub(crate) mod arrowhead;
+pub(crate) mod dense;
+pub(crate) mod esdirk;
+pub(crate) mod tableau;
 
 /// A first-order ODE system `dy/dt = f(t, y)`.
-pub trait OdeSystem {
-    /// Length of the state vector.
-    fn dim(&self) -> usize;
+pub(crate) trait OdeSystem {
     /// Evaluates `dy = f(t, y)`.
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]);
     /// Typical magnitude of each component (the absolute tolerance unit and the
@@ -25,7 +23,7 @@ pub trait OdeSystem {
 
 /// The iteration matrix `I - d J` of the implicit stages: how its Jacobian J is evaluated, how it
 /// is factorised and solved. Implementations keep their own storage (no allocation per call).
-pub trait IterationMatrix<S: OdeSystem + ?Sized> {
+pub(crate) trait IterationMatrix<S: OdeSystem + ?Sized> {
     /// Evaluates J at (t, y), with `f0 = f(t, y)` given; returns the right-hand-side evaluations
     /// (or their equivalent in work) it took.
     fn update_jacobian(&mut self, sys: &S, t: f64, y: &[f64], f0: &[f64]) -> u64;
@@ -38,7 +36,7 @@ pub trait IterationMatrix<S: OdeSystem + ?Sized> {
 /// The implicit stages did not converge even with a fresh Jacobian and halved steps.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("implicit step did not converge at t = {t}")]
-pub struct ConvergenceError {
+pub(crate) struct ConvergenceError {
     /// Time at which the step started, s.
     pub t: f64,
 }

@@ -59,6 +59,6 @@ pub(crate) fn prescribed_angle(theta0: f64, omega0: f64, t: f64) -> f64 {
 }
 
 /// Rotational kinetic energy `½ I ω²`, J.
-pub fn kinetic_energy(p: &JointParams, omega: f64) -> f64 {
+pub(crate) fn kinetic_energy(p: &JointParams, omega: f64) -> f64 {
     0.5 * p.inertia * omega * omega
 }

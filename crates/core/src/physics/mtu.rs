@@ -30,11 +30,11 @@ use crate::physics::tendon::Tendon;
 /// The least activation an equilibrium fibre without a damper (`b_m = 0`) works with: OpenSim's
 /// `minimum_activation` default (Thelen2003Muscle clamps its activation state to it). At zero
 /// activation nothing would set such a fibre's velocity (docs/model.md §5b).
-pub const UNDAMPED_MIN_ACTIVATION: f64 = 0.01;
+pub(crate) const UNDAMPED_MIN_ACTIVATION: f64 = 0.01;
 
 /// An MTU's mechanical formulation (docs/model.md §5b), from its fibre and tendon kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Mechanics {
+pub(crate) enum Mechanics {
     /// A fibre with mass on an elastic tendon (the paper's eq. 8): state `[l_m, v]`.
     Massed,
     /// A massless fibre on an elastic tendon: state `[l_m]`.
@@ -56,7 +56,7 @@ impl Mechanics {
 
     /// Number of its state variables before the contractile model's.
     #[inline]
-    pub fn dim(self) -> usize {
+    pub(crate) fn dim(self) -> usize {
         match self {
             Mechanics::Massed => 2,
             Mechanics::Equilibrium => 1,
@@ -103,15 +103,15 @@ pub struct Mtu {
     /// Parallel element.
     pub parallel: ParallelElement,
     /// Active force–length relation, the overlap factor λ(l_m).
-    pub active_force_length: ActiveForceLength,
+    pub(crate) active_force_length: ActiveForceLength,
     /// The contractile element.
     pub(crate) ce: Box<dyn ContractileModel>,
     /// Its phenomenological energy model (docs/model.md §11.4).
     pub probe: MuscleProbe,
     /// Its formulation.
-    pub mechanics: Mechanics,
+    pub(crate) mechanics: Mechanics,
     /// Its pennation (none for a fibre with mass).
-    pub pennation: Pennation,
+    pub(crate) pennation: Pennation,
     /// The scale its fibre length's error is judged on, m ([`Mtu::scales`]).
     length_scale: f64,
     /// The optimal length's lengthening at zero activation (`optimal_length_shift`; 0: none).
@@ -177,7 +177,7 @@ impl Mtu {
     /// The overlap factor under activation `a`: λ at `l_m / (1 + s (1 − a))` for an optimal
     /// length that lengthens by s at zero activation (docs/model.md §3b), λ(l_m) for s = 0.
     #[inline]
-    pub fn overlap_at(&self, l_m: f64, a: f64) -> f64 {
+    pub(crate) fn overlap_at(&self, l_m: f64, a: f64) -> f64 {
         if self.length_shift == 0.0 {
             self.overlap(l_m)
         } else {
@@ -215,7 +215,7 @@ impl Mtu {
 
     /// The fibre length at muscle state `s` and tendon end `end`, m.
     #[inline]
-    pub fn fibre_length(&self, s: &[f64], end: TendonEnd) -> f64 {
+    pub(crate) fn fibre_length(&self, s: &[f64], end: TendonEnd) -> f64 {
         match (self.mechanics, end) {
             (Mechanics::Rigid, TendonEnd::Path { length, .. }) => {
                 self.pennation.fibre_length(length - self.params.l_ts)
@@ -245,7 +245,7 @@ impl Mtu {
 
     /// The tendon force at muscle state `s`, N: [`Mtu::fibre_state`]'s, without the equilibrium
     /// fibre's velocity balance, which an elastic tendon's force does not need.
-    pub fn tendon_force(&self, activation: f64, s: &[f64], end: TendonEnd) -> f64 {
+    pub(crate) fn tendon_force(&self, activation: f64, s: &[f64], end: TendonEnd) -> f64 {
         match self.mechanics {
             Mechanics::Massed | Mechanics::Equilibrium => self.elastic_tendon(s[0], end).1,
             Mechanics::Rigid => self.fibre_state(activation, s, end).tendon_force,
@@ -254,7 +254,7 @@ impl Mtu {
 
     /// The fibre and tendon at muscle state `s`, activation a and tendon end `end`
     /// (docs/model.md §5b).
-    pub fn fibre_state(&self, activation: f64, s: &[f64], end: TendonEnd) -> FibreState {
+    pub(crate) fn fibre_state(&self, activation: f64, s: &[f64], end: TendonEnd) -> FibreState {
         match self.mechanics {
             Mechanics::Massed => {
                 let (tendon_length, tendon_force) = self.elastic_tendon(s[0], end);
@@ -309,7 +309,7 @@ impl Mtu {
     /// `d/dt` of this muscle's state `s` (its formulation's, then the contractile model's) with
     /// its tendon's far end at `end`, written to `ds`; `t` is the time within the tick. Returns
     /// the tendon force, N.
-    pub fn derivatives(
+    pub(crate) fn derivatives(
         &self,
         t: f64,
         activation: f64,
@@ -342,7 +342,7 @@ impl Mtu {
     }
 
     /// Typical magnitudes of this muscle's state variables.
-    pub fn scales(&self, out: &mut [f64]) {
+    pub(crate) fn scales(&self, out: &mut [f64]) {
         let m = self.mechanics.dim();
         out[..m].copy_from_slice(&[self.length_scale, self.params.v_max][..m]);
         self.ce.state_scales(&mut out[m..]);
@@ -435,7 +435,7 @@ impl Mtu {
     /// [`MuscleProbe::excitation_terms`]) and activation a (docs/model.md §11.6), with the
     /// probe's inputs they came from. Models with state outside the ODE must be asked after the
     /// sub-step hooks have brought it in step with `s`.
-    pub fn metabolic(
+    pub(crate) fn metabolic(
         &self,
         terms: &ExcitationTerms,
         activation: f64,

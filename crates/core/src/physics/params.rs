@@ -338,7 +338,7 @@ impl Checker<'_> {
 
 /// The largest pennation at optimal length, rad: OpenSim's `maximum_pennation_angle`,
 /// acos(0.1), the angle at which [`crate::physics::pennation`] holds shorter fibres.
-pub const MAX_PENNATION: f64 = 1.4706289056333368;
+pub(crate) const MAX_PENNATION: f64 = 1.4706289056333368;
 
 fn is_zero(x: &f64) -> bool {
     *x == 0.0
@@ -355,7 +355,7 @@ impl MuscleParams {
     }
 
     /// l_tc in force: the configured one, or the derived one.
-    pub fn l_tc(&self) -> f64 {
+    pub(crate) fn l_tc(&self) -> f64 {
         self.l_tc.unwrap_or_else(|| self.derived_l_tc())
     }
 
@@ -394,7 +394,7 @@ impl MuscleParams {
     }
 
     /// Appends one error per broken rule; `prefix` names the muscle (e.g. `muscle.flexor.`).
-    pub fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
+    pub(crate) fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
         let mut c = Checker { prefix, errors };
         c.positive("mass", self.mass);
         c.positive("f_max", self.f_max);
@@ -506,7 +506,7 @@ impl MuscleParams {
 
 impl JointParams {
     /// Appends one error per broken rule.
-    pub fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
+    pub(crate) fn validate(&self, prefix: &str, errors: &mut Vec<ParamError>) {
         let mut c = Checker { prefix, errors };
         c.positive("inertia", self.inertia);
         c.non_negative("damping", self.damping);

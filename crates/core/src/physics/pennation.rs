@@ -8,11 +8,11 @@ use crate::physics::params::MuscleParams;
 
 /// The least `cos α`: OpenSim's default `maximum_pennation_angle`, acos(0.1) (84.3°). Shorter
 /// fibres are taken at this angle, so the projection never vanishes.
-pub const MIN_COS: f64 = 0.1;
+pub(crate) const MIN_COS: f64 = 0.1;
 
 /// A muscle's pennation: the constant thickness h (0: fibres along the tendon).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Pennation {
+pub(crate) struct Pennation {
     /// Thickness h = l_opt sin α_opt, m.
     pub height: f64,
 }
@@ -27,13 +27,13 @@ impl Pennation {
 
     /// Whether the fibres lie along the tendon (α = 0 at every length).
     #[inline]
-    pub fn is_none(&self) -> bool {
+    pub(crate) fn is_none(&self) -> bool {
         self.height == 0.0
     }
 
     /// `cos α` at fibre length `l_m` (m): `sqrt(1 - (h/l_m)²)`, at least [`MIN_COS`].
     #[inline]
-    pub fn cos(&self, l_m: f64) -> f64 {
+    pub(crate) fn cos(&self, l_m: f64) -> f64 {
         if self.is_none() {
             return 1.0;
         }
@@ -43,7 +43,7 @@ impl Pennation {
 
     /// The fibre length whose projection on the tendon's line is `x` (m): `sqrt(x² + h²)`.
     #[inline]
-    pub fn fibre_length(&self, x: f64) -> f64 {
+    pub(crate) fn fibre_length(&self, x: f64) -> f64 {
         if self.is_none() {
             x
         } else {
@@ -54,7 +54,7 @@ impl Pennation {
     /// The stiffness along the tendon's line of a fibre of stiffness `k_m` (N/m) carrying force
     /// `f` (N) at length `l_m`: `k_m cos²α + f sin²α / l_m` (the fibre's own stiffness projected,
     /// plus the rotation's; Millard et al. 2013, eq. of the fibre's stiffness along the tendon).
-    pub fn stiffness_along_tendon(&self, k_m: f64, f: f64, l_m: f64) -> f64 {
+    pub(crate) fn stiffness_along_tendon(&self, k_m: f64, f: f64, l_m: f64) -> f64 {
         if self.is_none() {
             return k_m;
         }

@@ -57,7 +57,7 @@ impl Inputs {
     }
 
     /// Sets every value to 0 (keeps the sizes).
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.excitation.fill(0.0);
         self.external_torque.fill(0.0);
         self.tendon_force.fill(0.0);
@@ -131,7 +131,7 @@ pub struct Plant {
     /// The muscle–tendon units, in topology order.
     pub mtus: Vec<Mtu>,
     /// Where each muscle's tendon is attached.
-    pub anchors: Vec<Anchor>,
+    pub(crate) anchors: Vec<Anchor>,
     /// The model of the contractile elements.
     pub model: ModelKind,
     offsets: Vec<usize>,
@@ -198,18 +198,18 @@ impl Plant {
     }
 
     /// Index of muscle i's first state variable (l_m).
-    pub fn offset(&self, i: usize) -> usize {
+    pub(crate) fn offset(&self, i: usize) -> usize {
         self.offsets[i]
     }
 
     /// Muscle i's state: its formulation's, then its contractile model's.
-    pub fn muscle_state<'a>(&self, y: &'a [f64], i: usize) -> &'a [f64] {
+    pub(crate) fn muscle_state<'a>(&self, y: &'a [f64], i: usize) -> &'a [f64] {
         let o = self.offsets[i];
         &y[o..o + self.mtus[i].state_dim()]
     }
 
     /// The joints muscle i spans.
-    pub fn spans(&self, i: usize) -> &[Span] {
+    pub(crate) fn spans(&self, i: usize) -> &[Span] {
         match &self.anchors[i] {
             Anchor::Path { spans, .. } => spans,
             Anchor::ForceDriven => &[],
@@ -229,7 +229,7 @@ impl Plant {
 
     /// Muscle i's path lengthening velocity `dL/dt = -Σ_j r_ij(θ_j) ω_j`, m/s (0 for a
     /// force-driven tendon).
-    pub fn path_velocity(&self, y: &[f64], i: usize) -> f64 {
+    pub(crate) fn path_velocity(&self, y: &[f64], i: usize) -> f64 {
         self.spans(i).iter().fold(0.0, |v, s| {
             v - s.moment_arm.at(y[2 * s.joint]) * y[2 * s.joint + 1]
         })
@@ -238,7 +238,7 @@ impl Plant {
     /// What holds muscle i's tendon at state y: its path (the velocity only where a rigid
     /// tendon reads it) or the external pull.
     #[inline]
-    pub fn tendon_end(&self, y: &[f64], i: usize, inputs: &Inputs) -> TendonEnd {
+    pub(crate) fn tendon_end(&self, y: &[f64], i: usize, inputs: &Inputs) -> TendonEnd {
         match self.path_length(y, i) {
             Some(length) => TendonEnd::Path {
                 length,
@@ -265,7 +265,13 @@ impl Plant {
 
     /// What muscle i's contractile element sees at state y under activation a: a fibre with mass
     /// reads it from its state alone, a massless one from its balance with the tendon.
-    pub fn ce_inputs(&self, y: &[f64], i: usize, activation: f64, inputs: &Inputs) -> CeInputs {
+    pub(crate) fn ce_inputs(
+        &self,
+        y: &[f64],
+        i: usize,
+        activation: f64,
+        inputs: &Inputs,
+    ) -> CeInputs {
         let (mtu, s) = (&self.mtus[i], self.muscle_state(y, i));
         match mtu.mechanics {
             Mechanics::Massed => mtu.ce_inputs(activation, s[0], s[1]),
@@ -366,11 +372,6 @@ impl Plant {
         }
     }
 
-    /// Whether any joint is driven.
-    pub fn has_driven_joints(&self) -> bool {
-        self.joints.iter().any(|p| p.driven)
-    }
-
     /// Writes the driven joints' input motion (angle, velocity at the tick's start) into the
     /// state; free joints are left alone.
     pub(crate) fn set_driven_motion(&self, inputs: &Inputs, y: &mut [f64]) {
@@ -406,7 +407,7 @@ impl Plant {
     }
 
     /// Muscle i's observables, with the energetics `e` the stepping computed.
-    pub fn outputs(
+    pub(crate) fn outputs(
         &self,
         y: &[f64],
         act: &[f64],
@@ -438,7 +439,12 @@ impl Plant {
 
     /// The joint stiffness matrix K (row-major `n × n`, N m/rad, docs/model.md §8b) from each
     /// muscle's (MTU stiffness, tendon force), written to `k`.
-    pub fn stiffness_matrix(&self, y: &[f64], muscle: impl Fn(usize) -> (f64, f64), k: &mut [f64]) {
+    pub(crate) fn stiffness_matrix(
+        &self,
+        y: &[f64],
+        muscle: impl Fn(usize) -> (f64, f64),
+        k: &mut [f64],
+    ) {
         let n = self.joints.len();
         k[..n * n].fill(0.0);
         for i in 0..self.mtus.len() {
@@ -457,7 +463,7 @@ impl Plant {
     ///
     /// A driven joint joins nothing (its motion is an input): it belongs to every part with a
     /// muscle that spans it, and a muscle that spans only driven joints is a part of its own.
-    pub fn components(&self) -> Vec<(Vec<usize>, Vec<usize>)> {
+    pub(crate) fn components(&self) -> Vec<(Vec<usize>, Vec<usize>)> {
         // Union–find over joints.
         let n = self.joints.len();
         let mut parent: Vec<usize> = (0..n).collect();
@@ -551,7 +557,7 @@ impl Plant {
 
     /// Kinetic energy of the fibre masses (fibres with mass only) and the free joints, J (a driven joint's inertia is
     /// the robot simulator's).
-    pub fn kinetic_energy(&self, y: &[f64]) -> f64 {
+    pub(crate) fn kinetic_energy(&self, y: &[f64]) -> f64 {
         let mut e = 0.0;
         for (i, mtu) in self.mtus.iter().enumerate() {
             if mtu.mechanics == Mechanics::Massed {

@@ -15,7 +15,7 @@ pub struct Span {
 
 /// What the far end of a muscle's tendon is attached to (docs/model.md §5).
 #[derive(Debug, Clone, PartialEq)]
-pub enum Anchor {
+pub(crate) enum Anchor {
     /// A path over joints: `L(θ) = path_length - Σ_j ∫_0^{θ_j} r_j(s) ds`, `l_t = L - l_m`.
     Path {
         /// Path length with every spanned joint at 0 rad, m.

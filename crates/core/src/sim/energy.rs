@@ -16,7 +16,7 @@ use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// One muscle's energetics carried from tick to tick.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct MuscleEnergy {
+pub(crate) struct MuscleEnergy {
     /// At the last tick's end (or at rest after a reset).
     pub sample: MetabolicSample,
     /// The phenomenological model's terms of the last command's excitation.
@@ -52,7 +52,7 @@ impl MuscleEnergy {
     /// sample's, the phenomenological model's evaluated again if the excitation changed. Changes
     /// nothing, so that the parts of a limb compute it wherever they are stepped;
     /// [`MuscleEnergy::commit`] carries it on.
-    pub fn tick(
+    pub(crate) fn tick(
         &self,
         probe: &MuscleProbe,
         excitation: f64,
@@ -70,7 +70,7 @@ impl MuscleEnergy {
 
     /// Carries a tick of `dt` seconds on ([`MuscleEnergy::tick`]): its energies integrated, its
     /// end sample and terms kept for the next.
-    pub fn commit(&mut self, tick: &TickEnergy, dt: f64) {
+    pub(crate) fn commit(&mut self, tick: &TickEnergy, dt: f64) {
         let (start, r) = (&tick.start, &tick.end.rates);
         self.metabolic_j += 0.5 * dt * (start.metabolic_w + r.metabolic_w);
         self.phenomenological_j += 0.5 * dt * (start.phenomenological_w + r.phenomenological_w);
@@ -81,7 +81,7 @@ impl MuscleEnergy {
 
 /// One muscle's energetics over one tick, before [`MuscleEnergy::commit`] carries them on.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct TickEnergy {
+pub(crate) struct TickEnergy {
     /// The terms of the tick's excitation.
     pub terms: ExcitationTerms,
     /// The two powers at the tick's start.

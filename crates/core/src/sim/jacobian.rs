@@ -47,7 +47,7 @@ impl JacobianScratch {
 }
 
 /// Core and leaf sizes of a plant: `2 × joints`, then each muscle's state length.
-pub fn leaf_dims(plant: &Plant, out: &mut Vec<usize>) {
+pub(crate) fn leaf_dims(plant: &Plant, out: &mut Vec<usize>) {
     out.clear();
     out.extend(plant.mtus.iter().map(|m| m.state_dim()));
 }
@@ -208,20 +208,12 @@ fn coupling_by_differences(
 }
 
 /// Anything that can lend the plant and the tick's inputs gets the arrowhead structure.
-pub trait PlantSystem {
-    /// The plant.
-    fn plant(&self) -> &Plant;
+pub(crate) trait PlantSystem {
     /// Fills the Jacobian (see `eval_jacobian`).
     fn jacobian(&self, t: f64, y: &[f64], f0: &[f64], jac: &mut ArrowheadJacobian) -> u64;
 }
 
 impl<T: PlantSystem + crate::integrator::OdeSystem> ArrowheadSystem for T {
-    fn core_dim(&self) -> usize {
-        2 * self.plant().joint_count()
-    }
-    fn leaf_dims(&self, out: &mut Vec<usize>) {
-        leaf_dims(self.plant(), out);
-    }
     fn eval_jacobian(&self, t: f64, y: &[f64], f0: &[f64], jac: &mut ArrowheadJacobian) -> u64 {
         self.jacobian(t, y, f0, jac)
     }

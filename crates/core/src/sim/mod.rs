@@ -19,20 +19,20 @@
 //! - [`steady`]: isovelocity steady states at full activation and optimal length, with their
 //!   energetics (the `steady` command, the steady-state energetics figure).
 
-pub mod actuator;
-pub mod energy;
+pub(crate) mod actuator;
+pub(crate) mod energy;
 pub mod input;
 pub mod jacobian;
-pub mod neural_drive;
-pub mod part;
+pub(crate) mod neural_drive;
+pub(crate) mod part;
 pub mod rollout;
 pub mod run;
 pub mod saved;
 pub mod scenario;
 pub mod scenario_error;
-pub mod scenario_kinds;
+pub(crate) mod scenario_kinds;
 pub mod schedule;
-pub mod setup_error;
+pub(crate) mod setup_error;
 pub mod simulation;
 pub mod snapshot;
 pub mod steady;

@@ -21,7 +21,7 @@ use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 /// One muscle's recursion, its nonlinearity and the output computed for the tick being
 /// stepped.
 #[derive(Debug, Clone)]
-pub struct NeuralDrive {
+pub(crate) struct NeuralDrive {
     recursion: NeuralActivation,
     shape: ShapeFactor,
     /// The neural activation `next` gave for the tick being stepped.
@@ -50,18 +50,18 @@ impl NeuralDrive {
     }
 
     /// The activation at the end of the tick whose excitation is `u`, the sample not yet taken.
-    pub fn tick_end(&mut self, u: f64) -> f64 {
+    pub(crate) fn tick_end(&mut self, u: f64) -> f64 {
         self.pending = self.recursion.next(u);
         activation(self.pending, self.shape)
     }
 
     /// Takes the excitation `u` of the tick just kept, whose output [`Self::tick_end`] gave.
-    pub fn commit(&mut self, u: f64) {
+    pub(crate) fn commit(&mut self, u: f64) {
         self.recursion.take(u, self.pending);
     }
 
     /// At rest: no excitation in the recursion's past or its delay line.
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         self.recursion.reset();
         self.pending = 0.0;
     }

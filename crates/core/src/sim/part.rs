@@ -64,9 +64,6 @@ impl TickOde<'_> {
 }
 
 impl PlantSystem for TickOde<'_> {
-    fn plant(&self) -> &Plant {
-        self.plant
-    }
     fn jacobian(&self, t: f64, y: &[f64], f0: &[f64], jac: &mut ArrowheadJacobian) -> u64 {
         self.at(t);
         let mut m = self.memo.borrow_mut();
@@ -76,9 +73,6 @@ impl PlantSystem for TickOde<'_> {
 }
 
 impl OdeSystem for TickOde<'_> {
-    fn dim(&self) -> usize {
-        self.plant.dim()
-    }
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.at(t);
         let m = self.memo.borrow();
@@ -92,7 +86,7 @@ impl OdeSystem for TickOde<'_> {
 /// An independent part of the plant (joints connected by muscles, and those muscles), stepped
 /// with its own sub-steps: a busy joint does not make its quiet neighbours take small steps.
 #[derive(Debug, Clone)]
-pub struct Part {
+pub(crate) struct Part {
     plant: Plant,
     /// Global index of each local muscle and joint, and of each local state variable.
     muscles: Vec<usize>,
@@ -198,7 +192,7 @@ impl Part {
     }
 
     /// Gives this part's state and its activations at the tick's end back to the whole.
-    pub fn scatter(&self, y: &mut [f64], activation: &mut [f64]) {
+    pub(crate) fn scatter(&self, y: &mut [f64], activation: &mut [f64]) {
         for (local, &global) in self.y.iter().zip(&self.state_map) {
             y[global] = *local;
         }
@@ -209,7 +203,7 @@ impl Part {
     }
 
     /// The global indices of its muscles, in local order.
-    pub fn muscles(&self) -> &[usize] {
+    pub(crate) fn muscles(&self) -> &[usize] {
         &self.muscles
     }
 
@@ -217,14 +211,14 @@ impl Part {
     /// end, the tick's excitation given by the probe's `terms` of it), from this part's own
     /// contractile elements (whose state outside the ODE, the full model's grid, is the one
     /// stepped).
-    pub fn metabolic(&self, k: usize, terms: &ExcitationTerms) -> MetabolicSample {
+    pub(crate) fn metabolic(&self, k: usize, terms: &ExcitationTerms) -> MetabolicSample {
         let a = self.memo.borrow().a[k];
         self.plant.metabolic(&self.y, k, a, &self.inputs, terms)
     }
 
     /// Local muscle k's energetics over the tick just stepped ([`MuscleEnergy::tick`]), from
     /// what the whole carries of it.
-    pub fn energy_of(&self, k: usize, carried: &MuscleEnergy) -> TickEnergy {
+    pub(crate) fn energy_of(&self, k: usize, carried: &MuscleEnergy) -> TickEnergy {
         let (probe, u) = (&self.plant.mtus[k].probe, self.inputs.excitation[k]);
         carried.tick(probe, u, |terms| self.metabolic(k, terms))
     }
@@ -232,24 +226,24 @@ impl Part {
     /// Every muscle's [`Part::energy_of`], from what the whole carries of them (`carried`, by
     /// global muscle index), kept for [`Part::tick_energy`]: for a part stepped on a thread of
     /// its own, which computes them there.
-    pub fn compute_energy(&mut self, carried: &[MuscleEnergy]) {
+    pub(crate) fn compute_energy(&mut self, carried: &[MuscleEnergy]) {
         for k in 0..self.muscles.len() {
             self.energy[k] = self.energy_of(k, &carried[self.muscles[k]]);
         }
     }
 
     /// Its muscles' energetics over the last tick, in local order ([`Part::compute_energy`]).
-    pub fn tick_energy(&self) -> &[TickEnergy] {
+    pub(crate) fn tick_energy(&self) -> &[TickEnergy] {
         &self.energy
     }
 
     /// Work counters of its stepper.
-    pub fn stats(&self) -> Stats {
+    pub(crate) fn stats(&self) -> Stats {
         self.stepper.stats
     }
 
     /// Whether its state and its activations at the tick's end are finite.
-    pub fn is_finite(&self) -> bool {
+    pub(crate) fn is_finite(&self) -> bool {
         self.y.iter().all(|v| v.is_finite()) && self.memo.borrow().a.iter().all(|v| v.is_finite())
     }
 
@@ -267,7 +261,7 @@ impl Part {
 
     /// One tick of length dt; false if the implicit solve failed. The activations at dt are in
     /// the memo afterwards.
-    pub fn step(&mut self, dt: f64, stepping: Stepping) -> bool {
+    pub(crate) fn step(&mut self, dt: f64, stepping: Stepping) -> bool {
         self.saved_h = self.h;
         let mut ok = true;
         let substeps = match stepping {
@@ -353,7 +347,7 @@ impl Part {
 
     /// Back to the start: contractile elements with nothing outside their ODE state, no
     /// Jacobian, no carried sub-step size.
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         for m in &mut self.plant.mtus {
             m.ce.reset();
         }

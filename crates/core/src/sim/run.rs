@@ -30,15 +30,6 @@ impl<'a> Record<'a> {
             stiffness_matrix: &state.stiffness_matrix,
         }
     }
-
-    /// The record as an owned snapshot (its time aside).
-    pub fn to_snapshot(&self) -> StateSnapshot {
-        StateSnapshot {
-            muscles: self.muscles.to_vec(),
-            joints: self.joints.to_vec(),
-            stiffness_matrix: self.stiffness_matrix.to_vec(),
-        }
-    }
 }
 
 /// A record whose muscles, joints or stiffness matrix do not match the run's names
@@ -115,7 +106,7 @@ impl Run {
 
     /// Appends the record of `state` at `time`; a state whose muscles, joints or matrix do not
     /// match the run's names is refused (and nothing is appended).
-    pub fn push(&mut self, time: f64, state: &StateSnapshot) -> Result<(), RecordMismatch> {
+    pub(crate) fn push(&mut self, time: f64, state: &StateSnapshot) -> Result<(), RecordMismatch> {
         self.push_parts(time, &state.muscles, &state.joints, &state.stiffness_matrix)
     }
 
@@ -155,7 +146,7 @@ impl Run {
     }
 
     /// Record `k`, or None past the last.
-    pub fn get(&self, k: usize) -> Option<Record<'_>> {
+    pub(crate) fn get(&self, k: usize) -> Option<Record<'_>> {
         let (m, n) = (self.muscle_names.len(), self.joint_names.len());
         Some(Record {
             time: *self.times.get(k)?,

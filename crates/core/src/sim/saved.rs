@@ -51,7 +51,7 @@ use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use sha2::{Digest, Sha256};
 
 /// The first bytes of a saved state.
-pub const MAGIC: [u8; 8] = *b"MUSCACTS";
+pub(crate) const MAGIC: [u8; 8] = *b"MUSCACTS";
 /// The layout's version: what is saved, in which order.
 pub(crate) const VERSION: u32 = 1;
 /// Magic, version and body length.

@@ -26,7 +26,7 @@ pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
 pub(crate) const MAX_RUN_BYTES: f64 = (1u64 << 30) as f64;
 
 /// Longest scenario name, characters (it names the run in reports and recordings).
-pub const MAX_NAME_CHARS: usize = 200;
+pub(crate) const MAX_NAME_CHARS: usize = 200;
 
 /// One scheduled input; schedules on the same input add up.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -357,7 +357,7 @@ impl Scenario {
     }
 
     /// The topology this scenario runs: the configuration's limb, or its first muscle alone.
-    pub fn topology(&self, config: &ActuatorConfig) -> Topology {
+    pub(crate) fn topology(&self, config: &ActuatorConfig) -> Topology {
         let first = &config.muscles[0];
         match self.attachment {
             SetupKind::Joint => config.topology(),
@@ -483,7 +483,7 @@ impl ScenarioRunner {
     }
 
     /// Per muscle, the indices of the joints it spans.
-    pub fn muscle_joints(&self) -> Vec<Vec<usize>> {
+    pub(crate) fn muscle_joints(&self) -> Vec<Vec<usize>> {
         let plant = self.sim.plant();
         (0..plant.muscle_count())
             .map(|i| plant.spans(i).iter().map(|s| s.joint).collect())

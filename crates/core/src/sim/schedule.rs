@@ -188,7 +188,7 @@ impl Schedule {
     }
 
     /// The first problem with the schedule's numbers, if any.
-    pub fn check(&self) -> Result<(), ScheduleError> {
+    pub(crate) fn check(&self) -> Result<(), ScheduleError> {
         let finite = |name: &'static str, value: f64| {
             if value.is_finite() {
                 Ok(())

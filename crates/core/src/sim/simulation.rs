@@ -20,7 +20,7 @@ use std::sync::Arc;
 pub use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS, MAX_SUBSTEPS};
 
 /// Most threads a simulation steps its parts on.
-pub(crate) const MAX_THREADS: usize = 256;
+pub const MAX_THREADS: usize = 256;
 
 /// Highest tick rate, Hz (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;
@@ -152,7 +152,7 @@ impl Simulation {
         &self.plant
     }
     /// Tick rate, Hz.
-    pub fn rate_hz(&self) -> f64 {
+    pub(crate) fn rate_hz(&self) -> f64 {
         self.rate_hz
     }
     /// How ticks are divided into sub-steps.
@@ -160,7 +160,7 @@ impl Simulation {
         self.stepping
     }
     /// Ticks done.
-    pub fn tick(&self) -> u64 {
+    pub(crate) fn tick(&self) -> u64 {
         self.tick
     }
     /// Simulated time, s.
@@ -197,7 +197,7 @@ impl Simulation {
     /// Steps the parts on `threads` threads (1: on the caller's thread, the default). The parts
     /// are independent and each is stepped by the same code wherever it runs, so the results
     /// are the same to the bit for any number of threads; a limb of one part gains nothing.
-    pub fn set_threads(&mut self, threads: usize) -> Result<(), SetupError> {
+    pub(crate) fn set_threads(&mut self, threads: usize) -> Result<(), SetupError> {
         if !(1..=MAX_THREADS).contains(&threads) {
             return Err(SetupError::Threads {
                 threads,
@@ -379,18 +379,6 @@ impl Simulation {
                 d.commit(self.inputs.excitation[i]);
             }
         }
-    }
-
-    /// Muscle i's published state.
-    pub fn muscle_snapshot(&self, i: usize) -> MuscleSnapshot {
-        published(
-            &self.plant,
-            &self.y,
-            &self.activation,
-            &self.inputs,
-            &self.energy[i],
-            i,
-        )
     }
 
     /// Fills `out` with the published state (its vectors keep their storage); the muscles'

@@ -7,9 +7,6 @@ use crate::integrator::dense::DenseMatrix;
 /// Prothero–Robinson: y' = λ (y - cos t) - sin t, exact solution y = cos t for any λ.
 struct ProtheroRobinson(f64);
 impl OdeSystem for ProtheroRobinson {
-    fn dim(&self) -> usize {
-        1
-    }
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
         dy[0] = self.0 * (y[0] - t.cos()) - t.sin();
     }
@@ -72,9 +69,6 @@ fn adaptive_advance_meets_its_tolerance_and_adapts() {
 
 struct Decay(f64);
 impl OdeSystem for Decay {
-    fn dim(&self) -> usize {
-        1
-    }
     fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
         dy[0] = self.0 * y[0];
     }

@@ -7,7 +7,7 @@ use super::{Tableau, MAX_STAGES};
 impl Tableau {
     /// ARK3(2)4L\[2\]SA, implicit part: third order, L-stable, stiffly accurate, three implicit
     /// stages, an embedded second-order solution.
-    pub fn ark324() -> Self {
+    pub(crate) fn ark324() -> Self {
         let g = 1767732205903.0 / 4055673282236.0;
         let mut a = [[0.0; MAX_STAGES]; MAX_STAGES];
         a[1][0] = g;

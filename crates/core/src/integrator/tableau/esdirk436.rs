@@ -10,7 +10,7 @@ impl Tableau {
     /// third-order solution. The coefficients as SUNDIALS gives them
     /// (`src/arkode/arkode_butcher_dirk.def`, `ARKODE_ESDIRK436L2SA_6_3_4`): a_i0 from the row
     /// sums c_i, the last row the weights b.
-    pub fn esdirk436() -> Self {
+    pub(crate) fn esdirk436() -> Self {
         let r2 = std::f64::consts::SQRT_2;
         let g = 0.25;
         let mut c = [0.0; MAX_STAGES];

@@ -5,16 +5,16 @@
 // Index loops over the coefficient arrays read as the tableaux are printed in their sources.
 #![allow(clippy::needless_range_loop)]
 
-pub mod ark324;
-pub mod esdirk436;
-pub mod trbdf2;
+pub(crate) mod ark324;
+pub(crate) mod esdirk436;
+pub(crate) mod trbdf2;
 
 /// Most stages of a tableau.
-pub const MAX_STAGES: usize = 6;
+pub(crate) const MAX_STAGES: usize = 6;
 
 /// A stiffly accurate ESDIRK tableau with an embedded method.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Tableau {
+pub(crate) struct Tableau {
     /// Number of stages (the first explicit).
     pub stages: usize,
     /// The diagonal γ.

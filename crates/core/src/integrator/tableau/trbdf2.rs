@@ -9,7 +9,7 @@ impl Tableau {
     /// order, L-stable, two implicit stages with diagonal γ/2. Its error estimate is Hosea &
     /// Shampine's: `2 C h [(F_2 - F_1)/(1 - γ) - (F_1 - F_0)/γ]`,
     /// `C = (-3γ² + 4γ - 2) / (12 (2 - γ))`.
-    pub fn trbdf2() -> Self {
+    pub(crate) fn trbdf2() -> Self {
         let g = 2.0 - std::f64::consts::SQRT_2;
         let d = 0.5 * g;
         let w = 1.0 / (2.0 * (2.0 - g));

@@ -31,11 +31,11 @@ impl CrossBridgeScale {
         self.force_per_q1 * q1
     }
     /// `k_CE = (Fmax / Q1_iso) Q0 / L_h`, N/m.
-    pub fn stiffness(&self, q0: f64) -> f64 {
+    pub(crate) fn stiffness(&self, q0: f64) -> f64 {
         self.force_per_q1 * q0 / self.l_h
     }
     /// `E_CE = ½ (Fmax / Q1_iso) L_h Q2`, J.
-    pub fn energy(&self, q2: f64) -> f64 {
+    pub(crate) fn energy(&self, q2: f64) -> f64 {
         0.5 * self.force_per_q1 * self.l_h * q2
     }
 }

@@ -65,7 +65,7 @@ impl Clone for ClosureLimits {
 
 impl ClosureLimits {
     /// Keeps (Φ, ϕ) = `values` at limit `i` (0: τ0, 1: τ1), τ = `tau`.
-    pub fn keep(&self, i: usize, tau: f64, values: (f64, f64)) {
+    pub(crate) fn keep(&self, i: usize, tau: f64, values: (f64, f64)) {
         let k = &self.kept[i];
         k[0].store(tau.to_bits(), Ordering::Relaxed);
         k[1].store(values.0.to_bits(), Ordering::Relaxed);
@@ -74,7 +74,7 @@ impl ClosureLimits {
 
     /// (Φ, ϕ) at τ for limit i from the kept values, where τ is within [`TAYLOR_REACH`] of
     /// theirs; `None` farther away (or with nothing kept).
-    pub fn near(&self, i: usize, tau: f64) -> Option<(f64, f64)> {
+    pub(crate) fn near(&self, i: usize, tau: f64) -> Option<(f64, f64)> {
         let k = &self.kept[i];
         let t0 = f64::from_bits(k[0].load(Ordering::Relaxed));
         let d = tau - t0;

@@ -15,7 +15,7 @@ pub struct Rates {
 
 impl Rates {
     /// All rates multiplied by `s`.
-    pub fn scaled(self, s: f64) -> Rates {
+    pub(crate) fn scaled(self, s: f64) -> Rates {
         Rates {
             f1: self.f1 * s,
             g1: self.g1 * s,
@@ -25,7 +25,7 @@ impl Rates {
     }
 
     /// Attachment rate `f(ξ) = f1 ξ` on [0, 1], else 0.
-    pub fn attach(&self, xi: f64) -> f64 {
+    pub(crate) fn attach(&self, xi: f64) -> f64 {
         if (0.0..=1.0).contains(&xi) {
             self.f1 * xi
         } else {
@@ -34,7 +34,7 @@ impl Rates {
     }
 
     /// Detachment rate `g(ξ)`: g2 (ξ < 0); g1 ξ on [0, 1]; g1 ξ + g3 (ξ - 1) beyond 1.
-    pub fn detach(&self, xi: f64) -> f64 {
+    pub(crate) fn detach(&self, xi: f64) -> f64 {
         if xi < 0.0 {
             self.g2
         } else if xi <= 1.0 {

@@ -17,12 +17,14 @@ const INV_SQRT_2: f64 = std::f64::consts::FRAC_1_SQRT_2;
 const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
 
 /// Standard normal CDF Φ(x) = erfc(-x/√2)/2.
-pub fn normal_cdf(x: f64) -> f64 {
+#[cfg(test)]
+pub(crate) fn normal_cdf(x: f64) -> f64 {
     0.5 * libm::erfc(-x * INV_SQRT_2)
 }
 
 /// Standard normal density ϕ(x).
-pub fn normal_pdf(x: f64) -> f64 {
+#[cfg(test)]
+pub(crate) fn normal_pdf(x: f64) -> f64 {
     INV_SQRT_2PI * (-0.5 * x * x).exp()
 }
 
@@ -116,12 +118,8 @@ fn horner(c: &[f64], s: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &k| acc * s + k)
 }
 
-/// Partial moments `J_k(τ) = ∫_{-∞}^{p+qτ} ξ^k N(ξ; p, q²) dξ`, k = 0..3 (docs/model.md §6).
-pub fn partial_moments(p: f64, q: f64, tau: f64) -> [f64; 4] {
-    partial_moments_of(p, q, tau, normal_cdf_pdf(tau))
-}
-
-/// [`partial_moments`] from (Φ(τ), ϕ(τ)) given.
+/// Partial moments `J_k(τ) = ∫_{-∞}^{p+qτ} ξ^k N(ξ; p, q²) dξ`, k = 0..3 (docs/model.md §6),
+/// from (Φ(τ), ϕ(τ)) given.
 pub(crate) fn partial_moments_of(p: f64, q: f64, tau: f64, (cdf, pdf): (f64, f64)) -> [f64; 4] {
     let q2 = q * q;
     [
@@ -145,7 +143,8 @@ pub(crate) fn full_moments(p: f64, q: f64) -> [f64; 4] {
 /// noise once the bonds are nearly all gone) are split into the nearest Gaussian part and a
 /// remainder that relaxes linearly at the mean rate `(f1 + g1)/2` (docs/model.md §6). The split is
 /// continuous in `q`, so the implicit solver's Newton iteration sees no jump as Q0 crosses zero.
-pub fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+#[cfg(test)]
+pub(crate) fn closure(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
     closure_keeping(rates, q, None)
 }
 
@@ -294,7 +293,7 @@ pub fn steady_curve(rates: &Rates, us: &[f64]) -> Result<Vec<[f64; 3]>, SteadySt
 }
 
 /// The unloaded shortening rate (h/s): the u at which the steady Q1 is zero.
-pub fn unloaded_shortening_rate(rates: &Rates) -> Result<f64, SteadyStateError> {
+pub(crate) fn unloaded_shortening_rate(rates: &Rates) -> Result<f64, SteadyStateError> {
     let mut q = isometric_steady_state(rates)?;
     let du = 0.05 * rates.f1;
     let mut u = 0.0;

@@ -13,7 +13,7 @@ pub fn force_length(l: f64, l_opt: f64, w: f64, shape: ForceLengthShape) -> f64 
 }
 
 /// df/dl, 1/m.
-pub fn force_length_slope(l: f64, l_opt: f64, w: f64, shape: ForceLengthShape) -> f64 {
+pub(crate) fn force_length_slope(l: f64, l_opt: f64, w: f64, shape: ForceLengthShape) -> f64 {
     let x = (l / l_opt - 1.0) / w;
     let dx_dl = 1.0 / (l_opt * w);
     match shape {

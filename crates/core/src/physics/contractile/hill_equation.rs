@@ -20,7 +20,11 @@ pub fn force_velocity(v_shortening: f64, v_max: f64, eccentric_asymptote: f64) -
 /// `dg/dv_s` of [`force_velocity`] (per m/s of shortening velocity): `-5/(1 + 4 v_r)²/vmax`
 /// shortening, 0 beyond vmax, `-(N - 1) c/(1 - c v_r)²/vmax` lengthening (`c = 5/(N - 1)`: both
 /// branches have slope -5/vmax at 0).
-pub fn force_velocity_derivative(v_shortening: f64, v_max: f64, eccentric_asymptote: f64) -> f64 {
+pub(crate) fn force_velocity_derivative(
+    v_shortening: f64,
+    v_max: f64,
+    eccentric_asymptote: f64,
+) -> f64 {
     let vr = v_shortening / v_max;
     if vr >= 1.0 {
         0.0

@@ -80,7 +80,7 @@ impl CrossBridgeGrid {
     }
 
     /// Back to no bonds, cells aligned with ξ = 0 and ξ = 1.
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         self.n.clear();
         let margin_cells = (COVER_MARGIN / self.dxi).ceil() as usize;
         self.first_centre = (0.5 - margin_cells as f64) * self.dxi;
@@ -94,21 +94,6 @@ impl CrossBridgeGrid {
         for (i, v) in self.n.iter_mut().enumerate() {
             *v = n(c0 + i as f64 * dxi);
         }
-    }
-
-    /// Cell width Δξ.
-    pub fn cell_width(&self) -> f64 {
-        self.dxi
-    }
-
-    /// Number of live cells.
-    pub fn len(&self) -> usize {
-        self.n.len()
-    }
-
-    /// Whether the grid has no cells (never, after construction).
-    pub fn is_empty(&self) -> bool {
-        self.n.is_empty()
     }
 
     /// Moments `Q_k = ∫ ξ^k n dξ`, k = 0, 1, 2, exact for n constant on each cell.
@@ -126,7 +111,7 @@ impl CrossBridgeGrid {
     }
 
     /// The rate integrals `φ_k = ∫ ξ^k (f + g) n dξ`, k = 0, 1, 2 (cell-centre rates).
-    pub fn closure(&self, rates: &Rates) -> [f64; 3] {
+    pub(crate) fn closure(&self, rates: &Rates) -> [f64; 3] {
         let (c0, dxi) = (self.first_centre, self.dxi);
         let mut phi = [0.0; 3];
         for (i, &v) in self.n.iter().enumerate() {

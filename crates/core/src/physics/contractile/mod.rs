@@ -13,7 +13,7 @@
 //! Sections are those of docs/model.md.
 
 pub mod calibration;
-pub mod closure_limits;
+pub(crate) mod closure_limits;
 pub mod crossbridge;
 pub mod distribution_moment;
 pub mod force_length;

@@ -14,18 +14,18 @@
 
 /// One Gaussian-like term `[b1, b2, b3, b4]` of the active force–length curve,
 /// `b1 exp(-(x - b2)² / (2 (b3 + b4 x)²))`.
-pub type GaussianTerm = [f64; 4];
+pub(crate) type GaussianTerm = [f64; 4];
 
 /// First term (b11, b21, b31, b41): OpenSim's values, from simtk.org/projects/optcntrlmuscle
 /// rather than the supplement, b11 adjusted so that `f_L(1) = 1` (DeGrooteFregly2016Muscle.h).
-pub const ACTIVE_TERM_1: GaussianTerm = [
+pub(crate) const ACTIVE_TERM_1: GaussianTerm = [
     0.8150671134243542,
     1.055033428970575,
     0.162384573599574,
     0.063303448465465,
 ];
 /// Second term (b12, b22, b32, b42), DeGrooteFregly2016Muscle.h.
-pub const ACTIVE_TERM_2: GaussianTerm = [
+pub(crate) const ACTIVE_TERM_2: GaussianTerm = [
     0.433004984392647,
     0.716775413397760,
     -0.029947116970696,
@@ -33,35 +33,33 @@ pub const ACTIVE_TERM_2: GaussianTerm = [
 ];
 /// Third term (b13, b23, b33, b43); b33 = 0.5 sqrt(0.5) as OpenSim writes it, to 15 digits
 /// (DeGrooteFregly2016Muscle.h).
-pub const ACTIVE_TERM_3: GaussianTerm = [0.1, 1.0, 0.353553390593274, 0.0];
+pub(crate) const ACTIVE_TERM_3: GaussianTerm = [0.1, 1.0, 0.353553390593274, 0.0];
 
 /// Exponential shape kPE of the passive curve (De Groote et al. 2016, supplement; OpenSim's
 /// `kPE`).
-pub const KPE: f64 = 4.0;
+pub(crate) const KPE: f64 = 4.0;
 /// Normalised fibre length where the passive curve is zero, OpenSim's `m_minNormFiberLength`
 /// (also the lower end of the fibre lengths the muscle allows).
-pub const MIN_NORM_FIBER_LENGTH: f64 = 0.2;
-/// Upper end of the normalised fibre lengths the muscle allows, OpenSim's `m_maxNormFiberLength`.
-pub const MAX_NORM_FIBER_LENGTH: f64 = 1.8;
+pub(crate) const MIN_NORM_FIBER_LENGTH: f64 = 0.2;
 
 /// Tendon curve c1 (De Groote et al. 2016, supplement).
-pub const C1: f64 = 0.200;
+pub(crate) const C1: f64 = 0.200;
 /// Tendon curve c2: 1.0 in OpenSim (0.995 in the paper), so that `f_T(1) = 0` since c2 = c3
 /// (DeGrooteFregly2016Muscle.h).
-pub const C2: f64 = 1.0;
+pub(crate) const C2: f64 = 1.0;
 /// Tendon curve c3: 0.200 in OpenSim (0.250 in the paper): the force tends to -c3 for a slack
 /// tendon (DeGrooteFregly2016Muscle.h).
-pub const C3: f64 = 0.200;
+pub(crate) const C3: f64 = 0.200;
 
 /// Force–velocity d1, solved by OpenSim so that the curve passes through (-1, 0) and (0, 1)
 /// (DeGrooteFregly2016Muscle.h; the supplement's rounded value misses both points).
-pub const D1: f64 = -0.3211346127989808;
+pub(crate) const D1: f64 = -0.3211346127989808;
 /// Force–velocity d2 (De Groote et al. 2016, supplement).
-pub const D2: f64 = -8.149;
+pub(crate) const D2: f64 = -8.149;
 /// Force–velocity d3 (De Groote et al. 2016, supplement).
-pub const D3: f64 = -0.374;
+pub(crate) const D3: f64 = -0.374;
 /// Force–velocity d4, solved by OpenSim with d1 (DeGrooteFregly2016Muscle.h).
-pub const D4: f64 = 0.8825327733249912;
+pub(crate) const D4: f64 = 0.8825327733249912;
 
 /// OpenSim's default `active_force_width_scale` (widens the active curve; 1: as published).
 pub const DEFAULT_ACTIVE_FORCE_WIDTH_SCALE: f64 = 1.0;
@@ -73,7 +71,7 @@ pub const DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE: f64 = 0.049;
 
 /// One Gaussian-like term at `x` (OpenSim's `calcGaussianLikeCurve`; the supplement omits the
 /// square of the denominator).
-pub fn gaussian_like(x: f64, b: GaussianTerm) -> f64 {
+pub(crate) fn gaussian_like(x: f64, b: GaussianTerm) -> f64 {
     let [b1, b2, b3, b4] = b;
     let den = b3 + b4 * x;
     b1 * (-0.5 * ((x - b2) * (x - b2)) / (den * den)).exp()
@@ -81,7 +79,7 @@ pub fn gaussian_like(x: f64, b: GaussianTerm) -> f64 {
 
 /// d/dx of [`gaussian_like`] (OpenSim's `calcGaussianLikeCurveDerivative`):
 /// `b1 exp(-(b2 - x)² / (2 (b3 + b4 x)²)) (b2 - x)(b3 + b2 b4) / (b3 + b4 x)³`.
-pub fn gaussian_like_derivative(x: f64, b: GaussianTerm) -> f64 {
+pub(crate) fn gaussian_like_derivative(x: f64, b: GaussianTerm) -> f64 {
     let [b1, b2, b3, b4] = b;
     let den = b3 + b4 * x;
     (b1 * (-((b2 - x) * (b2 - x)) / (2.0 * (den * den))).exp() * (b2 - x) * (b3 + b2 * b4))
@@ -142,7 +140,10 @@ pub fn passive_force_length_derivative(
 /// The normalised fibre length at which the passive curve is `f`:
 /// `l̃ = 1 + (e0/kPE) ln(f (exp(kPE) - o) + o)` (the inverse of [`passive_force_length`]; 0.2 at
 /// f = 0, NaN below `-o/(exp(kPE) - o)`).
-pub fn passive_force_length_inverse(norm_passive_force: f64, strain_at_one_norm_force: f64) -> f64 {
+pub(crate) fn passive_force_length_inverse(
+    norm_passive_force: f64,
+    strain_at_one_norm_force: f64,
+) -> f64 {
     let e0 = strain_at_one_norm_force;
     let offset = passive_offset(e0);
     1.0 + e0 / KPE * (norm_passive_force * (KPE.exp() - offset) + offset).ln()
@@ -152,7 +153,10 @@ pub fn passive_force_length_inverse(norm_passive_force: f64, strain_at_one_norm_
 /// it is zero, as OpenSim writes it (`calcPassiveForceMultiplierIntegral`; the fibre's potential
 /// energy is this times l_opt Fmax): with `t1 = e0 + kPE (l̃ - 0.2)`,
 /// `t1/kPE + (exp(kPE) t1 - e0 exp(kPE (l̃ - 1)/e0)) / (kPE (o - exp(kPE)))`.
-pub fn passive_force_length_integral(norm_fiber_length: f64, strain_at_one_norm_force: f64) -> f64 {
+pub(crate) fn passive_force_length_integral(
+    norm_fiber_length: f64,
+    strain_at_one_norm_force: f64,
+) -> f64 {
     let e0 = strain_at_one_norm_force;
     let temp1 = e0 + KPE * norm_fiber_length - KPE * MIN_NORM_FIBER_LENGTH;
     let temp2 = (KPE * (norm_fiber_length - 1.0) / e0).exp();
@@ -171,7 +175,7 @@ pub fn force_velocity(norm_fiber_velocity: f64) -> f64 {
 }
 
 /// `df_V/dṽ = d1 d2 / sqrt((d2 ṽ + d3)² + 1)`.
-pub fn force_velocity_derivative(norm_fiber_velocity: f64) -> f64 {
+pub(crate) fn force_velocity_derivative(norm_fiber_velocity: f64) -> f64 {
     let t = D2 * norm_fiber_velocity + D3;
     D1 * D2 / (t * t + 1.0).sqrt()
 }
@@ -211,7 +215,7 @@ pub fn tendon_force_length_inverse(norm_tendon_force: f64, k_t: f64) -> f64 {
 /// energy is this times l_s Fmax, as OpenSim's `calcTendonForceMultiplierIntegral` gives it):
 /// `(c1/kT)(exp(kT (l̃_T - c2)) - exp(kT (1 - c2))) - c3 (l̃_T - 1)`. Positive on both sides of
 /// slack length, where the force is negative.
-pub fn tendon_force_length_integral(norm_tendon_length: f64, k_t: f64) -> f64 {
+pub(crate) fn tendon_force_length_integral(norm_tendon_length: f64, k_t: f64) -> f64 {
     C1 / k_t * ((k_t * (norm_tendon_length - C2)).exp() - (k_t * (1.0 - C2)).exp())
         - C3 * (norm_tendon_length - 1.0)
 }

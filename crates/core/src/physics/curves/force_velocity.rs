@@ -13,7 +13,7 @@ use std::sync::Arc;
 /// reaches) the fibre moves this fast (docs/model.md §5b). Ten times vmax lies beyond every
 /// curve's working range (the paper's relation is flat past vmax shortening, Thelen's and
 /// DeGroote's are extrapolated there), so a balance that exists is always inside.
-pub const BALANCE_VELOCITY_BOUND: f64 = 10.0;
+pub(crate) const BALANCE_VELOCITY_BOUND: f64 = 10.0;
 
 /// Iterations of the balance's safeguarded Newton method: each at least halves the bracket, so
 /// 200 resolve ±10 vmax to far below one ulp; it stops after 4–8 in practice.
@@ -145,7 +145,7 @@ impl HillForceVelocity {
     /// [`BALANCE_VELOCITY_BOUND`] vmax: each set's inverse (the paper's branches solved for v_s;
     /// DeGroote's sinh; Thelen's eq. 6 with its extrapolation). Beyond the paper's range (g <= 0,
     /// or g >= N) the nearer bound.
-    pub fn inverse(&self, g: f64, activation: f64) -> f64 {
+    pub(crate) fn inverse(&self, g: f64, activation: f64) -> f64 {
         let v = match *self {
             HillForceVelocity::Paper {
                 v_max,
@@ -190,7 +190,13 @@ impl HillForceVelocity {
     ///
     /// Written here rather than taken from a root-finding crate: the residual is one line, the
     /// bracket and its saturation rule are the model's, and the loop must not allocate or fail.
-    pub fn balance_velocity(&self, active: f64, activation: f64, damping: f64, force: f64) -> f64 {
+    pub(crate) fn balance_velocity(
+        &self,
+        active: f64,
+        activation: f64,
+        damping: f64,
+        force: f64,
+    ) -> f64 {
         let v_max = self.v_max();
         let residual = |v: f64| active * self.at(v, activation) + damping * v - force;
         let bound = BALANCE_VELOCITY_BOUND * v_max;

@@ -22,63 +22,63 @@ use crate::physics::params::formulation::{FibreKind, TendonKind};
 use crate::physics::params::MuscleParams;
 
 /// `min_norm_active_fiber_length`: where the active curve leaves its floor.
-pub const ACTIVE_MIN_NORM_FIBER_LENGTH: f64 = 0.4441;
+pub(crate) const ACTIVE_MIN_NORM_FIBER_LENGTH: f64 = 0.4441;
 /// `transition_norm_fiber_length`: where the steep ascending limb turns shallow.
-pub const ACTIVE_TRANSITION_NORM_FIBER_LENGTH: f64 = 0.73;
+pub(crate) const ACTIVE_TRANSITION_NORM_FIBER_LENGTH: f64 = 0.73;
 /// `max_norm_active_fiber_length`: where the descending limb reaches its floor.
-pub const ACTIVE_MAX_NORM_FIBER_LENGTH: f64 = 1.8123;
+pub(crate) const ACTIVE_MAX_NORM_FIBER_LENGTH: f64 = 1.8123;
 /// `shallow_ascending_slope`, per normalised length.
-pub const ACTIVE_SHALLOW_ASCENDING_SLOPE: f64 = 0.8616;
+pub(crate) const ACTIVE_SHALLOW_ASCENDING_SLOPE: f64 = 0.8616;
 /// `minimum_value`: the active curve's floor (never zero, so an equilibrium fibre always has
 /// some active force to balance with).
 pub const ACTIVE_MINIMUM_VALUE: f64 = 0.1;
 /// The active curve's curviness, fixed by `ActiveForceLengthCurve` (not a property).
-pub const ACTIVE_CURVINESS: f64 = 1.0;
+pub(crate) const ACTIVE_CURVINESS: f64 = 1.0;
 
 /// `concentric_slope_at_vmax`.
 pub const FV_CONCENTRIC_SLOPE_AT_VMAX: f64 = 0.0;
 /// `concentric_slope_near_vmax`.
-pub const FV_CONCENTRIC_SLOPE_NEAR_VMAX: f64 = 0.25;
+pub(crate) const FV_CONCENTRIC_SLOPE_NEAR_VMAX: f64 = 0.25;
 /// `isometric_slope`.
-pub const FV_ISOMETRIC_SLOPE: f64 = 5.0;
+pub(crate) const FV_ISOMETRIC_SLOPE: f64 = 5.0;
 /// `eccentric_slope_at_vmax`.
 pub const FV_ECCENTRIC_SLOPE_AT_VMAX: f64 = 0.0;
 /// `eccentric_slope_near_vmax`.
-pub const FV_ECCENTRIC_SLOPE_NEAR_VMAX: f64 = 0.15;
+pub(crate) const FV_ECCENTRIC_SLOPE_NEAR_VMAX: f64 = 0.15;
 /// `max_eccentric_velocity_force_multiplier`.
-pub const FV_MAX_ECCENTRIC_MULTIPLIER: f64 = 1.4;
+pub(crate) const FV_MAX_ECCENTRIC_MULTIPLIER: f64 = 1.4;
 /// `concentric_curviness`.
-pub const FV_CONCENTRIC_CURVINESS: f64 = 0.6;
+pub(crate) const FV_CONCENTRIC_CURVINESS: f64 = 0.6;
 /// `eccentric_curviness`.
-pub const FV_ECCENTRIC_CURVINESS: f64 = 0.9;
+pub(crate) const FV_ECCENTRIC_CURVINESS: f64 = 0.9;
 /// The force–velocity curve's inner knots, ṽ = ∓0.9 (fixed by the factory).
-pub const FV_NEAR_VMAX: f64 = 0.9;
+pub(crate) const FV_NEAR_VMAX: f64 = 0.9;
 
 /// `strain_at_zero_force` of the passive curve.
-pub const PASSIVE_STRAIN_AT_ZERO_FORCE: f64 = 0.0;
+pub(crate) const PASSIVE_STRAIN_AT_ZERO_FORCE: f64 = 0.0;
 /// Default `strain_at_one_norm_force` of the passive curve.
 pub const DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE: f64 = 0.7;
 /// The passive curve's slope at low force, the default `stiffness_at_low_force`.
-pub const PASSIVE_STIFFNESS_AT_LOW_FORCE: f64 = 0.2;
+pub(crate) const PASSIVE_STIFFNESS_AT_LOW_FORCE: f64 = 0.2;
 /// The passive curve's default stiffness at one normalised force, times its strain range:
 /// `stiffness_at_one_norm_force = 2 / (e1 - e0)`.
-pub const PASSIVE_STIFFNESS_TIMES_STRAIN: f64 = 2.0;
+pub(crate) const PASSIVE_STIFFNESS_TIMES_STRAIN: f64 = 2.0;
 /// The passive curve's default curviness.
-pub const PASSIVE_CURVINESS: f64 = 0.75;
+pub(crate) const PASSIVE_CURVINESS: f64 = 0.75;
 
 /// Default `strain_at_one_norm_force` of the tendon curve.
 pub const DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE: f64 = 0.049;
 /// The tendon's default stiffness at one normalised force, times its strain: `1.375 / e0`
 /// ("agrees well with Maganaris and Paul (2002) …", TendonForceLengthCurve).
-pub const TENDON_STIFFNESS_TIMES_STRAIN: f64 = 1.375;
+pub(crate) const TENDON_STIFFNESS_TIMES_STRAIN: f64 = 1.375;
 /// The tendon's default `norm_force_at_toe_end`.
-pub const TENDON_NORM_FORCE_AT_TOE_END: f64 = 2.0 / 3.0;
+pub(crate) const TENDON_NORM_FORCE_AT_TOE_END: f64 = 2.0 / 3.0;
 /// The tendon's default curviness.
-pub const TENDON_CURVINESS: f64 = 0.5;
+pub(crate) const TENDON_CURVINESS: f64 = 0.5;
 
 /// The constants a muscle's formulation sets (the module's header).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Shape {
+pub(crate) struct Shape {
     /// The active curve's floor (`minimum_value`).
     pub active_minimum: f64,
     /// The force–velocity curve's slope at ṽ = −1 and beyond.
@@ -96,14 +96,14 @@ impl Shape {
     };
 
     /// The classic Hill formulation's: floor 0.1, end slopes half the near slopes.
-    pub const CLASSIC: Shape = Shape {
+    pub(crate) const CLASSIC: Shape = Shape {
         active_minimum: ACTIVE_MINIMUM_VALUE,
         concentric_slope_at_vmax: 0.5 * FV_CONCENTRIC_SLOPE_NEAR_VMAX,
         eccentric_slope_at_vmax: 0.5 * FV_ECCENTRIC_SLOPE_NEAR_VMAX,
     };
 
     /// Every other formulation's: floor 0, flat ends.
-    pub const DAMPED: Shape = Shape {
+    pub(crate) const DAMPED: Shape = Shape {
         active_minimum: 0.0,
         concentric_slope_at_vmax: 0.0,
         eccentric_slope_at_vmax: 0.0,

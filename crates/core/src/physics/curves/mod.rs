@@ -24,10 +24,10 @@
 pub mod degroote2016;
 pub mod force_velocity;
 pub mod millard2012;
-pub mod overlap;
-pub mod paper;
+pub(crate) mod overlap;
+pub(crate) mod paper;
 pub mod quintic_bezier;
-pub mod rising_root;
+pub(crate) mod rising_root;
 pub mod tabulated;
 pub mod thelen2003;
 

@@ -12,7 +12,7 @@ use std::sync::Arc;
 /// model reads (docs/model.md §3, §4b): the paper's eq. (3), or an OpenSim set's curve at
 /// `l_m / l_opt`.
 #[derive(Debug, Clone, PartialEq)]
-pub enum ActiveForceLength {
+pub(crate) enum ActiveForceLength {
     /// The paper's parabola or Gaussian ([`force_length`]).
     Paper {
         /// Optimal fibre length, m.
@@ -92,7 +92,7 @@ impl ActiveForceLength {
 
     /// λ(l_m), dimensionless.
     #[inline(always)]
-    pub fn at(&self, l_m: f64) -> f64 {
+    pub(crate) fn at(&self, l_m: f64) -> f64 {
         match *self {
             ActiveForceLength::Paper {
                 l_opt,

@@ -10,7 +10,11 @@ use crate::physics::params::ForceLengthShape;
 
 /// Force–length factor `f(l̃)`: the paper's eq. (3) with lopt = 1 (parabola or Gaussian of width
 /// `w`, [`force_length::force_length`]).
-pub fn active_force_length(norm_fiber_length: f64, width: f64, shape: ForceLengthShape) -> f64 {
+pub(crate) fn active_force_length(
+    norm_fiber_length: f64,
+    width: f64,
+    shape: ForceLengthShape,
+) -> f64 {
     force_length::force_length(norm_fiber_length, 1.0, width, shape)
 }
 

@@ -19,10 +19,10 @@
 use super::rising_root::rising_root;
 
 /// The most segments a curve has (Millard's active force–length curve has five).
-pub const MAX_SEGMENTS: usize = 5;
+pub(crate) const MAX_SEGMENTS: usize = 5;
 
 /// Six control points of one coordinate of a quintic Bézier segment.
-pub type ControlPoints = [f64; 6];
+pub(crate) type ControlPoints = [f64; 6];
 
 /// Binomial coefficients C(5, k).
 const BINOMIAL_5: [f64; 6] = [1.0, 5.0, 10.0, 10.0, 5.0, 1.0];
@@ -54,7 +54,7 @@ pub struct NotACorner {
 /// √ε of each other); the inner points sit the fraction `c` of the way from each end towards
 /// C, doubled, `[P0, P0 + c(C − P0) ×2, P1 + c(C − P1) ×2, P1]`. `c` is the scaled curviness
 /// ([`scaled_curviness`]). Refused unless C lies closer to each end than the ends to each other.
-pub fn corner_control_points(
+pub(crate) fn corner_control_points(
     (x0, y0, dydx0): (f64, f64, f64),
     (x1, y1, dydx1): (f64, f64, f64),
     c: f64,
@@ -85,7 +85,7 @@ pub fn corner_control_points(
 
 /// A curviness in [0, 1] as the corner's fraction `0.1 + 0.8 curviness` (OpenSim's
 /// `scaleCurviness`).
-pub fn scaled_curviness(curviness: f64) -> f64 {
+pub(crate) fn scaled_curviness(curviness: f64) -> f64 {
     0.1 + 0.8 * curviness
 }
 
@@ -213,7 +213,7 @@ impl SegmentedBezier {
     /// A curve that is NaN everywhere: what a constructor holds for constants that form no
     /// corners, which validation refuses first (a NaN force then stops the stepper with an
     /// error rather than a wrong number).
-    pub fn undefined() -> Self {
+    pub(crate) fn undefined() -> Self {
         let corner = ([f64::NAN; 6], [f64::NAN; 6]);
         Self::new(&[corner], f64::NAN, f64::NAN)
     }
@@ -283,7 +283,7 @@ impl SegmentedBezier {
     /// The x at which the curve takes the value y, for a curve whose y rises with x: on a
     /// segment, by solving y(u) = y; outside, on the continuations (the nearer end where a
     /// continuation is flat and never reaches y).
-    pub fn argument_at(&self, y: f64) -> f64 {
+    pub(crate) fn argument_at(&self, y: f64) -> f64 {
         let (first, last) = (self.first(), self.last());
         if y.is_nan() {
             return f64::NAN;

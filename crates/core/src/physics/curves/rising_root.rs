@@ -12,7 +12,7 @@ const MAX_ITERATIONS: usize = 100;
 /// `f_and_slope` giving its value and slope at x: Newton's method from `x0`, kept inside the
 /// bracket every evaluation shrinks, bisection where a step would leave it. It stops at a value
 /// within `residual` of zero, or at a step or bracket below `resolution` (the rounding of x).
-pub fn rising_root(
+pub(crate) fn rising_root(
     f_and_slope: impl Fn(f64) -> (f64, f64),
     (mut lo, mut hi): (f64, f64),
     x0: f64,

@@ -151,7 +151,7 @@ pub struct TabulatedCurve {
 
 /// The curve of a muscle's points (`curves = "tabulated"`), [`TabulatedCurve::undefined`]
 /// where there are none or they make no curve (validation refuses both first).
-pub fn of_points(points: Option<&Points>) -> TabulatedCurve {
+pub(crate) fn of_points(points: Option<&Points>) -> TabulatedCurve {
     points
         .and_then(|p| {
             let (x, y) = split(p);
@@ -197,7 +197,7 @@ impl TabulatedCurve {
     /// A curve that is NaN everywhere: what a constructor holds for points that make no curve,
     /// which validation refuses first (a NaN force then stops the stepper with an error rather
     /// than a wrong number).
-    pub fn undefined() -> Self {
+    pub(crate) fn undefined() -> Self {
         let nan = Cubic {
             b: f64::NAN,
             c: f64::NAN,
@@ -217,18 +217,20 @@ impl TabulatedCurve {
     }
 
     /// The points, in order.
-    pub fn points(&self) -> impl ExactSizeIterator<Item = (f64, f64)> + '_ {
+    #[cfg(test)]
+    pub(crate) fn points(&self) -> impl ExactSizeIterator<Item = (f64, f64)> + '_ {
         self.knots.iter().map(|k| (k.x, k.y))
     }
 
     /// The first and the last x, between which the spline runs.
-    pub fn domain(&self) -> (f64, f64) {
+    #[cfg(test)]
+    pub(crate) fn domain(&self) -> (f64, f64) {
         (self.first().x, self.last().x)
     }
 
     /// The stretch `(start, end)` of x that [`TabulatedCurve::argument_at`] inverts (the module's
     /// header); None where no two consecutive points rise.
-    pub fn rising_part(&self) -> Option<(f64, f64)> {
+    pub(crate) fn rising_part(&self) -> Option<(f64, f64)> {
         self.rising.map(|r| (r.start, r.end))
     }
 
@@ -269,7 +271,7 @@ impl TabulatedCurve {
     /// `∫ y dx` from the first point to x (negative below it), exact for the piecewise cubic
     /// (each piece integrated in closed form), the held end values included outside: ±∞ at ±∞
     /// unless the end value is 0.
-    pub fn integral(&self, x: f64) -> f64 {
+    pub(crate) fn integral(&self, x: f64) -> f64 {
         let (first, last) = (self.first(), self.last());
         match self.locate(x) {
             Some(k) => k.integral + k.integral_to(x - k.x),
@@ -281,7 +283,7 @@ impl TabulatedCurve {
 
     /// `∫ y dx` from `from` to `to` (a strain energy from the slack length, say); 0 when they
     /// are equal, infinite ones included.
-    pub fn integral_between(&self, from: f64, to: f64) -> f64 {
+    pub(crate) fn integral_between(&self, from: f64, to: f64) -> f64 {
         if from == to {
             0.0
         } else {
@@ -293,7 +295,7 @@ impl TabulatedCurve {
     /// y; its start for a y at or below the value there, its end for a y at or above (a tendon's
     /// force beyond its plateau gives the plateau's start, never a place in the padding); NaN for
     /// NaN and for a curve without a rising part.
-    pub fn argument_at(&self, y: f64) -> f64 {
+    pub(crate) fn argument_at(&self, y: f64) -> f64 {
         let Some(r) = self.rising else {
             return f64::NAN;
         };

@@ -20,25 +20,25 @@
 pub const DEFAULT_FMAX_TENDON_STRAIN: f64 = 0.04;
 /// OpenSim's default `FmaxMuscleStrain`, the passive fibre strain at one normalised force
 /// (Thelen 2003: 0.6 for young adults).
-pub const DEFAULT_FMAX_MUSCLE_STRAIN: f64 = 0.6;
+pub(crate) const DEFAULT_FMAX_MUSCLE_STRAIN: f64 = 0.6;
 /// OpenSim's default `KshapeActive`, the Gaussian's shape γ (Thelen 2003 eq. 3: 0.45).
-pub const DEFAULT_KSHAPE_ACTIVE: f64 = 0.45;
+pub(crate) const DEFAULT_KSHAPE_ACTIVE: f64 = 0.45;
 /// OpenSim's default `KshapePassive`, the passive exponential shape k_PE (Thelen 2003 eq. 2: 5).
-pub const DEFAULT_KSHAPE_PASSIVE: f64 = 5.0;
+pub(crate) const DEFAULT_KSHAPE_PASSIVE: f64 = 5.0;
 /// OpenSim's default `Af`, the force–velocity shape (Thelen 2003 eq. 7: 0.25).
-pub const DEFAULT_AF: f64 = 0.25;
+pub(crate) const DEFAULT_AF: f64 = 0.25;
 /// OpenSim's default `Flen`, the eccentric force asymptote (1.8 before, as Thelen2003Muscle.cpp
 /// notes).
-pub const DEFAULT_FLEN: f64 = 1.4;
+pub(crate) const DEFAULT_FLEN: f64 = 1.4;
 /// OpenSim's default `fv_linear_extrap_threshold`: above this fraction of Flen the
 /// force–velocity relation is extrapolated linearly (an OpenSim addition, not in the paper).
-pub const DEFAULT_FV_LINEAR_EXTRAP_THRESHOLD: f64 = 0.95;
+pub(crate) const DEFAULT_FV_LINEAR_EXTRAP_THRESHOLD: f64 = 0.95;
 
 /// Tendon toe shape kToe (Thelen 2003 eq. 4; `kToe` in Thelen2003Muscle.cpp).
-pub const TOE_SHAPE: f64 = 3.0;
+pub(crate) const TOE_SHAPE: f64 = 3.0;
 /// Normalised tendon force where the toe turns linear, FToe = 33/100 (Thelen 2003 eq. 4;
 /// `Ftoe` in Thelen2003Muscle.cpp).
-pub const TOE_FORCE: f64 = 33.0 / 100.0;
+pub(crate) const TOE_FORCE: f64 = 33.0 / 100.0;
 
 /// Active force–length multiplier `f_L(l̃) = exp(-(l̃ - 1)²/γ)` (Thelen 2003 eq. 3; `calcfal`).
 /// γ: `KshapeActive`.
@@ -48,7 +48,7 @@ pub fn active_force_length(norm_fiber_length: f64, kshape_active: f64) -> f64 {
 }
 
 /// `df_L/dl̃ = -2 (l̃ - 1)/γ exp(-(l̃ - 1)²/γ)` (`calcDfalDlceN`).
-pub fn active_force_length_derivative(norm_fiber_length: f64, kshape_active: f64) -> f64 {
+pub(crate) fn active_force_length_derivative(norm_fiber_length: f64, kshape_active: f64) -> f64 {
     let t1 = norm_fiber_length - 1.0;
     let t2 = 1.0 / kshape_active;
     -2.0 * t1 * t2 * (-(t1 * t1) * t2).exp()
@@ -72,7 +72,7 @@ pub fn passive_force_length(
 
 /// `df_PE/dl̃ = (k_PE/ε₀) exp(k_PE (l̃ - 1)/ε₀)/(exp(k_PE) - 1)` for l̃ > 1, 0 below
 /// (`calcDfpeDlceN`).
-pub fn passive_force_length_derivative(
+pub(crate) fn passive_force_length_derivative(
     norm_fiber_length: f64,
     fmax_muscle_strain: f64,
     kshape_passive: f64,
@@ -89,14 +89,14 @@ pub fn passive_force_length_derivative(
 /// Tendon strain where the toe turns linear, `ε_toe = 99 ε₀ e³/(166 e³ - 67)` (ε₀:
 /// `FmaxTendonStrain`): the exact value that makes the curve's slope continuous and reach 1 at
 /// ε₀; Thelen 2003 gives it rounded, 0.609 ε₀ (Thelen2003Muscle.cpp, `eToe`).
-pub fn tendon_toe_strain(fmax_tendon_strain: f64) -> f64 {
+pub(crate) fn tendon_toe_strain(fmax_tendon_strain: f64) -> f64 {
     let t1 = TOE_SHAPE.exp();
     (99.0 * fmax_tendon_strain * t1) / (166.0 * t1 - 67.0)
 }
 
 /// Stiffness of the tendon's linear part, `k_lin = 0.67/(ε₀ - ε_toe)` (Thelen 2003: 1.712/ε₀,
 /// rounded; 1.7119/ε₀ exact; Thelen2003Muscle.cpp, `klin`).
-pub fn tendon_linear_stiffness(fmax_tendon_strain: f64) -> f64 {
+pub(crate) fn tendon_linear_stiffness(fmax_tendon_strain: f64) -> f64 {
     (67.0 / 100.0) / (fmax_tendon_strain - tendon_toe_strain(fmax_tendon_strain))
 }
 
@@ -137,7 +137,7 @@ fn toe_scale() -> f64 {
 /// The normalised tendon length at which the tendon carries `f` (the inverse of
 /// [`tendon_force_length`]): `1 + (ε_toe/kToe) ln(1 + f/(FToe/(exp(kToe) - 1)))` up to FToe,
 /// `1 + ε_toe + (f - FToe)/k_lin` beyond; 1 (slack) for f <= 0.
-pub fn tendon_force_length_inverse(norm_tendon_force: f64, fmax_tendon_strain: f64) -> f64 {
+pub(crate) fn tendon_force_length_inverse(norm_tendon_force: f64, fmax_tendon_strain: f64) -> f64 {
     let f = norm_tendon_force;
     let e_toe = tendon_toe_strain(fmax_tendon_strain);
     if f <= 0.0 {
@@ -153,7 +153,10 @@ pub fn tendon_force_length_inverse(norm_tendon_force: f64, fmax_tendon_strain: f
 /// energy is this times l_s Fmax): 0 for a slack tendon;
 /// `(FToe/(exp(kToe) - 1)) ((ε_toe/kToe)(exp(kToe d/ε_toe) - 1) - d)`, `d = min(ε, ε_toe)`, plus
 /// `FToe y + k_lin y²/2`, `y = ε - ε_toe`, beyond the toe.
-pub fn tendon_force_length_integral(norm_tendon_length: f64, fmax_tendon_strain: f64) -> f64 {
+pub(crate) fn tendon_force_length_integral(
+    norm_tendon_length: f64,
+    fmax_tendon_strain: f64,
+) -> f64 {
     let x = norm_tendon_length - 1.0;
     if x <= 0.0 {
         return 0.0;
@@ -171,7 +174,7 @@ pub fn tendon_force_length_integral(norm_tendon_length: f64, fmax_tendon_strain:
 
 /// The normalised fibre length at which the passive curve is `f` (the inverse of
 /// [`passive_force_length`]): `1 + (ε₀/k_PE) ln(1 + f (exp(k_PE) - 1))`; 1 for f <= 0.
-pub fn passive_force_length_inverse(
+pub(crate) fn passive_force_length_inverse(
     norm_passive_force: f64,
     fmax_muscle_strain: f64,
     kshape_passive: f64,
@@ -187,7 +190,7 @@ pub fn passive_force_length_inverse(
 /// `∫_1^{l̃} f_PE(x) dx`, the passive curve's integral from optimal length, where it starts (the
 /// fibre's strain energy is this times l_opt Fmax):
 /// `((ε₀/k_PE)(exp(k_PE (l̃ - 1)/ε₀) - 1) - (l̃ - 1))/(exp(k_PE) - 1)` for l̃ > 1, else 0.
-pub fn passive_force_length_integral(
+pub(crate) fn passive_force_length_integral(
     norm_fiber_length: f64,
     fmax_muscle_strain: f64,
     kshape_passive: f64,
@@ -235,7 +238,7 @@ impl ForceVelocityShape {
 
 /// Thelen's activation-dependent velocity scale `0.25 + 0.75 a` (Thelen 2003 eq. 6): the
 /// maximum shortening velocity at activation a, in units of v_max.
-pub fn velocity_scale(activation: f64) -> f64 {
+pub(crate) fn velocity_scale(activation: f64) -> f64 {
     0.25 + 0.75 * activation
 }
 
@@ -312,7 +315,7 @@ pub fn force_velocity(
 
 /// `df_V/dṽ` of [`force_velocity`], branch by branch: the inverse slopes of the tangent lines
 /// outside, `k (1 + 1/Af)/(k - ṽ/Af)²` shortening, `c k (Flen - 1)/(k + c ṽ)²` lengthening.
-pub fn force_velocity_derivative(
+pub(crate) fn force_velocity_derivative(
     norm_fiber_velocity: f64,
     activation: f64,
     shape: &ForceVelocityShape,

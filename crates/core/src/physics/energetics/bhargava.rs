@@ -8,7 +8,7 @@ use crate::physics::energetics::probe::{
 
 /// Options and constants of the Bhargava model.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BhargavaOptions {
+pub(crate) struct BhargavaOptions {
     /// Activation heat constants of slow- and fast-twitch fibres, W/kg (40, 133).
     pub(crate) activation_w_kg: [f64; 2],
     /// Maintenance heat constants of slow- and fast-twitch fibres, W/kg (74, 111).
@@ -62,7 +62,12 @@ pub(crate) fn fibre_heat_w(mass_kg: f64, constants_w_kg: [f64; 2], recruited: (f
 
 /// Shortening heat `-α v`, W, with `α = 0.25 F` shortening and 0 lengthening, or the
 /// force-dependent `0.16 F_iso + 0.18 F` / `0.157 F`; F the total fibre force, F_iso = a f(l) Fmax.
-pub fn shortening_heat_w(force_dependent: bool, f_total: f64, f_iso: f64, v_m_s: f64) -> f64 {
+pub(crate) fn shortening_heat_w(
+    force_dependent: bool,
+    f_total: f64,
+    f_iso: f64,
+    v_m_s: f64,
+) -> f64 {
     let alpha = match (force_dependent, v_m_s <= 0.0) {
         (true, true) => 0.16 * f_iso + 0.18 * f_total,
         (true, false) => 0.157 * f_total,
@@ -73,7 +78,8 @@ pub fn shortening_heat_w(force_dependent: bool, f_total: f64, f_iso: f64, v_m_s:
 }
 
 /// The Bhargava rates of one muscle at one instant, W.
-pub fn bhargava_rates(o: &BhargavaOptions, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
+#[cfg(test)]
+pub(crate) fn bhargava_rates(o: &BhargavaOptions, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
     let terms = ExcitationTerms::new(x.excitation, m.slow_twitch_ratio);
     bhargava_rates_with(o, m, x, &terms)
 }

@@ -30,7 +30,7 @@ pub(crate) struct BridgeFluxes {
 
 impl BridgeFluxes {
     /// The four fluxes the energetics needs.
-    pub fn energy(&self) -> EnergyFluxes {
+    pub(crate) fn energy(&self) -> EnergyFluxes {
         EnergyFluxes {
             attachment: self.attachment[0],
             detachment: self.detachment[0],
@@ -42,7 +42,7 @@ impl BridgeFluxes {
 
 /// The fluxes that carry energy, 1/s (moment units).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct EnergyFluxes {
+pub(crate) struct EnergyFluxes {
     /// Bonds formed, A_0.
     pub attachment: f64,
     /// Bonds broken, D_0: the ATP flux.
@@ -69,7 +69,7 @@ fn detachment_only(rates: &Rates) -> Rates {
 }
 
 /// `A_k = r β_k - ∫ ξ^k f n dξ`, from the bound part of the attachment integral.
-pub fn attachment(rates: &Rates, r: f64, bound_attachment: [f64; 3]) -> [f64; 3] {
+pub(crate) fn attachment(rates: &Rates, r: f64, bound_attachment: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|k| r * rates.beta(k) - bound_attachment[k])
 }
 
@@ -99,13 +99,15 @@ fn closure_gaussian(q: &[f64; 3]) -> Option<(f64, f64, f64, f64)> {
 /// `Q0 [g2 Φ(-p/q) + g1 (p Φ(p/q) + q ϕ(p/q)) + g3 (...)]`. The part of the moments the guard's
 /// Gaussian does not carry (zero for physical moments), which the closure relaxes at
 /// `(f1 + g1)/2`, counts as detachment, so that `gaussian_bound_attachment + this = φ` exactly.
-pub fn gaussian_detachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+#[cfg(test)]
+pub(crate) fn gaussian_detachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
     gaussian_parts(rates, q, None).1
 }
 
 /// DM bound part of the attachment integral, `∫ ξ^k f n dξ = Q0 f1 [J_{k+1}(τ1) - J_{k+1}(τ0)]`
 /// (zero without a Gaussian part).
-pub fn gaussian_bound_attachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
+#[cfg(test)]
+pub(crate) fn gaussian_bound_attachment(rates: &Rates, q: &[f64; 3]) -> [f64; 3] {
     gaussian_parts(rates, q, None).0
 }
 

@@ -14,7 +14,7 @@ use crate::physics::energetics::bridge_flux::EnergyFluxes;
 use crate::physics::params::MuscleParams;
 
 /// Avogadro's number, 1/mol (SI 2019, exact).
-pub const AVOGADRO_PER_MOL: f64 = 6.022_140_76e23;
+pub(crate) const AVOGADRO_PER_MOL: f64 = 6.022_140_76e23;
 
 /// Parameters of the cross-bridge energetics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -110,7 +110,7 @@ impl BridgeEnergyScale {
     }
 
     /// ATP rate of a flux `d0` (1/s, moment units), mol/s.
-    pub fn atp_rate_mol_s(&self, d0: f64) -> f64 {
+    pub(crate) fn atp_rate_mol_s(&self, d0: f64) -> f64 {
         self.atp_mol_per_flux * d0
     }
 
@@ -161,7 +161,7 @@ pub(crate) struct BridgePowers {
 
 impl BridgePowers {
     /// Total heat of the bridges, attachment plus detachment.
-    pub fn heat_w(&self) -> f64 {
+    pub(crate) fn heat_w(&self) -> f64 {
         self.attachment_heat_w + self.detachment_heat_w
     }
 }

@@ -59,7 +59,8 @@ fn cubic_exp(phi: f64, shortening: bool) -> f64 {
 }
 
 /// The steady bound fraction n(ξ) at shortening rate u (h/s) and attachment factor r.
-pub fn steady_bonds(rates: &Rates, r: f64, u: f64, xi: f64) -> f64 {
+#[cfg(test)]
+pub(crate) fn steady_bonds(rates: &Rates, r: f64, u: f64, xi: f64) -> f64 {
     let n = r * plateau(rates);
     let s = rates.f1 + rates.g1;
     if u == 0.0 {

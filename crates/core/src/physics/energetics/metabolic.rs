@@ -13,7 +13,7 @@ use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs, ProbeMuscl
 /// The cross-bridge energetics of one muscle's model: the scale from fluxes to watts and the
 /// bridges' isometric chemical power at full activation (the activation cost's scale), W.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BridgeEnergetics {
+pub(crate) struct BridgeEnergetics {
     /// Fluxes to watts and moles.
     pub scale: BridgeEnergyScale,
     /// The bridges' own isometric chemical power at full activation and optimal length, W.
@@ -40,7 +40,7 @@ impl BridgeEnergetics {
 
 /// The mechanism's rates: where the free energy of the ATP goes, W (ATP in mol/s).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct MechanismRates {
+pub(crate) struct MechanismRates {
     /// Chemical power, ATP counted as it is split at detachment, plus the activation cost.
     pub(crate) total_w: f64,
     /// Activation (calcium-handling) heat.
@@ -83,9 +83,9 @@ pub(crate) fn mechanism_rates(
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MuscleProbe {
     /// The model and its options.
-    pub model: PhenomenologicalModel,
+    pub(crate) model: PhenomenologicalModel,
     /// The muscle's constants (mass, Fmax, lopt, vmax, fibre types).
-    pub muscle: ProbeMuscle,
+    pub(crate) muscle: ProbeMuscle,
     /// Moles of ATP per joule at the energy per ATP (for its ATP equivalent),
     /// [`crate::physics::energetics::bridge_power::atp_mol_per_j`], mol/J.
     pub(crate) atp_mol_per_j: f64,
@@ -99,7 +99,7 @@ impl MuscleProbe {
 
     /// Its rates at one instant, given the terms of its excitation (`terms.excitation` is
     /// `x.excitation`).
-    pub fn rates(&self, x: &ProbeInputs, terms: &ExcitationTerms) -> ProbeRates {
+    pub(crate) fn rates(&self, x: &ProbeInputs, terms: &ExcitationTerms) -> ProbeRates {
         self.model.rates_with(&self.muscle, x, terms)
     }
 }
@@ -128,7 +128,11 @@ pub struct MetabolicRates {
 impl MetabolicRates {
     /// From the mechanism's rates (a model with bridges) and the phenomenological ones.
     /// `atp_mol_per_j` converts the phenomenological power to its ATP equivalent.
-    pub fn of(mechanism: Option<&MechanismRates>, probe: &ProbeRates, atp_mol_per_j: f64) -> Self {
+    pub(crate) fn of(
+        mechanism: Option<&MechanismRates>,
+        probe: &ProbeRates,
+        atp_mol_per_j: f64,
+    ) -> Self {
         match mechanism {
             Some(m) => Self {
                 metabolic_w: m.total_w,
@@ -154,7 +158,7 @@ impl MetabolicRates {
 
 /// The two powers a run integrates into energies, W.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct EnergyPowers {
+pub(crate) struct EnergyPowers {
     /// Metabolic power.
     pub metabolic_w: f64,
     /// The phenomenological model's total.
@@ -175,7 +179,7 @@ pub struct MetabolicSample {
 
 impl MetabolicSample {
     /// The two powers at this instant.
-    pub fn powers(&self) -> EnergyPowers {
+    pub(crate) fn powers(&self) -> EnergyPowers {
         EnergyPowers {
             metabolic_w: self.rates.metabolic_w,
             phenomenological_w: self.rates.phenomenological_w,

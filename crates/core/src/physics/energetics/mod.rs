@@ -16,14 +16,14 @@
 //! otherwise. Velocities follow docs/model.md: `v` lengthens the fibre, `v_s = -v` shortens it;
 //! work rates count work done by the contractile element on its load, positive when shortening.
 
-pub mod bhargava;
-pub mod bridge_flux;
+pub(crate) mod bhargava;
+pub(crate) mod bridge_flux;
 pub mod bridge_power;
 pub mod huxley_steady;
 pub mod metabolic;
 pub mod params;
 pub mod phenomenological;
-pub mod probe;
+pub(crate) mod probe;
 pub mod steady;
 pub mod umberger;
 

@@ -10,11 +10,12 @@ use crate::physics::energetics::probe::{
     muscle_mass_kg, ProbeMuscle, MUSCLE_DENSITY_KG_M3, SLOW_TWITCH_RATIO, SPECIFIC_TENSION_PA,
 };
 use crate::physics::energetics::umberger::UmbergerOptions;
-pub use crate::physics::params::energetics::{EnergeticsParams, EnergyModel, UnknownEnergyModel};
+pub use crate::physics::params::energetics::UnknownEnergyModel;
+pub(crate) use crate::physics::params::energetics::{EnergeticsParams, EnergyModel};
 
 impl EnergyModel {
     /// The model with its options.
-    pub fn phenomenological(self) -> PhenomenologicalModel {
+    pub(crate) fn phenomenological(self) -> PhenomenologicalModel {
         match self {
             Self::Umberger => PhenomenologicalModel::Umberger(UmbergerOptions::uchida_2016()),
             Self::Umberger2010 => PhenomenologicalModel::Umberger(UmbergerOptions::umberger_2010()),

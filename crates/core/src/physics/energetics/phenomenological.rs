@@ -7,7 +7,7 @@ use crate::physics::energetics::umberger::{self, UmbergerOptions};
 
 /// A phenomenological energy model, selectable.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PhenomenologicalModel {
+pub(crate) enum PhenomenologicalModel {
     /// Umberger (2010), options as given (OpenSim's defaults: Uchida et al. 2016).
     Umberger(UmbergerOptions),
     /// Bhargava et al. (2004), options as given (OpenSim's defaults).
@@ -22,7 +22,7 @@ impl PhenomenologicalModel {
     }
 
     /// Its rates for one muscle at one instant.
-    pub fn rates(&self, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
+    pub(crate) fn rates(&self, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
         self.rates_with(
             m,
             x,

@@ -87,7 +87,7 @@ impl ExcitationTerms {
 
 /// One muscle's constants for a probe.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ProbeMuscle {
+pub(crate) struct ProbeMuscle {
     /// Mass the rates per kg apply to, kg.
     pub mass_kg: f64,
     /// Maximum isometric force Fmax, N.
@@ -102,7 +102,7 @@ pub struct ProbeMuscle {
 
 /// What a probe reads from the muscle at one instant.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ProbeInputs {
+pub(crate) struct ProbeInputs {
     /// Excitation u, [0, 1].
     pub excitation: f64,
     /// Activation a, [0, 1].
@@ -121,7 +121,7 @@ pub struct ProbeInputs {
 
 /// A probe's metabolic power and its parts, W.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ProbeRates {
+pub(crate) struct ProbeRates {
     /// Activation and maintenance heat (with the least-heat floor's increase, if any).
     pub(crate) activation_maintenance_w: f64,
     /// Shortening / lengthening heat (with the non-negative-total increase, if any).
@@ -132,7 +132,7 @@ pub struct ProbeRates {
 
 impl ProbeRates {
     /// Heat rate, W.
-    pub fn heat_w(&self) -> f64 {
+    pub(crate) fn heat_w(&self) -> f64 {
         self.activation_maintenance_w + self.shortening_w
     }
     /// Metabolic power, heat plus work, W.

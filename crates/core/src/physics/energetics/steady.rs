@@ -38,7 +38,7 @@ pub struct SteadyPoint {
 }
 
 /// `Ẇ / Ė`, 0 when `Ė` is not positive.
-pub fn efficiency(work_w: f64, chemical_w: f64) -> f64 {
+pub(crate) fn efficiency(work_w: f64, chemical_w: f64) -> f64 {
     if chemical_w > 0.0 {
         work_w / chemical_w
     } else {
@@ -124,7 +124,7 @@ pub(crate) fn dm_moments(rates: &Rates, us: &[f64]) -> Result<Vec<[f64; 3]>, Ste
 }
 
 /// The DM model's steady states at the shortening velocities `v_s` (m/s).
-pub fn dm_curve(
+pub(crate) fn dm_curve(
     scale: &CrossBridgeScale,
     e: &BridgeEnergyScale,
     v_s: &[f64],

@@ -10,7 +10,7 @@ use crate::physics::energetics::probe::{
 
 /// Options of the Umberger model.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct UmbergerOptions {
+pub(crate) struct UmbergerOptions {
     /// Aerobic scaling S: 1.5 for aerobic activity, 1.0 for anaerobic (Umberger 2003).
     pub(crate) aerobic_factor: f64,
     /// Replace the fibre-type ratio r by Bhargava's recruited share `u_ST / (u_ST + u_FT)`.
@@ -57,7 +57,7 @@ impl Default for UmbergerOptions {
 }
 
 /// Activation dependence `A = u` if `u > a`, else `(u + a)/2`.
-pub fn effort(excitation: f64, activation: f64) -> f64 {
+pub(crate) fn effort(excitation: f64, activation: f64) -> f64 {
     if excitation > activation {
         excitation
     } else {
@@ -114,7 +114,8 @@ pub(crate) fn lengthening_w_kg(s: f64, a: f64, k: f64, v_norm: f64, v_max: f64) 
 }
 
 /// The Umberger rates of one muscle at one instant, W.
-pub fn umberger_rates(o: &UmbergerOptions, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
+#[cfg(test)]
+pub(crate) fn umberger_rates(o: &UmbergerOptions, m: &ProbeMuscle, x: &ProbeInputs) -> ProbeRates {
     let terms = ExcitationTerms::new(x.excitation, m.slow_twitch_ratio);
     umberger_rates_with(o, m, x, &terms)
 }

@@ -36,7 +36,7 @@ pub struct CeInputs {
 
 /// The motion of one fibre over a sub-step, for [`ContractileModel::after_substep`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SubstepMotion {
+pub(crate) struct SubstepMotion {
     /// Sub-step length, s.
     pub dt: f64,
     /// Activation at the sub-step's midpoint.
@@ -48,9 +48,7 @@ pub struct SubstepMotion {
 }
 
 /// One muscle's contractile element.
-pub trait ContractileModel: fmt::Debug + Send + Sync {
-    /// Which model this is.
-    fn spec(&self) -> &'static ModelSpec;
+pub(crate) trait ContractileModel: fmt::Debug + Send + Sync {
     /// Number of state variables of its own.
     fn state_dim(&self) -> usize;
     /// Typical magnitudes of those variables (tolerance units), written to `out`.
@@ -153,7 +151,7 @@ pub struct ModelSpec {
     /// "Methods"; the work per tick is printed by `cargo bench --bench limb`).
     pub(crate) fourth_order_transients: bool,
     /// Its calibration: the model for one muscle with these parameters.
-    pub build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError>,
+    pub(crate) build: fn(&MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError>,
 }
 
 /// A model: a reference to its entry in [`crate::physics::models::MODELS`]. Compared by name.
@@ -178,7 +176,7 @@ impl ModelKind {
         self.0.stepping.is_adaptive()
     }
     /// Builds the contractile element of one muscle.
-    pub fn build(
+    pub(crate) fn build(
         self,
         params: &MuscleParams,
     ) -> Result<Box<dyn ContractileModel>, ModelBuildError> {

@@ -61,9 +61,6 @@ fn q(x: &[f64]) -> [f64; 3] {
 }
 
 impl ContractileModel for DistributionMoment {
-    fn spec(&self) -> &'static ModelSpec {
-        &SPEC
-    }
     fn state_dim(&self) -> usize {
         3
     }

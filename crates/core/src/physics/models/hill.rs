@@ -34,7 +34,7 @@ pub static SPEC: ModelSpec = ModelSpec {
 
 /// One muscle's Hill element.
 #[derive(Debug, Clone)]
-pub struct Hill {
+pub(crate) struct Hill {
     f_max: f64,
     /// The force–velocity relation of its curve set.
     force_velocity: HillForceVelocity,
@@ -52,9 +52,6 @@ fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError>
 }
 
 impl ContractileModel for Hill {
-    fn spec(&self) -> &'static ModelSpec {
-        &SPEC
-    }
     fn state_dim(&self) -> usize {
         0
     }

@@ -45,7 +45,7 @@ pub(crate) struct HeldClosure {
 
 impl HeldClosure {
     /// φ at time t.
-    pub fn at(&self, t: f64) -> [f64; 3] {
+    pub(crate) fn at(&self, t: f64) -> [f64; 3] {
         let dt = t - self.t0;
         [
             self.phi[0] + self.slope[0] * dt,
@@ -82,9 +82,6 @@ fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError>
 }
 
 impl ContractileModel for HuxleyPde {
-    fn spec(&self) -> &'static ModelSpec {
-        &SPEC
-    }
     fn state_dim(&self) -> usize {
         3
     }

@@ -5,14 +5,14 @@
 //! the node's `model` parameter and its usage text, figures, the `MODEL_*` constants of
 //! `ActuatorState.msg`, checked by `crates/recording/tests/msg_definitions.rs`) reads this list.
 
-pub mod contractile_model;
-pub mod distribution_moment;
-pub mod hill;
-pub mod huxley_pde;
+pub(crate) mod contractile_model;
+pub(crate) mod distribution_moment;
+pub(crate) mod hill;
+pub(crate) mod huxley_pde;
 
-pub use contractile_model::{
-    CeInputs, ContractileModel, ModelBuildError, ModelKind, ModelSpec, SubstepMotion,
-};
+pub use contractile_model::ModelBuildError;
+pub use contractile_model::ModelKind;
+pub(crate) use contractile_model::{CeInputs, ContractileModel, ModelSpec, SubstepMotion};
 use std::str::FromStr;
 
 /// Every model, from the simplest to the reference (the full Huxley model, docs/model.md §7).
@@ -113,9 +113,6 @@ pub mod test_model {
     }
 
     impl ContractileModel for HillCopy {
-        fn spec(&self) -> &'static ModelSpec {
-            &SPEC
-        }
         fn state_dim(&self) -> usize {
             self.0.state_dim()
         }

@@ -25,7 +25,7 @@ pub enum CurveSet {
 
 impl CurveSet {
     /// Every curve set.
-    pub const ALL: [CurveSet; 5] = [
+    pub(crate) const ALL: [CurveSet; 5] = [
         CurveSet::Paper,
         CurveSet::DeGroote2016,
         CurveSet::Thelen2003,
@@ -45,7 +45,7 @@ impl CurveSet {
     }
 
     /// Whether this is the paper's set, the default (configurations omit it then).
-    pub fn is_paper(&self) -> bool {
+    pub(crate) fn is_paper(&self) -> bool {
         *self == CurveSet::Paper
     }
 

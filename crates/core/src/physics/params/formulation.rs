@@ -88,7 +88,7 @@ impl ActivationKind {
         Named::name(self)
     }
     /// Whether this is the default, the paper's first order (configurations omit it then).
-    pub fn is_first_order(&self) -> bool {
+    pub(crate) fn is_first_order(&self) -> bool {
         *self == ActivationKind::FirstOrder
     }
 }
@@ -119,7 +119,7 @@ impl FibreKind {
         Named::name(self)
     }
     /// Whether this is the default, the paper's fibre with mass (configurations omit it then).
-    pub fn is_massed(&self) -> bool {
+    pub(crate) fn is_massed(&self) -> bool {
         *self == FibreKind::Massed
     }
 }
@@ -130,7 +130,7 @@ impl TendonKind {
         Named::name(self)
     }
     /// Whether this is the default, the elastic tendon (configurations omit it then).
-    pub fn is_elastic(&self) -> bool {
+    pub(crate) fn is_elastic(&self) -> bool {
         *self == TendonKind::Elastic
     }
 }

@@ -34,6 +34,6 @@ impl TabulatedCurves {
 }
 
 /// A curve's abscissae and ordinates, apart.
-pub fn split(points: &Points) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn split(points: &Points) -> (Vec<f64>, Vec<f64>) {
     points.iter().map(|&[x, y]| (x, y)).unzip()
 }

@@ -30,7 +30,7 @@ impl Knot {
     }
 
     /// Its integral from the point to dx past it, `dx (y + dx (b/2 + dx (c/3 + dx d/4)))`.
-    pub fn integral_to(&self, dx: f64) -> f64 {
+    pub(crate) fn integral_to(&self, dx: f64) -> f64 {
         let Cubic { b, c, d } = self.cubic;
         dx * (self.y + dx * (b / 2.0 + dx * (c / 3.0 + dx * d / 4.0)))
     }

@@ -12,7 +12,7 @@ mod steady;
 use crate::physics::contractile::crossbridge::Rates;
 
 /// Huxley's (1957) rates as the project uses them, 1/s.
-pub const HUXLEY: Rates = Rates {
+pub(crate) const HUXLEY: Rates = Rates {
     f1: 43.3,
     g1: 10.0,
     g2: 209.0,

@@ -27,7 +27,7 @@ pub(crate) fn gauss(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
 }
 
 /// `∫ f` over the pieces between consecutive `breaks` (f smooth on each), `n` intervals each.
-pub fn piecewise(f: impl Fn(f64) -> f64, breaks: &[f64], n: usize) -> f64 {
+pub(crate) fn piecewise(f: impl Fn(f64) -> f64, breaks: &[f64], n: usize) -> f64 {
     breaks
         .windows(2)
         .filter(|w| w[1] > w[0])
