@@ -16,6 +16,7 @@
 //! - [`state_bytes`]: the values of a saved state as bytes, every read checked (neutral).
 
 #![warn(missing_docs)]
+#![warn(unreachable_pub)]
 
 pub mod config;
 pub mod csv;

@@ -113,7 +113,7 @@ pub(crate) struct StateWriter {
 
 impl StateWriter {
     /// An empty writer.
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self::default()
     }
     /// One byte.
@@ -171,7 +171,7 @@ pub(crate) struct StateReader<'a> {
 
 impl<'a> StateReader<'a> {
     /// A reader at the start of `bytes`.
-    pub fn new(bytes: &'a [u8]) -> Self {
+    pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Self { bytes, at: 0 }
     }
 

@@ -72,7 +72,7 @@ pub(crate) struct ArrowheadMatrix {
 
 impl ArrowheadMatrix {
     /// Storage for a core of `core` variables and leaves of the given lengths.
-    pub fn new(core: usize, leaf_dims: &[usize]) -> Self {
+    pub(crate) fn new(core: usize, leaf_dims: &[usize]) -> Self {
         let mut offset = core;
         let leaves = leaf_dims
             .iter()

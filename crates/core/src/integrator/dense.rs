@@ -89,7 +89,7 @@ pub(crate) struct Lu {
 
 impl Lu {
     /// Storage for an n × n matrix.
-    pub fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         Self {
             n,
             rows: vec![0.0; n * n],

@@ -148,7 +148,7 @@ pub(crate) struct Esdirk<M> {
 
 impl<M> Esdirk<M> {
     /// A stepper for an n-dimensional system.
-    pub fn new(n: usize, matrix: M, tableau: Tableau) -> Self {
+    pub(crate) fn new(n: usize, matrix: M, tableau: Tableau) -> Self {
         let v = || vec![0.0; n];
         Self {
             n,

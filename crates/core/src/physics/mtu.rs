@@ -46,7 +46,7 @@ pub(crate) enum Mechanics {
 impl Mechanics {
     /// The formulation of these parameters (a rigid tendon with a massed fibre is refused by the
     /// parameters' validation and taken as rigid here).
-    pub fn of(p: &MuscleParams) -> Self {
+    pub(crate) fn of(p: &MuscleParams) -> Self {
         match (p.tendon, p.fibre) {
             (TendonKind::Rigid, _) => Mechanics::Rigid,
             (TendonKind::Elastic, FibreKind::Massed) => Mechanics::Massed,

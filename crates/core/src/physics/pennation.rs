@@ -19,7 +19,7 @@ pub(crate) struct Pennation {
 
 impl Pennation {
     /// From the muscle's `pennation` (α_opt, rad) and `l_opt`.
-    pub fn new(p: &MuscleParams) -> Self {
+    pub(crate) fn new(p: &MuscleParams) -> Self {
         Self {
             height: p.l_opt * p.pennation.sin(),
         }

@@ -36,7 +36,7 @@ pub(crate) struct JacobianScratch {
 impl JacobianScratch {
     /// Room for muscles of up to `n` state variables in a plant of `dim` (no allocation when
     /// a Jacobian is evaluated).
-    pub fn new(n: usize, dim: usize) -> Self {
+    pub(crate) fn new(n: usize, dim: usize) -> Self {
         Self {
             s: vec![0.0; n],
             ds: vec![0.0; n],

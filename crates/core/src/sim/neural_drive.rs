@@ -31,7 +31,7 @@ pub(crate) struct NeuralDrive {
 impl NeuralDrive {
     /// The drive of a muscle with `activation = "lloyd_besier"` at a tick rate of `rate_hz`;
     /// None for the paper's first order. The parameters are validated ones (C1, C2 present).
-    pub fn of(p: &MuscleParams, rate_hz: f64) -> Result<Option<Self>, EmgError> {
+    pub(crate) fn of(p: &MuscleParams, rate_hz: f64) -> Result<Option<Self>, EmgError> {
         if p.activation != ActivationKind::LloydBesier {
             return Ok(None);
         }

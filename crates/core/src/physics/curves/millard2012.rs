@@ -89,7 +89,7 @@ pub(crate) struct Shape {
 
 impl Shape {
     /// The curves' default properties, as OpenSim's curve components stand on their own.
-    pub const DEFAULT: Shape = Shape {
+    pub(crate) const DEFAULT: Shape = Shape {
         active_minimum: ACTIVE_MINIMUM_VALUE,
         concentric_slope_at_vmax: FV_CONCENTRIC_SLOPE_AT_VMAX,
         eccentric_slope_at_vmax: FV_ECCENTRIC_SLOPE_AT_VMAX,
@@ -111,7 +111,7 @@ impl Shape {
 
     /// The shape of a muscle's formulation: [`Shape::CLASSIC`] for an equilibrium fibre on an
     /// elastic tendon without damper (b_m = 0), else [`Shape::DAMPED`].
-    pub fn of(p: &MuscleParams) -> Shape {
+    pub(crate) fn of(p: &MuscleParams) -> Shape {
         let classic =
             p.fibre == FibreKind::Equilibrium && p.tendon == TendonKind::Elastic && p.b_m == 0.0;
         if classic {

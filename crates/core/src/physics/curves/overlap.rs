@@ -54,7 +54,7 @@ pub(crate) enum ActiveForceLength {
 
 impl ActiveForceLength {
     /// The relation of the muscle's curve set.
-    pub fn new(p: &MuscleParams) -> Self {
+    pub(crate) fn new(p: &MuscleParams) -> Self {
         let l_opt = p.l_opt;
         match p.curves {
             CurveSet::Paper => ActiveForceLength::Paper {
@@ -111,7 +111,7 @@ impl ActiveForceLength {
     }
 
     /// dλ/dl_m, 1/m.
-    pub fn slope(&self, l_m: f64) -> f64 {
+    pub(crate) fn slope(&self, l_m: f64) -> f64 {
         match *self {
             ActiveForceLength::Paper {
                 l_opt,

@@ -21,7 +21,7 @@ pub(crate) fn active_force_length(
 /// Force–velocity factor `g(-ṽ)`: the paper's eq. (2) for shortening and the project's
 /// continuation to the eccentric asymptote N for lengthening
 /// ([`hill_equation::force_velocity`]); 0 at ṽ = -1, 1 at ṽ = 0.
-pub fn force_velocity(norm_fiber_velocity: f64, eccentric_asymptote: f64) -> f64 {
+pub(crate) fn force_velocity(norm_fiber_velocity: f64, eccentric_asymptote: f64) -> f64 {
     hill_equation::force_velocity(-norm_fiber_velocity, 1.0, eccentric_asymptote)
 }
 

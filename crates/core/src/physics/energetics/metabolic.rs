@@ -25,7 +25,7 @@ pub(crate) struct BridgeEnergetics {
 
 impl BridgeEnergetics {
     /// From the scale and the bridges' isometric chemical power at full activation (W).
-    pub fn new(scale: BridgeEnergyScale, isometric_bridge_w: f64) -> Self {
+    pub(crate) fn new(scale: BridgeEnergyScale, isometric_bridge_w: f64) -> Self {
         Self {
             scale,
             isometric_bridge_w,

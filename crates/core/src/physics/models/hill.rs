@@ -14,7 +14,7 @@ use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
 /// The model's entry in [`crate::physics::models::MODELS`].
-pub static SPEC: ModelSpec = ModelSpec {
+pub(crate) static SPEC: ModelSpec = ModelSpec {
     name: "hill",
     label: "Hill",
     short_label: "Hill",

@@ -19,7 +19,7 @@ use crate::physics::stepping::Stepping;
 use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// The model's entry in [`crate::physics::models::MODELS`].
-pub static SPEC: ModelSpec = ModelSpec {
+pub(crate) static SPEC: ModelSpec = ModelSpec {
     name: "huxley-pde",
     label: "Huxley (full)",
     short_label: "full Huxley",

@@ -18,13 +18,13 @@ pub(super) struct Knot {
 
 impl Knot {
     /// The cubic at dx past the point, `y + dx (b + dx (c + dx d))` (FMM's `SEVAL`).
-    pub fn value(&self, dx: f64) -> f64 {
+    pub(super) fn value(&self, dx: f64) -> f64 {
         let Cubic { b, c, d } = self.cubic;
         self.y + dx * (b + dx * (c + dx * d))
     }
 
     /// Its slope, `b + dx (2c + 3d dx)`.
-    pub fn slope(&self, dx: f64) -> f64 {
+    pub(super) fn slope(&self, dx: f64) -> f64 {
         let Cubic { b, c, d } = self.cubic;
         b + dx * (2.0 * c + 3.0 * dx * d)
     }
