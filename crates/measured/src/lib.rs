@@ -13,6 +13,7 @@
 //! tick, so the engine cannot do without it; this crate reads and drives data through it.
 
 #![warn(missing_docs)]
+#![warn(unreachable_pub)]
 
 pub mod measured;
 pub mod subject;

@@ -24,7 +24,7 @@ pub(crate) struct DenseMatrix {
 #[cfg(test)]
 impl DenseMatrix {
     /// Storage for an n-dimensional system.
-    pub fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         Self {
             n,
             jac: vec![0.0; n * n],

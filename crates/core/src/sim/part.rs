@@ -113,7 +113,12 @@ pub(crate) struct Part {
 
 impl Part {
     /// The part of `whole` made of these joints and muscles (a component of its topology).
-    pub(crate) fn new(whole: &Plant, joints: Vec<usize>, muscles: Vec<usize>, stepping: Stepping) -> Self {
+    pub(crate) fn new(
+        whole: &Plant,
+        joints: Vec<usize>,
+        muscles: Vec<usize>,
+        stepping: Stepping,
+    ) -> Self {
         let plant = whole.subset(&joints, &muscles);
         let mut state_map = Vec::with_capacity(plant.dim());
         for &j in &joints {

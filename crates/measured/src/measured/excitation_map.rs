@@ -28,7 +28,7 @@ use roxmltree::Node;
 use std::path::Path;
 
 /// Most units a map may drive.
-pub const MAX_UNITS: usize = 2000;
+pub(crate) const MAX_UNITS: usize = 2000;
 
 /// The channels and, per unit, where its excitation comes from.
 #[derive(Debug, Clone, PartialEq)]
@@ -63,7 +63,7 @@ pub enum Excitation {
 
 impl Excitation {
     /// The channels it reads.
-    pub fn channels(&self) -> &[String] {
+    pub(crate) fn channels(&self) -> &[String] {
         match self {
             Excitation::Channel(c) => std::slice::from_ref(c),
             Excitation::Mean(c) | Excitation::Sum(c) => c,

@@ -20,13 +20,13 @@
 //! fails with a [`MeasuredError`] that names the file, then the line (and column or element)
 //! and what is wrong, on one line.
 
-pub mod curve;
-pub mod excitation_map;
+pub(crate) mod curve;
+pub(crate) mod excitation_map;
 pub mod rating;
 pub mod resample;
-pub mod subject;
-pub mod table;
-pub mod trial;
+pub(crate) mod subject;
+pub(crate) mod table;
+pub(crate) mod trial;
 mod xml;
 
 pub use curve::{Curve, CurveError};

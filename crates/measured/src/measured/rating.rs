@@ -44,7 +44,7 @@
 
 /// Least `Σ(x − x̄)²` of a series, over the square of the larger series' peak, for it to count
 /// as spread (a relative RMS deviation of about 1e-100).
-pub const MIN_SPREAD: f64 = 1e-200;
+pub(crate) const MIN_SPREAD: f64 = 1e-200;
 
 /// The four figures of a predicted series against a measured one.
 #[derive(Debug, Clone, Copy, PartialEq)]

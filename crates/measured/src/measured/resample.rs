@@ -133,7 +133,11 @@ pub enum ResampleError {
 
 /// The series (`times`, s, strictly increasing; `values`) at the times `at`, s, linearly
 /// interpolated (see the module's documentation); one value per time asked for.
-pub fn interpolate(times: &[f64], values: &[f64], at: &[f64]) -> Result<Vec<f64>, ResampleError> {
+pub(crate) fn interpolate(
+    times: &[f64],
+    values: &[f64],
+    at: &[f64],
+) -> Result<Vec<f64>, ResampleError> {
     let series = Series::new(times, values, 1)?;
     let at = series.clamped(at)?;
     Ok(at.into_iter().map(|t| series.value_at(t)).collect())
@@ -160,7 +164,11 @@ pub fn derivative_at(times: &[f64], values: &[f64], at: &[f64]) -> Result<Vec<f6
 }
 
 /// The column `column` of `table` at the times `at`, s, linearly interpolated.
-pub fn column_at(table: &Table, column: &str, at: &[f64]) -> Result<Vec<f64>, ResampleError> {
+pub(crate) fn column_at(
+    table: &Table,
+    column: &str,
+    at: &[f64],
+) -> Result<Vec<f64>, ResampleError> {
     interpolate(table.times(), named(table, column)?, at)
 }
 
@@ -177,7 +185,11 @@ pub fn moments_at_kinematics(trial: &Trial) -> Result<BTreeMap<String, Vec<f64>>
 
 /// The length, m, of the muscle–tendon unit `unit` of `trial` at the times `at`, s, within the
 /// times of `lmt.txt`.
-pub fn unit_length(trial: &Trial, unit: &str, at: &[f64]) -> Result<Vec<f64>, ResampleError> {
+pub(crate) fn unit_length(
+    trial: &Trial,
+    unit: &str,
+    at: &[f64],
+) -> Result<Vec<f64>, ResampleError> {
     column_at(&trial.lmt, unit, at)
 }
 

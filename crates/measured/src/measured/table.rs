@@ -19,7 +19,7 @@ use muscle_actuator_core::text::excerpt;
 use std::path::Path;
 
 /// Largest table file read, bytes (32 MiB: two minutes of 16 EMG channels at 2 kHz).
-pub const MAX_TABLE_BYTES: u64 = 32 << 20;
+pub(crate) const MAX_TABLE_BYTES: u64 = 32 << 20;
 
 /// A table as read: named columns of values over strictly increasing times.
 #[derive(Debug, Clone, PartialEq)]
@@ -131,7 +131,7 @@ impl Table {
     }
 
     /// The index of the column named `name`.
-    pub fn column_index(&self, name: &str) -> Option<usize> {
+    pub(crate) fn column_index(&self, name: &str) -> Option<usize> {
         self.columns.iter().position(|c| c == name)
     }
 

@@ -19,10 +19,10 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Most entries a trial's folder may have.
-pub const MAX_TRIAL_ENTRIES: usize = 1024;
+pub(crate) const MAX_TRIAL_ENTRIES: usize = 1024;
 
 /// Largest difference between two files' times of one row, s (they are the same samples).
-pub const TIME_TOLERANCE_S: f64 = 1e-9;
+pub(crate) const TIME_TOLERANCE_S: f64 = 1e-9;
 
 /// The moment arms' file of a degree of freedom ends so.
 const MOMENT_ARMS: &str = "Ma.txt";
@@ -95,7 +95,7 @@ impl Trial {
     }
 
     /// The cross-checks of the module's documentation.
-    pub fn check(&self) -> Result<(), TrialError> {
+    pub(crate) fn check(&self) -> Result<(), TrialError> {
         for (dof, arms) in &self.moment_arms {
             let file = format!("{dof}{MOMENT_ARMS}");
             if let Some(unit) = arms

@@ -124,7 +124,7 @@ pub enum XmlError {
 }
 
 /// Parses `text` (no DTD, at most [`MAX_NODES`] nodes).
-pub(crate) fn parse(text: &str) -> Result<Document<'_>, XmlError> {
+pub(super) fn parse(text: &str) -> Result<Document<'_>, XmlError> {
     let options = ParsingOptions {
         allow_dtd: false,
         nodes_limit: MAX_NODES,
@@ -167,7 +167,7 @@ pub(crate) struct Element<'a, 'i> {
 
 impl<'a, 'i> Element<'a, 'i> {
     /// `node`'s child elements, each named one of `allowed`; text beside them is refused.
-    pub fn new(
+    pub(super) fn new(
         node: Node<'a, 'i>,
         within: String,
         allowed: &[&'static str],
@@ -207,12 +207,12 @@ impl<'a, 'i> Element<'a, 'i> {
     }
 
     /// The same element named `within` in messages (once its name is read).
-    pub fn named(self, within: String) -> Self {
+    pub(crate) fn named(self, within: String) -> Self {
         Element { within, ..self }
     }
 
     /// The child elements named `name`, in order.
-    pub fn all(&self, name: &'static str) -> impl Iterator<Item = Node<'a, 'i>> + '_ {
+    pub(crate) fn all(&self, name: &'static str) -> impl Iterator<Item = Node<'a, 'i>> + '_ {
         self.children
             .iter()
             .copied()
@@ -220,7 +220,7 @@ impl<'a, 'i> Element<'a, 'i> {
     }
 
     /// The child element named `name`, if any; a second one is refused.
-    pub fn optional(&self, name: &'static str) -> Result<Option<Node<'a, 'i>>, XmlError> {
+    pub(crate) fn optional(&self, name: &'static str) -> Result<Option<Node<'a, 'i>>, XmlError> {
         let mut found = self.all(name);
         let first = found.next();
         match found.next() {
@@ -234,7 +234,7 @@ impl<'a, 'i> Element<'a, 'i> {
     }
 
     /// The child element named `name`, which must be there once.
-    pub fn required(&self, name: &'static str) -> Result<Node<'a, 'i>, XmlError> {
+    pub(crate) fn required(&self, name: &'static str) -> Result<Node<'a, 'i>, XmlError> {
         self.optional(name)?.ok_or_else(|| XmlError::Missing {
             line: line(self.node),
             within: self.within.clone(),
@@ -243,13 +243,13 @@ impl<'a, 'i> Element<'a, 'i> {
     }
 
     /// The number in the child element named `name`, which must be there once.
-    pub fn number(&self, name: &'static str) -> Result<f64, XmlError> {
+    pub(crate) fn number(&self, name: &'static str) -> Result<f64, XmlError> {
         let node = self.required(name)?;
         number(node, &self.within)
     }
 
     /// The number in the child element named `name`, if there.
-    pub fn optional_number(&self, name: &'static str) -> Result<Option<f64>, XmlError> {
+    pub(crate) fn optional_number(&self, name: &'static str) -> Result<Option<f64>, XmlError> {
         self.optional(name)?
             .map(|node| number(node, &self.within))
             .transpose()
@@ -257,7 +257,7 @@ impl<'a, 'i> Element<'a, 'i> {
 
     /// The non-empty text (trimmed) of the child element named `name`, which must be there
     /// once.
-    pub fn name(&self, name: &'static str) -> Result<String, XmlError> {
+    pub(crate) fn name(&self, name: &'static str) -> Result<String, XmlError> {
         let node = self.required(name)?;
         let text = value(node, &self.within)?;
         if text.is_empty() {

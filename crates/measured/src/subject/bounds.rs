@@ -47,7 +47,7 @@ impl Default for Bounds {
 
 impl Bounds {
     /// Each bound's name and value.
-    pub fn named(&self) -> [(&'static str, [f64; 2]); 8] {
+    pub(crate) fn named(&self) -> [(&'static str, [f64; 2]); 8] {
         [
             ("c1", self.c1),
             ("c2", self.c2),
@@ -62,7 +62,7 @@ impl Bounds {
 
     /// The first broken rule: each pair finite and rising, within what the parameter may be
     /// (|C| < 1, A in [-3, 3], the delay in [0, 0.5] s, multipliers > 0).
-    pub fn check(&self) -> Result<(), String> {
+    pub(crate) fn check(&self) -> Result<(), String> {
         for (name, [lo, hi]) in self.named() {
             let (min, max) = match name {
                 "c1" | "c2" => (-0.999_999, 0.999_999),

@@ -27,9 +27,9 @@ use muscle_actuator_core::sim::simulation::Simulation;
 use muscle_actuator_core::text::excerpt;
 
 /// A unit's length coordinate is the joint named after it with this suffix.
-pub const LENGTH_SUFFIX: &str = ".length";
+pub(crate) const LENGTH_SUFFIX: &str = ".length";
 /// A length coordinate's range, m: a unit's length within this of `l_opt + l_ts`.
-pub const MAX_STRETCH_M: f64 = 1.0;
+pub(crate) const MAX_STRETCH_M: f64 = 1.0;
 
 /// A trial's inputs, per tick, for the units of the asked degrees of freedom.
 #[derive(Debug, Clone, PartialEq)]
@@ -111,7 +111,7 @@ pub struct Prediction {
 impl PreparedTrial {
     /// The moment arms of degree of freedom `dof` (an index into [`Self::dofs`]): per unit that
     /// spans it, its index into [`Self::units`] and its arm at every kinematic sample, m.
-    pub fn arms(&self, dof: usize) -> &[(usize, Vec<f64>)] {
+    pub(crate) fn arms(&self, dof: usize) -> &[(usize, Vec<f64>)] {
         self.arms.get(dof).map_or(&[], Vec::as_slice)
     }
 
@@ -228,7 +228,7 @@ impl PreparedTrial {
     }
 
     /// The mean length of unit `i` (an index into [`Self::units`]) over the ticks, m.
-    pub fn mean_length(&self, i: usize) -> f64 {
+    pub(crate) fn mean_length(&self, i: usize) -> f64 {
         let l = &self.length[i];
         l.iter().sum::<f64>() / l.len().max(1) as f64
     }

@@ -3,7 +3,7 @@
 /// The longest fibre a unit's length may ask, optimal lengths, with the tendon at slack:
 /// CEINMS's own bound on a fibre (its equilibrium solve searches 0.2 to 2 l_opt,
 /// lib/NMSmodel/Lloyd2003Muscle `integrateFiberLength`).
-pub const MAX_FIBRE_LOPT: f64 = 2.0;
+pub(crate) const MAX_FIBRE_LOPT: f64 = 2.0;
 
 /// How far beyond its fibre's reach a prediction holds a unit's length at the reach (a counted
 /// warning) rather than refusing it, as a fraction of the unit's resting length `l_opt + l_ts`:
@@ -12,8 +12,8 @@ pub const MAX_FIBRE_LOPT: f64 = 2.0;
 /// while a length beyond this is an error in the data. Beyond 1.6 `l_opt` a CEINMS subject's
 /// tabulated curves are flat (passive force at its ceiling, no active force), so a held length
 /// changes the unit's force little.
-pub const HELD_REACH_FRACTION: f64 = 0.1;
+pub(crate) const HELD_REACH_FRACTION: f64 = 0.1;
 
 /// Largest relative deviation of an EMG sample step from the mean step: the EMG is one sample
 /// per tick, so its samples must be evenly spaced.
-pub const EMG_STEP_TOLERANCE: f64 = 1e-6;
+pub(crate) const EMG_STEP_TOLERANCE: f64 = 1e-6;

@@ -14,16 +14,19 @@
 //! length beyond l_opt + l_ts, spanned with a moment arm of −1 m: docs/model.md §8b, §8c), which
 //! keeps every unit an independent part of the plant.
 
-pub mod bounds;
+pub(crate) mod bounds;
 pub mod calibrate;
 pub mod drive;
 mod error;
-pub mod file;
-pub mod limits;
+pub(crate) mod file;
+pub(crate) mod limits;
 mod prepare;
-pub mod record;
-pub mod units;
+pub(crate) mod record;
+pub(crate) mod units;
 
-pub use drive::{DriveError, HeldLengths, Prediction, PreparedTrial};
-pub use file::{CalibrationRecord, SubjectFileError};
-pub use units::{unit_params, NoTendonCurve, SubjectModel, UnitModel};
+pub use drive::DriveError;
+pub use drive::Prediction;
+pub use drive::PreparedTrial;
+pub use file::SubjectFileError;
+pub use units::SubjectModel;
+pub use units::UnitModel;

@@ -31,7 +31,7 @@ use muscle_actuator_core::physics::params::MuscleParams;
 use muscle_actuator_core::text::excerpt;
 
 /// CEINMS's maximum contraction velocity, optimal fibre lengths per second.
-pub const MAX_VELOCITY_LOPT_PER_S: f64 = 10.0;
+pub(crate) const MAX_VELOCITY_LOPT_PER_S: f64 = 10.0;
 
 /// A subject as the project models it: its units' parameters and its degrees of freedom.
 #[derive(Debug, Clone, PartialEq)]
@@ -94,7 +94,7 @@ impl SubjectModel {
 
     /// Each unit's parameters checked by a configuration's rules (docs/configuration.md): the
     /// first broken rule, if any.
-    pub fn check(&self) -> Result<(), String> {
+    pub(crate) fn check(&self) -> Result<(), String> {
         self.bounds.check()?;
         let mut cfg = ActuatorConfig {
             joints: vec![JointParams {
@@ -144,7 +144,7 @@ impl SubjectModel {
     }
 
     /// The units that span `dof`, by name; None for a degree of freedom it does not have.
-    pub fn dof_units(&self, dof: &str) -> Option<&[String]> {
+    pub(crate) fn dof_units(&self, dof: &str) -> Option<&[String]> {
         self.dofs
             .iter()
             .find(|(d, _)| d == dof)
@@ -161,7 +161,7 @@ pub struct NoTendonCurve;
 
 /// The parameters of `unit` of `subject` (the module's mapping); `None` when the subject gives
 /// no tendon curve.
-pub fn unit_params(subject: &Subject, unit: &Unit) -> Option<MuscleParams> {
+pub(crate) fn unit_params(subject: &Subject, unit: &Unit) -> Option<MuscleParams> {
     let d = &subject.defaults;
     let f_max = unit.max_isometric_force_n * unit.strength_coefficient;
     let v_max = MAX_VELOCITY_LOPT_PER_S * unit.optimal_fibre_length_m;

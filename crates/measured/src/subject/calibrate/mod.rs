@@ -46,14 +46,15 @@ use strengths::{best_strengths, Term};
 
 mod result;
 mod search;
-pub mod strengths;
+pub(crate) mod strengths;
 
-pub use result::OPTIMISER;
-pub use search::{CalibrateError, Outcome, Settings};
+pub use search::CalibrateError;
+pub use search::Outcome;
+pub use search::Settings;
 
 /// The cost of a candidate whose drive fails: above any mean of `1 − R²` a usable candidate
 /// gives on real data.
-pub const FAILED_COST: f64 = 1e3;
+pub(crate) const FAILED_COST: f64 = 1e3;
 
 /// What a calibrated parameter sets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -276,7 +277,7 @@ impl Problem {
     }
 
     /// The objective at `values`: the mean over trials and degrees of freedom of `1 − R²`.
-    pub fn cost(&self, values: &[f64]) -> f64 {
+    pub(crate) fn cost(&self, values: &[f64]) -> f64 {
         let params = self.params_at(values);
         let mut sum = 0.0;
         let mut count = 0usize;
@@ -302,7 +303,7 @@ impl Problem {
 
     /// The objective at the searched parameters' `values` (one per [`Problem::searched`]) with
     /// the best strengths ([`strengths`]), and every parameter's value.
-    pub fn evaluate(&self, values: &[f64]) -> (f64, Vec<f64>) {
+    pub(crate) fn evaluate(&self, values: &[f64]) -> (f64, Vec<f64>) {
         let mut full = self.start();
         for (&k, &v) in self.searched.iter().zip(values) {
             full[k] = v;

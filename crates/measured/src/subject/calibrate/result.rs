@@ -54,4 +54,4 @@ impl Problem {
 }
 
 /// The optimiser, as a calibrated subject records it.
-pub const OPTIMISER: &str = "CMA-ES (the cmaes crate, 0.2)";
+pub(crate) const OPTIMISER: &str = "CMA-ES (the cmaes crate, 0.2)";

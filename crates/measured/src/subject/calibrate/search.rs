@@ -48,7 +48,7 @@ pub struct Outcome {
 
 impl Problem {
     /// A point of the search space to the searched parameters' values (the cosine map).
-    pub fn values_of(&self, z: &[f64]) -> Vec<f64> {
+    pub(crate) fn values_of(&self, z: &[f64]) -> Vec<f64> {
         self.searched
             .iter()
             .map(|&k| &self.parameters[k])
