@@ -9,6 +9,7 @@
 //!   compare, export, limits.
 
 #![warn(missing_docs)]
+#![warn(unreachable_pub)]
 
 pub mod msgs;
 pub mod recording;

@@ -16,21 +16,21 @@
 //! moment_arm = 0.03             # m; or [c0, c1, …], a polynomial in the joint angle
 //! ```
 //!
-//! The antagonistic-pair form is read too ([`pair`]): a single `[joint]` table with a pulley
+//! The antagonistic-pair form is read too (`pair`): a single `[joint]` table with a pulley
 //! `radius` (and optional common `path_length`), and two muscles without spans, the first
 //! pulling towards positive angles; or one, which replaces the default muscle of its name.
 //!
 //! An optional `[stepper]` table sets the accuracy of the adaptive sub-steps for every model
-//! ([`stepper`]).
+//! (`stepper`).
 //!
 //! Built-in configurations by name: `elbow` (the default) and `arm` (after OpenSim's arm26).
 //!
-//! - [`schema`]: the structs, the default and the topology a configuration describes.
-//! - [`pair`]: the antagonistic-pair form.
-//! - [`parse`]: built-in names, files and TOML text; [`parse_error`]: why TOML does not fit.
-//! - [`validate`]: the rules and the warnings.
+//! - `schema`: the structs, the default and the topology a configuration describes.
+//! - `pair`: the antagonistic-pair form.
+//! - `parse`: built-in names, files and TOML text; `parse_error`: why TOML does not fit.
+//! - `validate`: the rules and the warnings.
 //! - [`overrides`]: single values set by dotted keys (`muscle.flexor.k_t`, `stepper.tolerance`).
-//! - [`stepper`]: the `[stepper]` table, the adaptive sub-steps' accuracy, and the stepping of a
+//! - `stepper`: the `[stepper]` table, the adaptive sub-steps' accuracy, and the stepping of a
 //!   run.
 
 pub mod overrides;
@@ -46,10 +46,7 @@ pub use overrides::OverridesError;
 /// For src/main.rs, which quotes warnings with it; the text helpers are [`crate::text`]'s.
 pub use parse::BUILT_IN;
 pub use parse_error::ParseError;
-pub use schema::ActuatorConfig;
-pub use schema::MuscleConfig;
-pub use schema::SpanConfig;
-pub use schema::DEFAULT_RADIUS;
+pub use schema::{ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_RADIUS};
 pub use stepper::{StepperConfig, StepperError};
 
 /// Why a configuration could not be used.

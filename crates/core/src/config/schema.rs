@@ -115,7 +115,7 @@ impl ActuatorConfig {
 
     /// The stepping of a run of `model` on this configuration: `substeps` fixed sub-steps if
     /// given, else the model's own with the `[stepper]` table's values
-    /// ([`StepperConfig::stepping`]; a table set with fixed sub-steps is refused).
+    /// (`StepperConfig::stepping`; a table set with fixed sub-steps is refused).
     pub fn stepping(
         &self,
         model: ModelKind,

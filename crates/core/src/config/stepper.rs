@@ -30,7 +30,7 @@ pub(crate) const MAX_TOLERANCE: f64 = 0.1;
 #[serde(deny_unknown_fields)]
 pub struct StepperConfig {
     /// Relative local error tolerance of each adaptive sub-step (of the state's scales), from
-    /// [`MIN_TOLERANCE`] to [`MAX_TOLERANCE`].
+    /// `MIN_TOLERANCE` to `MAX_TOLERANCE`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
     /// Most adaptive sub-steps per tick, 1 to [`MAX_SUBSTEPS`].

@@ -147,7 +147,7 @@ fn pass_from_steady(sos: &Sos, zi: &[State], x: &[f64]) -> Vec<f64> {
 
 /// `x` filtered forward then backward, so with no phase shift and the magnitude response
 /// squared (`scipy.signal.sosfiltfilt(sos, x)`, its default padding and initial conditions).
-/// Needs more samples than [`pad_len`]; refuses a non-finite sample.
+/// Needs more samples than `pad_len`; refuses a non-finite sample.
 pub fn filter_zero_phase(sos: &Sos, x: &[f64]) -> Result<Vec<f64>, EmgError> {
     check_finite(x)?;
     let edge = pad_len(sos);

@@ -29,10 +29,10 @@
 //! period of the EMG envelope they were calibrated on. It applies the delay as a shift of the
 //! EMG frames' times (`emgTime = frame.time + globalEmDelay`), not as a count of samples. At
 //! its third frame it sets both past outputs to the mean of the first two inputs (`noOfEmg_ ==
-//! 2`); here the state starts at rest, or where [`NeuralActivation::settle`] puts it.
+//! 2`); here the state starts at rest, or where `NeuralActivation::settle` puts it.
 //!
 //! When the model's tick differs from the EMG period, the exact course is to run the recursion
-//! at the EMG period and resample its output. [`NeuralParams::at_period`] converts the
+//! at the EMG period and resample its output. `NeuralParams::at_period` converts the
 //! constants instead, by matching roots: a root r over period T becomes r^(T'/T) over T', i.e.
 //! `C' = -(-C)^(T'/T)`, which keeps each mode's time constant and the unit gain. It is not exact:
 //! the recursion has no zeros that scale with the period, so the forced response (to a step,
@@ -151,8 +151,8 @@ impl NeuralParams {
 }
 
 /// The delay in whole samples nearest `delay_s` at `sample_period_s`: `round(delay / T)`,
-/// halves away from zero. Refuses a delay outside [0, [`MAX_DELAY_S`]] or over
-/// [`MAX_DELAY_SAMPLES`] samples.
+/// halves away from zero. Refuses a delay outside `0, [`MAX_DELAY_S``] or over
+/// `MAX_DELAY_SAMPLES` samples.
 pub fn delay_samples(delay_s: f64, sample_period_s: f64) -> Result<usize, EmgError> {
     let period = check_period(sample_period_s)?;
     if !(0.0..=MAX_DELAY_S).contains(&delay_s) {
@@ -184,7 +184,7 @@ pub struct NeuralActivation {
 
 impl NeuralActivation {
     /// At rest (past outputs and delayed inputs zero), with a delay of `delay_samples` samples
-    /// (at most [`MAX_DELAY_SAMPLES`]).
+    /// (at most `MAX_DELAY_SAMPLES`).
     pub fn new(params: NeuralParams, delay_samples: usize) -> Result<Self, EmgError> {
         if delay_samples > MAX_DELAY_SAMPLES {
             return Err(EmgError::DelaySamples {

@@ -15,7 +15,7 @@
 //! leaves the shapes fitted to muscle; the formula itself stays finite up to |A| ≈ 700.
 //!
 //! Here the formula is evaluated as `expm1(A u)/expm1(A)` (exact to rounding for small A u) and,
-//! for |A| below [`LINEAR_BELOW`], by its Taylor series in A to second order,
+//! for |A| below `LINEAR_BELOW`, by its Taylor series in A to second order,
 //! `u (1 + A (u - 1)/2 + A² (u - 1)(2u - 1)/12)`, whose error there is below 1e-17: no 0/0, and
 //! the two sides meet to rounding at the switch.
 
@@ -29,7 +29,7 @@ pub(crate) const MAX_SHAPE_FACTOR: f64 = 3.0;
 /// |A|³/384 over u in [0, 1], is then under 1e-17).
 pub(crate) const LINEAR_BELOW: f64 = 1e-5;
 
-/// The shape factor A, checked to lie in [[`MIN_SHAPE_FACTOR`], [`MAX_SHAPE_FACTOR`]].
+/// The shape factor A, checked to lie in `[`MIN_SHAPE_FACTOR``, `MAX_SHAPE_FACTOR`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShapeFactor(f64);
 

@@ -3,9 +3,9 @@
 //! explicit reference solver the tests compare it with is test support
 //! (tests/common/reference.rs).
 //!
-//! - [`esdirk`]: the stepper (stages, simplified Newton, sub-step control).
-//! - [`tableau`]: its tableaux, TR-BDF2, ARK3(2)4L\[2\]SA and ESDIRK4(3)6L\[2\]SA.
-//! - [`dense`], [`arrowhead`]: iteration matrices, general and for the plant's structure.
+//! - `esdirk`: the stepper (stages, simplified Newton, sub-step control).
+//! - `tableau`: its tableaux, TR-BDF2, ARK3(2)4L\[2\]SA and ESDIRK4(3)6L\[2\]SA.
+//! - `dense`, `arrowhead`: iteration matrices, general and for the plant's structure.
 
 pub(crate) mod arrowhead;
 pub(crate) mod dense;

@@ -7,7 +7,7 @@
 //!   where they are named;
 //! - [`curves`]: the curve sets, the paper's and OpenSim's DeGroote 2016 and Thelen 2003 (§4b);
 //! - [`spring`], [`tendon`], [`parallel_element`]: the passive elements (§4);
-//! - [`mtu`]: one muscle–tendon unit (§5); [`moment_arm`], [`joint`], [`topology`]: the limb
+//! - [`mtu`]: one muscle–tendon unit (§5); [`moment_arm`], `joint`, [`topology`]: the limb
 //!   (§8, §8b); [`plant`]: the whole limb as one ODE (§5, §8b);
 //! - [`stiffness`]: fibre, muscle–tendon and joint stiffness (§8); [`observables`]: the fields
 //!   observable about a muscle and a joint;

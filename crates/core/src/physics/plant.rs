@@ -16,7 +16,7 @@
 //! Coupling: muscle i's equations involve only its own state and the angles of the joints it
 //! spans; joint j's acceleration involves the tendon forces of the muscles that span it. The
 //! Jacobian is therefore block-arrowhead (a block per muscle, a joint block), which
-//! [`crate::integrator::arrowhead`] exploits.
+//! `crate::integrator::arrowhead` exploits.
 
 use crate::physics::energetics::metabolic::MetabolicSample;
 use crate::physics::energetics::probe::ExcitationTerms;
@@ -294,7 +294,7 @@ impl Plant {
         self.mtus[i].fibre_state(activation, self.muscle_state(y, i), end)
     }
 
-    /// Muscle i's metabolic rates at state y (see [`Mtu::metabolic`]).
+    /// Muscle i's metabolic rates at state y (see `Mtu::metabolic`).
     pub fn metabolic(
         &self,
         y: &[f64],

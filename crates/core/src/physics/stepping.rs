@@ -1,5 +1,5 @@
 //! How a tick is divided into implicit sub-steps (docs/model.md §10): each model's default
-//! ([`ModelSpec::stepping`](crate::physics::models::ModelSpec::stepping)) and a run's
+//! (`ModelSpec::stepping`) and a run's
 //! choice are values of this one type.
 
 /// Most adaptive sub-steps per tick by default.

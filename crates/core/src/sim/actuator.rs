@@ -144,7 +144,7 @@ impl Actuator {
     pub fn step(&mut self) -> Result<(), StepError> {
         self.sim.step_and_fill(&mut self.state)
     }
-    /// Steps its independent parts on `threads` threads ([`Simulation::set_threads`]: the same
+    /// Steps its independent parts on `threads` threads (`Simulation::set_threads`: the same
     /// results to the bit; 1, the default, steps them on the caller's thread).
     pub fn set_threads(&mut self, threads: usize) -> Result<(), SetupError> {
         self.sim.set_threads(threads)

@@ -2,14 +2,14 @@
 //! facade the node uses, and the offline scenarios. It knows nothing of ROS, files or threads.
 //!
 //! - [`simulation`]: a plant stepped at a fixed tick, inputs held over each tick;
-//!   [`setup_error`]: why a simulation or an actuator cannot be set up;
-//! - [`part`]: one independent part of a limb with its own stepper; [`jacobian`]: the plant's
+//!   `setup_error`: why a simulation or an actuator cannot be set up;
+//! - `part`: one independent part of a limb with its own stepper; [`jacobian`]: the plant's
 //!   Jacobian by blocks for the block-arrowhead iteration matrix (docs/model.md §8b);
-//! - [`actuator`]: [`Actuator`], the facade the node and the CLI step;
-//! - [`snapshot`]: what is observable after a tick; [`energy`]: the energy spent since start;
+//! - `actuator`: [`Actuator`], the facade the node and the CLI step;
+//! - [`snapshot`]: what is observable after a tick; `energy`: the energy spent since start;
 //! - [`saved`]: an actuator's complete state as bytes and back (`Actuator::to_bytes`,
 //!   `Actuator::from_bytes`), for a copy that continues bit for bit;
-//! - [`scenario`]: the paper's experiments and scenario files; [`scenario_kinds`]: their
+//! - [`scenario`]: the paper's experiments and scenario files; `scenario_kinds`: their
 //!   attachments and signals; [`schedule`]: their input schedules; [`scenario_error`]: why one
 //!   cannot be read or run; [`run`]: a run's records, tick after tick.
 //! - [`rollout`]: an actuator stepped over per-tick inputs, chosen outputs into flat buffers

@@ -33,7 +33,7 @@ impl<'a> Record<'a> {
 }
 
 /// A record whose muscles, joints or stiffness matrix do not match the run's names
-/// ([`Run::push`]).
+/// (`Run::push`).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
     "a state of {muscles} muscles, {joints} joints and {stiffness_entries} stiffness entries in \
@@ -110,7 +110,7 @@ impl Run {
         self.push_parts(time, &state.muscles, &state.joints, &state.stiffness_matrix)
     }
 
-    /// [`Run::push`] from the record's parts.
+    /// `Run::push` from the record's parts.
     pub fn push_parts(
         &mut self,
         time: f64,

@@ -10,7 +10,7 @@
 //! - the simulation: tick, the inputs held over the next tick (driven joints' carried motion
 //!   included), activations, the state vector, each muscle's energetics (the last tick's
 //!   sample and the energies since start);
-//! - each part: its contractile elements' own state ([`ContractileModel::save_state`]: the full
+//! - each part: its contractile elements' own state (`ContractileModel::save_state`: the full
 //!   Huxley model's bond grid and sub-step closures; nothing for Hill and DM), its state and
 //!   inputs as last gathered, the carried sub-step size, the activation memo, and its stepper
 //!   (Jacobian, factorisation and their validity, Newton's carried factors, the last step's end
@@ -37,8 +37,6 @@
 //! foreign bytes give an error on one line, never a panic or an actuator that fails later. The
 //! version changes with any change of what is saved or of its order (a field added to a saved
 //! struct fails to compile until it is saved: the save functions name every field).
-//!
-//! [`ContractileModel::save_state`]: crate::physics::models::ContractileModel::save_state
 
 use crate::config::ActuatorConfig;
 use crate::physics::models::ModelKind;

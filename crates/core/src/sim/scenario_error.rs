@@ -83,7 +83,7 @@ impl ScenarioError {
 /// A rule a scenario breaks.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BadScenario {
-    /// A name longer than [`crate::sim::scenario::MAX_NAME_CHARS`].
+    /// A name longer than `crate::sim::scenario::MAX_NAME_CHARS`.
     #[error("name {:?} is longer than {max_chars} characters", excerpt(.name))]
     NameTooLong {
         /// The name.

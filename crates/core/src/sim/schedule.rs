@@ -64,7 +64,7 @@ pub enum Schedule {
     },
 }
 
-/// A schedule whose numbers break its rules ([`Schedule::check`]).
+/// A schedule whose numbers break its rules (`Schedule::check`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ScheduleError {
     /// A value that is not a finite number.

@@ -25,7 +25,7 @@ pub const MAX_THREADS: usize = 256;
 /// Highest tick rate, Hz (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;
 
-/// The default stepping of a model (its [`ModelSpec::stepping`](crate::physics::models::ModelSpec::stepping)),
+/// The default stepping of a model (its `ModelSpec::stepping`),
 /// that of a configuration without a `[stepper]` table
 /// ([`ActuatorConfig::stepping`](crate::config::ActuatorConfig::stepping)).
 pub fn default_stepping(model: ModelKind) -> Stepping {

@@ -302,7 +302,7 @@ pub enum ExcitationMapError {
         /// The name.
         name: String,
     },
-    /// No unit in `<output>`, or more than [`MAX_UNITS`].
+    /// No unit in `<output>`, or more than `MAX_UNITS`.
     #[error("line {line}: output: {found} units, a map drives 1 to {MAX_UNITS}")]
     UnitCount {
         /// `<output>`'s line.

@@ -2,13 +2,13 @@
 //! 48(14): 3929-3936; the toolbox's test data, data/ceinms/README.md): typed readers, every
 //! value checked, nothing simulated.
 //!
-//! - [`table`]: a tab-separated table (`emg.txt`, `lmt.txt`, `<dof>Ma.txt`, `<dof>Torque.txt`):
+//! - `table`: a tab-separated table (`emg.txt`, `lmt.txt`, `<dof>Ma.txt`, `<dof>Torque.txt`):
 //!   column names, times (s), values.
-//! - [`trial`]: a trial's folder: its EMG, muscle–tendon lengths, and per degree of freedom the
+//! - `trial`: a trial's folder: its EMG, muscle–tendon lengths, and per degree of freedom the
 //!   moment arms and the inverse-dynamics moment, cross-checked.
-//! - [`subject`]: CEINMS's subject file: per muscle–tendon unit its parameters, the shared
-//!   curves ([`curve`]), the degrees of freedom and the units that span each.
-//! - [`excitation_map`]: how the recorded EMG channels drive the units (CEINMS's
+//! - `subject`: CEINMS's subject file: per muscle–tendon unit its parameters, the shared
+//!   curves (`curve`), the degrees of freedom and the units that span each.
+//! - `excitation_map`: how the recorded EMG channels drive the units (CEINMS's
 //!   `emgGenerator` file), and the units' excitations from a channel table.
 //! - [`rating`]: how well a predicted series matches a measured one: the coefficient of
 //!   determination R², Pearson's r², the RMSE and the RMSE over the measured peak.
@@ -49,7 +49,7 @@ const MAX_PATH_CHARS: usize = 200;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeasuredError {
     /// The file or folder could not be read: missing, not a regular file, larger than its
-    /// kind may be ([`table::MAX_TABLE_BYTES`], 1 MiB for XML), unreadable.
+    /// kind may be (`table::MAX_TABLE_BYTES`, 1 MiB for XML), unreadable.
     #[error("cannot read {path}: {reason}")]
     Io {
         /// The path, as given (at most 200 characters).

@@ -31,7 +31,7 @@
 //! series without spread (`SS_tot = 0`: R² is 0/0 for p = m and −∞ otherwise, r is 0/0), and
 //! for Pearson's r a predicted series without spread. "Without spread" is all values equal, or
 //! a spread so small beside the series' peak that the figures would leave the doubles:
-//! `Σ(x − x̄)²` below [`MIN_SPREAD`] times the square of the larger series' peak (rounded up to
+//! `Σ(x − x̄)²` below `MIN_SPREAD` times the square of the larger series' peak (rounded up to
 //! a power of two), an RMS deviation under about 1e-100 of it. The series are first divided by
 //! that power of two (exact: the figures are those of the raw values), so no square overflows;
 //! R², r² and the RMSE over the peak are then always finite, and the RMSE is unless |m − p|
@@ -105,7 +105,7 @@ pub enum RatingError {
         /// The value.
         value: f64,
     },
-    /// A series without spread (all its values equal, or its spread below [`MIN_SPREAD`] of
+    /// A series without spread (all its values equal, or its spread below `MIN_SPREAD` of
     /// the peak): R² and r divide by the measured one's, r by the predicted one's.
     #[error(
         "the {series} series has no spread (its first value {first}): Pearson's r divides by \

@@ -6,8 +6,8 @@
 //! **Interpolation.** Between the samples `(tᵢ, vᵢ)` and `(tᵢ₊₁, vᵢ₊₁)` the value at t is
 //! `(1 − f) vᵢ + f vᵢ₊₁` with `f = (t − tᵢ)/(tᵢ₊₁ − tᵢ)`; at a sample's own time it is that
 //! sample's value, bit for bit. A time before the first sample or after the last is refused
-//! (no extrapolation), except within [`TIME_TOLERANCE_S`] of an end, which is taken as that end
-//! (the tolerance by which a trial's tables share their times, [`Trial::check`]). The error of
+//! (no extrapolation), except within `TIME_TOLERANCE_S` of an end, which is taken as that end
+//! (the tolerance by which a trial's tables share their times, `Trial::check`). The error of
 //! linear interpolation is at most `h² max|v''| / 8` on a step h.
 //!
 //! **Derivative.** At the samples, by the derivative of the parabola through three neighbours
@@ -26,8 +26,8 @@
 //! fibre length instead, by a cubic spline through its trace: `updateFibreVelocity` in the
 //! toolbox's `lib/NMSmodel/MTU.cpp`, the spline in `lib/Curve/Curve.h`.)
 //!
-//! **A trial.** The toolbox's `<dof>Torque.txt` share `lmt.txt`'s times: [`Trial::check`] holds
-//! them within [`TIME_TOLERANCE_S`], and in `data/ceinms` they are the same text, so the same
+//! **A trial.** The toolbox's `<dof>Torque.txt` share `lmt.txt`'s times: `Trial::check` holds
+//! them within `TIME_TOLERANCE_S`, and in `data/ceinms` they are the same text, so the same
 //! doubles. [`moments_at_kinematics`] interpolates each moment at `lmt.txt`'s times all the
 //! same, which returns the moment's column unchanged there, and values on `lmt.txt`'s times for
 //! a trial whose times differ within the tolerance.

@@ -33,7 +33,7 @@ pub struct Table {
 }
 
 impl Table {
-    /// Reads and checks the table in `path` (a regular file of at most [`MAX_TABLE_BYTES`]).
+    /// Reads and checks the table in `path` (a regular file of at most `MAX_TABLE_BYTES`).
     pub fn read(path: &Path) -> Result<Table, MeasuredError> {
         let error = |error| MeasuredError::Table {
             path: shown(path),

@@ -221,7 +221,7 @@ fn same_times(file: &str, table: &Table, lmt: &Table) -> Result<(), TrialError> 
 /// What is wrong with a trial's folder; file names are those in it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TrialError {
-    /// More entries than [`MAX_TRIAL_ENTRIES`].
+    /// More entries than `MAX_TRIAL_ENTRIES`.
     #[error("more than {max} entries in the folder (a trial's folder holds its tables)")]
     TooManyEntries {
         /// The limit.

@@ -121,7 +121,7 @@ impl PreparedTrial {
     }
 
     /// Holds at the reach of its fibre every length of a unit that passes it by at most
-    /// [`HELD_REACH_FRACTION`] of the unit's resting length, for a prediction (docs/emg.md
+    /// `HELD_REACH_FRACTION` of the unit's resting length, for a prediction (docs/emg.md
     /// "Prediction"); a length further beyond is refused ([`DriveError::OutOfReach`]) and
     /// nothing is changed. The samples held, if any.
     pub fn hold_within_reach(

@@ -106,7 +106,7 @@ pub enum DriveError {
     /// The simulation cannot be set up.
     #[error("{0}")]
     Setup(String),
-    /// A unit's length leaves its fibre longer than [`MAX_FIBRE_LOPT`] optimal lengths even with
+    /// A unit's length leaves its fibre longer than `MAX_FIBRE_LOPT` optimal lengths even with
     /// its tendon at slack: a length no fibre of the unit can take.
     #[error("trial {trial}: unit {unit:?} is {length_m} m long at {time_s} s, which leaves its fibre {fibre_lopt:.2} optimal lengths long even with its tendon at slack (at most {MAX_FIBRE_LOPT}); check the lengths, or the unit's l_ts and l_opt")]
     OutOfReach {

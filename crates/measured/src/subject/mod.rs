@@ -1,11 +1,11 @@
 //! A person's muscle–tendon units driven by their measurements (docs/emg.md): the units of a
-//! CEINMS subject as the project's muscles ([`units`]), each unit stepped along its measured
+//! CEINMS subject as the project's muscles (`units`), each unit stepped along its measured
 //! length under its EMG-driven excitation with its own fibre and tendon dynamics, and the joint
 //! moments `Σ F r` they make ([`drive`]).
 //!
-//! - [`units`]: a CEINMS subject's units as the project's muscles; [`mod@file`]: the project's
-//!   subject file; [`bounds`] and [`record`]: a calibration's bounds and its record.
-//! - [`drive`]: a trial's units stepped (prepared in `prepare`, refused per [`limits`] with a
+//! - `units`: a CEINMS subject's units as the project's muscles; `mod@file`: the project's
+//!   subject file; `bounds` and `record`: a calibration's bounds and its record.
+//! - [`drive`]: a trial's units stepped (prepared in `prepare`, refused per `limits` with a
 //!   `DriveError`).
 //! - [`calibrate`]: the parameters fitted to measured moments.
 //!
@@ -24,9 +24,6 @@ mod prepare;
 pub(crate) mod record;
 pub(crate) mod units;
 
-pub use drive::DriveError;
-pub use drive::Prediction;
-pub use drive::PreparedTrial;
+pub use drive::{DriveError, Prediction, PreparedTrial};
 pub use file::SubjectFileError;
-pub use units::SubjectModel;
-pub use units::UnitModel;
+pub use units::{SubjectModel, UnitModel};

@@ -16,7 +16,7 @@ macro_rules! ros2_message {
 
 mod header;
 mod time;
-pub mod type_hash;
+pub(crate) mod type_hash;
 
 pub use header::Header;
 pub use time::Time;
@@ -329,7 +329,7 @@ pub fn definition(type_name: &str) -> Option<&'static str> {
 /// (once per process), if it is one of them: the `topic_type_hash` of recordings.
 /// `tests/python/test_recording.py` checks it against the hash `rosbags` computes from the
 /// schemas embedded in a recording.
-pub fn type_hash(type_name: &str) -> Option<&'static str> {
+pub(crate) fn type_hash(type_name: &str) -> Option<&'static str> {
     static HASHES: OnceLock<Vec<(&'static str, Option<String>)>> = OnceLock::new();
     HASHES
         .get_or_init(|| {

@@ -36,7 +36,7 @@ impl Time {
     }
 
     /// From the wire's fields; a `nanosec` of a second or more folds into the seconds.
-    pub const fn new(sec: i32, nanosec: u32) -> Self {
+    pub(crate) const fn new(sec: i32, nanosec: u32) -> Self {
         Self::from_nanos(sec as i64 * NS_PER_S + nanosec as i64)
     }
 

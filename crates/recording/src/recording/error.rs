@@ -209,7 +209,7 @@ impl RecordingError {
     }
 
     /// The same error naming `to` where it names `from` (a temporary named as its target).
-    pub fn renamed(mut self, from: &Path, to: &Path) -> Self {
+    pub(crate) fn renamed(mut self, from: &Path, to: &Path) -> Self {
         let path = match &mut self {
             Self::Unreadable { path, .. }
             | Self::Invalid { path, .. }

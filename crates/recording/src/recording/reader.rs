@@ -153,7 +153,7 @@ pub fn read_recording(path: &Path, recover: bool) -> Result<Recording, Recording
 }
 
 /// As [`read_recording`], from memory.
-pub fn read_bytes(buf: &[u8], recover: bool) -> Result<Recording, ReadError> {
+pub(crate) fn read_bytes(buf: &[u8], recover: bool) -> Result<Recording, ReadError> {
     let mut rec = Recording::default();
     match read_into(buf, recover, &mut rec) {
         Ok(()) => Ok(rec),

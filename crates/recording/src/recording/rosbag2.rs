@@ -9,7 +9,7 @@ use serde::Serialize;
 /// The rosbag2 metadata version written.
 pub(crate) const METADATA_VERSION: u32 = 9;
 /// The ROS distribution named in the metadata.
-pub const ROS_DISTRO: &str = "kilted";
+pub(crate) const ROS_DISTRO: &str = "kilted";
 
 /// A ROS duration of rosbag2's QoS YAML: seconds and nanoseconds.
 #[derive(Debug, Clone, Copy, Serialize)]
@@ -110,7 +110,7 @@ struct TopicMetadata<'a> {
 
 /// One topic of a bag, with its message count.
 #[derive(Debug, Clone, Copy)]
-pub struct Topic<'a> {
+pub(crate) struct Topic<'a> {
     /// Topic name.
     pub name: &'a str,
     /// Type name `pkg/msg/Type`.

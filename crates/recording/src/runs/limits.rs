@@ -6,7 +6,7 @@ use muscle_actuator_core::physics::stepping::SteppingError;
 use muscle_actuator_core::sim::simulation::{Stepping, MAX_RATE_HZ};
 
 /// Most sub-steps per tick, fixed or as the adaptive maximum (as `Simulation::new` allows).
-pub use muscle_actuator_core::sim::simulation::MAX_SUBSTEPS;
+pub(crate) use muscle_actuator_core::sim::simulation::MAX_SUBSTEPS;
 
 /// Most ticks a recorded run may span: replay simulates every one of them (10^8: a day at
 /// 1 kHz).

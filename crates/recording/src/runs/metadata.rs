@@ -402,7 +402,7 @@ impl RunMeta {
     }
 
     /// The topology of the run.
-    pub fn topology(&self) -> Topology {
+    pub(crate) fn topology(&self) -> Topology {
         let first = &self.config.muscles[0];
         match &self.attachment {
             AttachmentMeta::Joint | AttachmentMeta::Driven => self.config.topology(),
@@ -416,7 +416,11 @@ impl RunMeta {
     }
 
     /// The simulation this run describes, in its initial state (with model `model`).
-    pub fn build(&self, model: ModelKind, stepping: Stepping) -> Result<Simulation, BuildError> {
+    pub(crate) fn build(
+        &self,
+        model: ModelKind,
+        stepping: Stepping,
+    ) -> Result<Simulation, BuildError> {
         self.config.validate()?;
         let plant = Plant::new(&self.topology(), model)?;
         let mut initial = Inputs::zeros(plant.muscle_count(), plant.joint_count());

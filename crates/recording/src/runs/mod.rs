@@ -1,5 +1,5 @@
 //! Runs as recordings: the channels of a run file ([`channels`]), its `muscle_actuator` metadata
-//! record ([`metadata`]), `simulate --out` ([`simulate`], written by [`writer`]), reading a run
+//! record ([`metadata`]), `simulate --out` (`simulate`, written by `writer`), reading a run
 //! back ([`load`], checked by [`checks`] within [`limits`]), [`replay`](mod@replay), [`compare`] and
 //! [`export`]; what they report ([`error`]).
 //!
@@ -18,8 +18,8 @@ pub mod load;
 pub mod metadata;
 pub mod observed;
 pub mod replay;
-pub mod simulate;
-pub mod writer;
+pub(crate) mod simulate;
+pub(crate) mod writer;
 
 /// The channels of a run, for the node (`muscle_actuator::ros`) and the tests, which name them
 /// from here; the time base is [`muscle_actuator_core::time`]'s.

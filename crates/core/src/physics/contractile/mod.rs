@@ -5,7 +5,7 @@
 //!   equation and the Hill element's force (§3);
 //! - [`crossbridge`]: Huxley's attachment and detachment rates (§6);
 //! - [`distribution_moment`]: Zahalak's moment equations and their closure (§6);
-//!   [`closure_limits`]: its limits' values kept for the fluxes at a tick's end (§11.1);
+//!   `closure_limits`: its limits' values kept for the fluxes at a tick's end (§11.1);
 //! - [`huxley_grid`]: the full model's bond distribution by characteristics (§7);
 //!   [`huxley_exact`]: its closed-form steady states (§7);
 //! - [`calibration`]: the cross-bridge models scaled to a muscle's Fmax and vmax (§6–7).

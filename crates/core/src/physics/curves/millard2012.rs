@@ -9,7 +9,7 @@
 //!
 //! Inside a muscle OpenSim adapts two of them to the formulation
 //! (`Millard2012EquilibriumMuscle::extendFinalizeFromProperties`), and so does a muscle here
-//! ([`Shape::of`]): the classic Hill formulation (an equilibrium fibre on an elastic tendon
+//! (`Shape::of`): the classic Hill formulation (an equilibrium fibre on an elastic tendon
 //! without damper), whose fibre velocity comes from inverting the force–velocity curve, keeps an
 //! active floor of 0.1 and gives the force–velocity curve end slopes of half the near slopes, so
 //! that it stays invertible; every other formulation (damped, rigid tendon, a fibre with mass)
@@ -136,8 +136,8 @@ fn corners(
 }
 
 /// The active force–length curve f_L(l̃): five corners, from the floor at
-/// [`ACTIVE_MIN_NORM_FIBER_LENGTH`] up the steep and the shallow ascending limbs to 1 at l̃ = 1,
-/// down to the floor at [`ACTIVE_MAX_NORM_FIBER_LENGTH`]; flat at the floor `ylow` outside
+/// `ACTIVE_MIN_NORM_FIBER_LENGTH` up the steep and the shallow ascending limbs to 1 at l̃ = 1,
+/// down to the floor at `ACTIVE_MAX_NORM_FIBER_LENGTH`; flat at the floor `ylow` outside
 /// (`createFiberActiveForceLengthCurve`).
 pub fn active_force_length_curve(ylow: f64) -> Result<SegmentedBezier, NotACorner> {
     let (x0, x1, x2, x3) = (
@@ -170,7 +170,7 @@ pub fn active_force_length_curve(ylow: f64) -> Result<SegmentedBezier, NotACorne
 }
 
 /// The force–velocity curve f_V(ṽ): 0 at ṽ = −1, 1 at 0, the eccentric multiplier at 1, with
-/// knots at ∓[`FV_NEAR_VMAX`]; straight with the end slopes `dydx_c` (at ṽ = −1) and `dydx_e`
+/// knots at ∓`FV_NEAR_VMAX`; straight with the end slopes `dydx_c` (at ṽ = −1) and `dydx_e`
 /// (at 1) beyond ±1 (`createFiberForceVelocityCurve`).
 pub fn force_velocity_curve(dydx_c: f64, dydx_e: f64) -> Result<SegmentedBezier, NotACorner> {
     let (dydx_near_c, dydx_near_e) = (FV_CONCENTRIC_SLOPE_NEAR_VMAX, FV_ECCENTRIC_SLOPE_NEAR_VMAX);
@@ -198,7 +198,7 @@ pub fn force_velocity_curve(dydx_c: f64, dydx_e: f64) -> Result<SegmentedBezier,
 }
 
 /// The passive force–length curve f_PE(l̃) for a strain at one normalised force `e1`: zero up
-/// to l̃ = 1, a foot of slope [`PASSIVE_STIFFNESS_AT_LOW_FORCE`], then 1 at `1 + e1` with slope
+/// to l̃ = 1, a foot of slope `PASSIVE_STIFFNESS_AT_LOW_FORCE`, then 1 at `1 + e1` with slope
 /// `2 / e1`, straight beyond (`createFiberForceLengthCurve`). Needs 0 < e1 < 5 (the foot's slope
 /// below the mean slope 1/e1).
 pub fn passive_force_length_curve(e1: f64) -> Result<SegmentedBezier, NotACorner> {
@@ -220,7 +220,7 @@ pub fn passive_force_length_curve(e1: f64) -> Result<SegmentedBezier, NotACorner
 }
 
 /// The tendon force–length curve f_T(l̃_T) for a strain at one normalised force `e_iso`: zero
-/// when slack, a toe up to [`TENDON_NORM_FORCE_AT_TOE_END`], then straight with slope
+/// when slack, a toe up to `TENDON_NORM_FORCE_AT_TOE_END`, then straight with slope
 /// `1.375 / e_iso` through 1 at `1 + e_iso` (`createTendonForceLengthCurve`).
 pub fn tendon_force_length_curve(e_iso: f64) -> Result<SegmentedBezier, NotACorner> {
     let k_iso = TENDON_STIFFNESS_TIMES_STRAIN / e_iso;

@@ -1,15 +1,15 @@
 //! Curve sets: the normalised curves a Hill-type muscle is made of, from three sources
 //! (docs/model.md §4b). A set is named in configurations by [`CurveSet::name`].
 //!
-//! - [`paper`]: the paper's force–length and force–velocity curves (§3), the default;
+//! - `paper`: the paper's force–length and force–velocity curves (§3), the default;
 //! - [`degroote2016`]: DeGrooteFregly2016Muscle's curves as OpenSim 4.6 computes them;
 //! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them;
 //! - [`millard2012`]: Millard2012EquilibriumMuscle's quintic Bézier curves as OpenSim 4.6 builds
 //!   them ([`quintic_bezier`]);
-//! - [`rising_root`]: the bracketed Newton solve the point-wise curves evaluate and invert with;
+//! - `rising_root`: the bracketed Newton solve the point-wise curves evaluate and invert with;
 //! - [`tabulated`]: curves given as points, by the cubic spline CEINMS interpolates its subject
 //!   files' curves with;
-//! - [`overlap`], [`force_velocity`]: a muscle's active force–length and Hill force–velocity
+//! - `overlap`, [`force_velocity`]: a muscle's active force–length and Hill force–velocity
 //!   relations of its set, in SI units (the tendon's and the parallel element's are
 //!   [`crate::physics::tendon::Tendon`] and [`crate::physics::parallel_element::ParallelElement`]).
 //!

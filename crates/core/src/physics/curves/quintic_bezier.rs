@@ -5,13 +5,13 @@
 //! A curve is a chain of "corners": each segment is a quintic Bézier curve in the parameter
 //! u ∈ [0, 1], `x(u) = Σ_k C(5,k) (1−u)^(5−k) u^k px_k` and likewise y(u), whose six control
 //! points join two end points along the lines through them with the given slopes
-//! ([`corner_control_points`]). Consecutive segments share an end point and its slope, so the
+//! (`corner_control_points`). Consecutive segments share an end point and its slope, so the
 //! curve is continuously differentiable. Outside its first and last end points it continues as
 //! the straight lines through them with their slopes.
 //!
 //! Evaluating y at x means solving x(u) = x for u on the segment that holds x. OpenSim starts
 //! Newton's method from a cubic-spline guess and stops at |x(u) − x| ≤ 100 ε; here Newton's
-//! method is safeguarded by bisection on [0, 1] ([`super::rising_root`]) and runs until x(u) is
+//! method is safeguarded by bisection on [0, 1] (`super::rising_root`) and runs until x(u) is
 //! within rounding of x, so
 //! the two agree to about 1e-13 (tests/curve_sets.rs). Written here rather than taken from a
 //! crate: no crate builds Millard's corners, and the evaluation must not allocate.
@@ -167,7 +167,7 @@ impl Segment {
     }
 }
 
-/// A curve y(x) of up to [`MAX_SEGMENTS`] corners whose x rises along each segment, continued
+/// A curve y(x) of up to `MAX_SEGMENTS` corners whose x rises along each segment, continued
 /// linearly outside them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SegmentedBezier {
@@ -182,7 +182,7 @@ pub struct SegmentedBezier {
 impl SegmentedBezier {
     /// The curve through the given corners (each the `(x, y)` control points of one segment, in
     /// order, joined end to start), with the slopes at its two ends, which its linear
-    /// continuations keep. At most [`MAX_SEGMENTS`]; the caller builds them.
+    /// continuations keep. At most `MAX_SEGMENTS`; the caller builds them.
     pub fn new(
         corners: &[(ControlPoints, ControlPoints)],
         dydx_first: f64,

@@ -54,7 +54,7 @@
 //!
 //! # The inverse
 //!
-//! [`TabulatedCurve::argument_at`] inverts the curve's rising part (tabulated/rising.rs): the
+//! `TabulatedCurve::argument_at` inverts the curve's rising part (tabulated/rising.rs): the
 //! longest stretch on which the spline rises that holds the steepest place of the interval
 //! whose points rise the most. Below and above the values it takes there it returns the
 //! stretch's ends; the flat and falling parts (a tendon's slack padding, its plateau, the

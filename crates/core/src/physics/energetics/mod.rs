@@ -1,14 +1,14 @@
 //! Muscle energetics (docs/model.md §11): what a muscle spends, in two families of models.
 //!
 //! - **Cross-bridge energetics** of the Huxley models (Huxley 1957): each detachment splits one
-//!   ATP, so the ATP rate is the detachment flux of the bond distribution ([`bridge_flux`]: the
+//!   ATP, so the ATP rate is the detachment flux of the bond distribution (`bridge_flux`: the
 //!   Distribution-Moment closure in closed form, the full model's grid by quadrature), and the
 //!   heat comes from its own two sources, the free energy not stored as strain when a bridge
 //!   attaches and the strain a bridge still holds when it detaches ([`bridge_power`]). The
 //!   steady states of Huxley (1957) in closed form are in [`huxley_steady`].
 //! - **Phenomenological heat rates** for any model: Umberger (2010), with the options of Uchida
 //!   et al. (2016), and Bhargava et al. (2004), as OpenSim's metabolic probes compute them
-//!   ([`probe`], [`umberger`], [`bhargava`]; the selection in [`phenomenological`]).
+//!   (`probe`, [`umberger`], `bhargava`; the selection in [`phenomenological`]).
 //!
 //! [`metabolic`] is what a run publishes of them per muscle and instant. [`params`] holds a muscle's energetics parameters (the configuration's `[muscle.energetics]`).
 //! [`steady`] puts both together for isovelocity steady states at full activation and optimal

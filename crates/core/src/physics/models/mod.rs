@@ -1,5 +1,5 @@
-//! The contractile-element models: the interface each implements ([`contractile_model`]:
-//! [`ContractileModel`], its [`ModelSpec`] and the [`ModelKind`] that names it), one file per
+//! The contractile-element models: the interface each implements (`contractile_model`:
+//! `ContractileModel`, its `ModelSpec` and the [`ModelKind`] that names it), one file per
 //! model, and [`MODELS`], the one place where they are named. Adding a model is its file plus
 //! its line in [`MODELS`]. Everything that names models (the command line's help and default,
 //! the node's `model` parameter and its usage text, figures, the `MODEL_*` constants of
@@ -10,9 +10,8 @@ pub(crate) mod distribution_moment;
 pub(crate) mod hill;
 pub(crate) mod huxley_pde;
 
-pub use contractile_model::ModelBuildError;
-pub use contractile_model::ModelKind;
 pub(crate) use contractile_model::{CeInputs, ContractileModel, ModelSpec, SubstepMotion};
+pub use contractile_model::{ModelBuildError, ModelKind};
 use std::str::FromStr;
 
 /// Every model, from the simplest to the reference (the full Huxley model, docs/model.md §7).

@@ -22,9 +22,9 @@
 //!
 //! The objective is the mean over trials and degrees of freedom of `Σ(m − p)² / Σ(m − m̄)²`
 //! (one minus the coefficient of determination R², the rating the calibration is judged by); a
-//! candidate whose drive fails costs [`FAILED_COST`].
+//! candidate whose drive fails costs `FAILED_COST`.
 //!
-//! The strengths are solved, not searched ([`strengths`]): for each candidate of the other
+//! The strengths are solved, not searched (`strengths`): for each candidate of the other
 //! parameters, the units are driven at strength 1 and the groups' strengths that minimise the
 //! objective within their bounds follow by bounded linear least squares, since a unit's forces
 //! scale with its strength. The search (`calibrate/search.rs`) moves the other parameters only.
@@ -48,9 +48,7 @@ mod result;
 mod search;
 pub(crate) mod strengths;
 
-pub use search::CalibrateError;
-pub use search::Outcome;
-pub use search::Settings;
+pub use search::{CalibrateError, Outcome, Settings};
 
 /// The cost of a candidate whose drive fails: above any mean of `1 − R²` a usable candidate
 /// gives on real data.

@@ -36,7 +36,7 @@ pub struct Outcome {
     /// The best parameter values found, one per [`Problem::parameters`] (the start's if nothing
     /// found beats it).
     pub values: Vec<f64>,
-    /// Their cost ([`Problem::cost`], each trial driven with them).
+    /// Their cost (`Problem::cost`, each trial driven with them).
     pub cost: f64,
     /// The cost of the starting values.
     pub start_cost: f64,

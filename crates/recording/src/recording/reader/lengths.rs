@@ -65,7 +65,7 @@ impl<'a> Body<'a> {
 }
 
 /// Whether every string, map and block that record `opcode`'s parser reads fits in `body`.
-pub fn check(opcode: u8, body: &[u8]) -> Result<(), LengthError> {
+pub(crate) fn check(opcode: u8, body: &[u8]) -> Result<(), LengthError> {
     let mut b = Body { rest: body, opcode };
     match opcode {
         // profile, library
