@@ -193,7 +193,7 @@ def predict(
     subject: Subject | _Path,
     excitations: _Path,
     trial: _Path,
-    model: str = "hill",
+    model: str = "huxley",
     dofs: str | Sequence[str] | None = None,
 ) -> Prediction:
     """``muscle_actuator predict``: the subject's units (a :class:`Subject` or its file) driven
@@ -210,7 +210,7 @@ def calibrate(
     excitations: _Path,
     trials: _Path | Sequence[_Path],
     dofs: str | Sequence[str],
-    model: str = "hill",
+    model: str = "huxley",
     seed: int = 1,
     evaluations: int = 1000,
     threads: int | None = None,

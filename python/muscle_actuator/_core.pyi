@@ -226,7 +226,7 @@ def _predict(
     subject: Subject | _Path,
     excitations: _Path,
     trial: _Path,
-    model: str = "hill",
+    model: str = "huxley",
     dofs: str | Sequence[str] | None = None,
 ) -> Prediction: ...
 def _calibrate(

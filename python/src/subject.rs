@@ -245,7 +245,7 @@ fn prepare(
 /// `muscle_actuator predict`: the subject driven through the trial in the folder `trial`, its
 /// units excited through the map `excitations`.
 #[pyfunction]
-#[pyo3(signature = (subject, excitations, trial, model="hill", dofs=None))]
+#[pyo3(signature = (subject, excitations, trial, model="huxley", dofs=None))]
 pub fn _predict(
     py: Python<'_>,
     subject: &Bound<'_, PyAny>,

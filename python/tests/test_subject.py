@@ -123,12 +123,14 @@ def test_predict_of_chosen_dofs_takes_their_units_only(cli, subject, tmp_path):
 
 @pytest.fixture(scope="module")
 def calibrated(subject):
-    return ma.calibrate(subject, MAP, TWO_TRIALS, [KNEE], seed=7, evaluations=30, threads=2)
+    return ma.calibrate(subject, MAP, TWO_TRIALS, [KNEE], model="hill", seed=7, evaluations=30,
+                        threads=2)
 
 
 def test_calibrate_is_repeatable_for_a_seed_and_does_not_worsen(subject, calibrated):
     cal, result = calibrated
-    again_cal, again = ma.calibrate(subject, MAP, TWO_TRIALS, KNEE, seed=7, evaluations=30, threads=1)
+    again_cal, again = ma.calibrate(subject, MAP, TWO_TRIALS, KNEE, model="hill", seed=7,
+                                    evaluations=30, threads=1)
     assert again == result and again_cal == cal          # on 1 thread as on 2
     assert again_cal.to_toml() == cal.to_toml()
     assert result["cost"] <= result["start_cost"]
@@ -137,7 +139,8 @@ def test_calibrate_is_repeatable_for_a_seed_and_does_not_worsen(subject, calibra
     assert best == sorted(best, reverse=True)
     # the result is the best found, re-driven, or the start when nothing beat it
     assert result["cost"] == pytest.approx(min(best[-1], result["start_cost"]), rel=1e-9)
-    other_cal, other = ma.calibrate(subject, MAP, TWO_TRIALS, [KNEE], seed=8, evaluations=30, threads=2)
+    other_cal, other = ma.calibrate(subject, MAP, TWO_TRIALS, [KNEE], model="hill", seed=8,
+                                    evaluations=30, threads=2)
     assert other["parameters"] != result["parameters"]   # the seed is used
 
 

@@ -3,46 +3,67 @@
 //! output and, with `--csv`, every row as CSV (columns [`SteadyRow::FIELDS`], units in the
 //! names).
 
+use super::common::{
+    check_not_an_input, default_model, load_config, model_help, parse_model, read_files,
+};
+use super::{CliError, SteadyError};
 use muscle_actuator_core::config::{ActuatorConfig, MuscleConfig};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::steady::{steady_table, SteadyRow};
-use muscle_actuator_core::text::{excerpt, one_line};
+use muscle_actuator_core::sim::steady::{
+    steady_table, SteadyRow, DEFAULT_POINTS, MAX_POINTS, MIN_POINTS,
+};
+use muscle_actuator_core::text::excerpt;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// What `steady` is asked.
+#[derive(clap::Args)]
+pub struct Args {
+    #[arg(long, default_value = default_model(), help = model_help())]
+    model: String,
+    /// Limb configuration: a built-in name (elbow, arm) or a file (TOML); default: elbow.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// The muscle, by name; default: the configuration's first.
+    #[arg(long)]
+    muscle: Option<String>,
+    #[arg(long, default_value_t = DEFAULT_POINTS, help = points_help())]
+    points: usize,
+    /// CSV of every row ('-' for standard output, and no table).
+    #[arg(long)]
+    csv: Option<PathBuf>,
+}
+
+/// Help of `steady --points`.
+fn points_help() -> String {
+    format!(
+        "Shortening velocities, evenly from -vmax to vmax through 0: an odd number from \
+         {MIN_POINTS} to {MAX_POINTS}"
+    )
+}
+
+/// Runs `steady`.
+pub(super) fn run(a: Args) -> Result<(), CliError> {
+    muscle_actuator_core::sim::steady::check_points(a.points)?;
+    if let Some(c) = &a.csv {
+        check_not_an_input(c, &read_files(&[a.config.as_deref()]))?;
+    }
+    let model = parse_model(&a.model)?;
+    let cfg = load_config(&a.config)?;
+    Ok(steady(
+        model,
+        &cfg,
+        a.muscle.as_deref(),
+        a.points,
+        a.csv.as_deref(),
+    )?)
+}
 
 /// Fractions of vmax the table shows when the grid has more than [`SHOW_ALL`] velocities: the
 /// grid's nearest to each.
 const SHOWN_FRACTIONS: [f64; 9] = [-1.0, -0.5, -0.25, 0.0, 0.1, 0.25, 0.5, 0.75, 1.0];
 /// Grids of at most this many velocities are shown whole.
 const SHOW_ALL: usize = 11;
-
-/// Why `steady` failed.
-#[derive(Debug, thiserror::Error)]
-pub enum SteadyError {
-    /// The configuration has no muscle to take by default.
-    #[error("the configuration has no muscle")]
-    NoMuscle,
-    /// `--muscle` names no muscle of the configuration.
-    #[error("{}", one_line(&format!("unknown muscle {name:?}: the configuration has {known}")))]
-    UnknownMuscle {
-        /// The name given, as an excerpt.
-        name: String,
-        /// The configuration's muscles, as excerpts, joined.
-        known: String,
-    },
-    /// The steady states cannot be computed.
-    #[error("muscle {muscle}: {reason}")]
-    Table {
-        /// The muscle, as an excerpt.
-        muscle: String,
-        /// Why.
-        #[source]
-        reason: muscle_actuator_core::sim::steady::SteadyError,
-    },
-    /// The CSV cannot be written.
-    #[error(transparent)]
-    Csv(#[from] muscle_actuator_core::csv::CsvWriteError),
-}
 
 /// Runs `steady` for the muscle named `muscle` (default: the first) of `cfg`: computes the rows,
 /// writes the CSV and the table (no table when the CSV goes to standard output).
