@@ -3,15 +3,20 @@
 //! calibrated subject written as TOML.
 
 use super::common::{default_model, model_help, parse_model};
-use super::subject::{parse_dofs, prepare, shown, write};
+use super::subject::{parse_dofs, prepare, shown};
 use super::CliError;
 use super::SubjectError;
+use muscle_actuator_core::files::AtomicFile;
 use muscle_actuator_core::physics::models::ModelKind;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_measured::measured::ExcitationMap;
-use muscle_actuator_measured::subject::calibrate::{Problem, Settings};
+use muscle_actuator_measured::subject::calibrate::{CalibrateError, Problem, Settings};
 use muscle_actuator_measured::subject::SubjectModel;
+use std::io::{IsTerminal, Write};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// What `calibrate` is asked.
 #[derive(clap::Args)]
@@ -125,24 +130,37 @@ fn calibrate(a: &Request) -> Result<(), SubjectError> {
             error: Box::new(error),
         }
     })?;
-    let bar = if a.progress {
-        let bar = indicatif::ProgressBar::new(s.max_evaluations as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:30}] {pos}/{len} evaluations, best {msg}",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        bar
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    let outcome = problem.calibrate(s, |evaluations, best| {
-        bar.set_position(evaluations as u64);
-        bar.set_message(format!("{best:.4}"));
-        std::ops::ControlFlow::Continue(())
+    let mut file = AtomicFile::create(a.out).map_err(|e| SubjectError::Write {
+        path: shown(a.out),
+        reason: e.to_string(),
     })?;
-    bar.finish_and_clear();
+    let outcome = {
+        let stop = StopOnInterrupt::install().map_err(|e| SubjectError::Write {
+            path: "the Ctrl-C handler".into(),
+            reason: e.to_string(),
+        })?;
+        let mut progress = Progress::new(a.progress, s.max_evaluations);
+        progress.start(&problem);
+        let r = problem.calibrate(s, |evaluations, best| {
+            progress.show(evaluations, best);
+            if stop.asked() {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        });
+        progress.finish();
+        r
+    };
+    let (outcome, stopped) = match outcome {
+        Ok(o) => (o, None),
+        Err(CalibrateError::Stopped {
+            evaluations,
+            of,
+            best,
+        }) => (*best, Some((evaluations, of))),
+        Err(e) => return Err(e.into()),
+    };
     let calibrated = problem.calibrated(&subject, &outcome, s);
     let text = calibrated
         .to_toml_string()
@@ -150,12 +168,27 @@ fn calibrate(a: &Request) -> Result<(), SubjectError> {
             path: shown(a.out),
             reason,
         })?;
-    write(a.out, &text)?;
+    let written = file
+        .file()
+        .write_all(text.as_bytes())
+        .and_then(|()| file.commit());
+    written.map_err(|e| SubjectError::Write {
+        path: shown(a.out),
+        reason: e.to_string(),
+    })?;
+    if let Some((evaluations, of)) = stopped {
+        return Err(SubjectError::Stopped {
+            evaluations,
+            of,
+            out: shown(a.out),
+        });
+    }
+    let trials = problem.trials.len();
     eprintln!(
-        "calibrated {} parameters of {} units on {} trials ({}): mean 1 - R2 {:.4} from {:.4}, {} evaluations -> {}",
+        "calibrated {} parameters of {} units on {trials} trial{} ({}): mean 1 - R2 {:.4} from {:.4}, {} evaluations -> {}",
         problem.parameters.len(),
         problem.units.len(),
-        problem.trials.len(),
+        if trials == 1 { "" } else { "s" },
         a.dofs.join(", "),
         outcome.cost,
         outcome.start_cost,
@@ -163,4 +196,101 @@ fn calibrate(a: &Request) -> Result<(), SubjectError> {
         shown(a.out)
     );
     Ok(())
+}
+
+/// Ctrl-C (SIGINT) asks the calibration to stop after the generation it is in, while this
+/// lives; a second Ctrl-C ends the process at once (exit status 130). Dropped, the default
+/// action is back.
+struct StopOnInterrupt {
+    asked: Arc<AtomicBool>,
+    ids: [signal_hook::SigId; 2],
+}
+
+impl StopOnInterrupt {
+    fn install() -> std::io::Result<StopOnInterrupt> {
+        use signal_hook::consts::SIGINT;
+        let asked = Arc::new(AtomicBool::new(false));
+        // In this order: the second signal finds the flag set by the first and exits.
+        let exit = signal_hook::flag::register_conditional_shutdown(SIGINT, 130, asked.clone())?;
+        let flag = signal_hook::flag::register(SIGINT, asked.clone())?;
+        Ok(StopOnInterrupt {
+            asked,
+            ids: [exit, flag],
+        })
+    }
+
+    fn asked(&self) -> bool {
+        self.asked.load(Ordering::Relaxed)
+    }
+}
+
+impl Drop for StopOnInterrupt {
+    fn drop(&mut self) {
+        for id in self.ids {
+            signal_hook::low_level::unregister(id);
+        }
+    }
+}
+
+/// How the calibration shows its progress: a bar on a terminal; otherwise (a log, a pipe, CI) a
+/// line at the start and then at most every [`PROGRESS_LINE_S`] seconds.
+struct Progress {
+    bar: indicatif::ProgressBar,
+    lines: Option<std::time::Instant>,
+    of: usize,
+}
+
+/// Seconds between two progress lines when standard error is no terminal.
+const PROGRESS_LINE_S: u64 = 10;
+
+impl Progress {
+    fn new(wanted: bool, of: usize) -> Progress {
+        let terminal = std::io::stderr().is_terminal();
+        let bar = if wanted && terminal {
+            let bar = indicatif::ProgressBar::new(of as u64);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{elapsed_precise} [{bar:30}] {pos}/{len} evaluations, best {msg}",
+                )
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            bar
+        } else {
+            indicatif::ProgressBar::hidden()
+        };
+        let lines = (wanted && !terminal).then(std::time::Instant::now);
+        Progress { bar, lines, of }
+    }
+
+    /// The line that says what starts (no terminal only): Ctrl-C is honoured from here on.
+    fn start(&self, problem: &Problem) {
+        if self.lines.is_some() {
+            let trials = problem.trials.len();
+            eprintln!(
+                "calibrate: {} parameters of {} units on {trials} trial{}, at most {} evaluations (Ctrl-C stops after the generation and writes the best so far)",
+                problem.parameters.len(),
+                problem.units.len(),
+                if trials == 1 { "" } else { "s" },
+                self.of
+            );
+        }
+    }
+
+    fn show(&mut self, evaluations: usize, best: f64) {
+        self.bar.set_position(evaluations as u64);
+        self.bar.set_message(format!("{best:.4}"));
+        if let Some(last) = &mut self.lines {
+            if last.elapsed().as_secs() >= PROGRESS_LINE_S {
+                *last = std::time::Instant::now();
+                eprintln!(
+                    "calibrate: {evaluations}/{} evaluations, best {best:.4}",
+                    self.of
+                );
+            }
+        }
+    }
+
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
 }

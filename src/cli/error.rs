@@ -139,4 +139,16 @@ pub enum SubjectError {
     /// `--threads` or `--evaluations` out of range.
     #[error("{0}")]
     Setting(String),
+    /// The calibration was stopped (Ctrl-C); the best found so far was written.
+    #[error(
+        "calibration stopped after {evaluations} of {of} evaluations; the best so far is in {out}, marked stopped"
+    )]
+    Stopped {
+        /// Evaluations made.
+        evaluations: usize,
+        /// Evaluations asked.
+        of: usize,
+        /// The calibrated subject's file, as shown.
+        out: String,
+    },
 }

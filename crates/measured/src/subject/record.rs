@@ -26,4 +26,8 @@ pub struct CalibrationRecord {
     pub parameters: toml::Table,
     /// After each generation: `[evaluations, best cost]`.
     pub history: Vec<[f64; 2]>,
+    /// Whether the calibration was stopped (Ctrl-C) before its evaluations were spent: the
+    /// parameters are then the best found so far. Written only when true.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub stopped: bool,
 }

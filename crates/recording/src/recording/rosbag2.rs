@@ -40,7 +40,11 @@ struct QosProfile {
 
 /// The `offered_qos_profiles` value of one keep-last(`depth`) endpoint, reliable or best
 /// effort, transient-local or volatile, in rosbag2's YAML form (a list of one profile).
-pub fn qos_yaml(reliable: bool, transient_local: bool, depth: u32) -> String {
+pub fn qos_yaml(
+    reliable: bool,
+    transient_local: bool,
+    depth: u32,
+) -> Result<String, serde_norway::Error> {
     let profile = QosProfile {
         history: "keep_last",
         depth,
@@ -56,8 +60,7 @@ pub fn qos_yaml(reliable: bool, transient_local: bool, depth: u32) -> String {
         liveliness_lease_duration: INFINITE,
         avoid_ros_namespace_conventions: false,
     };
-    // Plain structs of strings, numbers and booleans always serialize.
-    serde_norway::to_string(&[profile]).unwrap_or_default()
+    serde_norway::to_string(&[profile])
 }
 
 #[derive(Serialize)]
@@ -125,7 +128,11 @@ pub(crate) struct Topic<'a> {
 
 /// The bag's `metadata.yaml`: its `topics` (log times from `first` to `last`, ns; both ignored
 /// when there are no messages), stored in the MCAP file itself.
-pub(crate) fn metadata_yaml(topics: &[Topic], first: u64, last: u64) -> String {
+pub(crate) fn metadata_yaml(
+    topics: &[Topic],
+    first: u64,
+    last: u64,
+) -> Result<String, serde_norway::Error> {
     let total: u64 = topics.iter().map(|t| t.message_count).sum();
     let (start, end) = if total == 0 { (0, 0) } else { (first, last) };
     let bag = BagFile {
@@ -160,8 +167,7 @@ pub(crate) fn metadata_yaml(topics: &[Topic], first: u64, last: u64) -> String {
             ros_distro: ROS_DISTRO,
         },
     };
-    // Plain structs of strings and numbers always serialize.
-    serde_norway::to_string(&bag).unwrap_or_default()
+    serde_norway::to_string(&bag)
 }
 
 #[cfg(test)]
@@ -183,7 +189,7 @@ mod tests {
     /// and rosbag2's `yaml.hpp` read).
     #[test]
     fn the_qos_profile_reads_back_with_every_policy() {
-        let v: Value = serde_norway::from_str(&qos_yaml(false, true, 7)).unwrap();
+        let v: Value = serde_norway::from_str(&qos_yaml(false, true, 7).unwrap()).unwrap();
         let p = &v.as_sequence().unwrap()[0];
         assert_eq!(p["history"], "keep_last");
         assert_eq!(p["depth"], 7);
@@ -195,18 +201,20 @@ mod tests {
             assert_eq!(ns, i64::MAX, "{k}");
         }
         assert_eq!(p["avoid_ros_namespace_conventions"], false);
-        assert!(qos_yaml(true, false, 10).contains("reliability: reliable\n"));
+        assert!(qos_yaml(true, false, 10)
+            .unwrap()
+            .contains("reliability: reliable\n"));
     }
 
     /// The metadata reads back with its counts, times and each topic's QoS text unchanged.
     #[test]
     fn the_metadata_reads_back_with_its_topics() {
-        let qos = qos_yaml(true, false, 10);
+        let qos = qos_yaml(true, false, 10).unwrap();
         let topics = [
             topic("/a", Some("RIHS01_00"), &qos, 3),
             topic("/b", None, &qos, 0),
         ];
-        let y = metadata_yaml(&topics, 5_000, 9_000);
+        let y = metadata_yaml(&topics, 5_000, 9_000).unwrap();
         let v: Value = serde_norway::from_str(&y).unwrap();
         let info = &v["rosbag2_bagfile_information"];
         assert_eq!(info["version"], 9);
@@ -231,7 +239,7 @@ mod tests {
         assert_eq!(topics[1]["topic_metadata"]["type_description_hash"], "");
         // No messages: no times.
         let none = [topic("/a", None, &qos, 0)];
-        let v: Value = serde_norway::from_str(&metadata_yaml(&none, 5, 9)).unwrap();
+        let v: Value = serde_norway::from_str(&metadata_yaml(&none, 5, 9).unwrap()).unwrap();
         assert_eq!(
             v["rosbag2_bagfile_information"]["duration"]["nanoseconds"],
             0

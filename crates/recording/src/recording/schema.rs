@@ -33,6 +33,14 @@ pub enum SchemaError {
         /// The type whose schema was asked for.
         name: String,
     },
+    /// The channel's QoS profile could not be written as rosbag2's YAML.
+    #[error("the QoS profile of {topic} as YAML: {reason}")]
+    QosYaml {
+        /// The channel's topic.
+        topic: String,
+        /// The YAML writer's reason.
+        reason: String,
+    },
 }
 
 /// The separator line rosbag2 puts between definitions.

@@ -531,7 +531,10 @@ impl Worker {
     }
 
     fn finish(&mut self) {
-        let meta = self.rosbag2_metadata();
+        let meta = match self.rosbag2_metadata() {
+            Ok(meta) => meta,
+            Err(e) => return self.fail("cannot write the rosbag2 metadata", e),
+        };
         let Some(w) = self.writer.as_mut() else {
             return;
         };
@@ -552,7 +555,7 @@ impl Worker {
 
     /// The `rosbag2` metadata record: the bag's `metadata.yaml` content as rosbag2_storage_mcap
     /// writes it (key `serialized_metadata`).
-    fn rosbag2_metadata(&self) -> BTreeMap<String, String> {
+    fn rosbag2_metadata(&self) -> Result<BTreeMap<String, String>, serde_norway::Error> {
         let topics: Vec<Topic> = (self.channels.iter().zip(&self.counts))
             .map(|(c, &n)| Topic {
                 name: &c.topic,
@@ -562,10 +565,10 @@ impl Worker {
                 message_count: n,
             })
             .collect();
-        let y = metadata_yaml(&topics, self.first, self.last);
+        let y = metadata_yaml(&topics, self.first, self.last)?;
         let mut m = BTreeMap::new();
         m.insert("serialized_metadata".to_string(), y);
         m.insert("ROS_DISTRO".to_string(), ROS_DISTRO.to_string());
-        m
+        Ok(m)
     }
 }

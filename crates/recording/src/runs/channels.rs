@@ -12,7 +12,10 @@ pub fn channel(topic: &str, type_name: &str) -> Result<ChannelSpec, SchemaError>
         topic: topic.into(),
         type_name: type_name.into(),
         schema: ros2msg_schema(type_name, &definition)?,
-        qos_yaml: qos_yaml(true, false, 10),
+        qos_yaml: qos_yaml(true, false, 10).map_err(|e| SchemaError::QosYaml {
+            topic: topic.into(),
+            reason: e.to_string(),
+        })?,
         type_hash: type_hash(type_name).map(String::from),
     })
 }

@@ -48,6 +48,7 @@ impl Problem {
                 .iter()
                 .map(|&(e, c)| [e as f64, c])
                 .collect(),
+            stopped: outcome.stopped,
         });
         out
     }

@@ -44,6 +44,9 @@ pub struct Outcome {
     pub evaluations: usize,
     /// After each generation: evaluations so far and the best cost so far.
     pub history: Vec<(usize, f64)>,
+    /// Whether the progress callback stopped the search before its evaluations were spent:
+    /// then `values` are the best found so far.
+    pub stopped: bool,
 }
 
 impl Problem {
@@ -76,7 +79,8 @@ impl Problem {
 
     /// Calibrates: CMA-ES from the starting values under `settings`, `progress` told the
     /// evaluations so far and the best cost after each generation; a `Break` from it stops the
-    /// calibration ([`CalibrateError::Stopped`]).
+    /// calibration after that generation ([`CalibrateError::Stopped`], carrying the best found so
+    /// far, re-driven).
     pub fn calibrate(
         &self,
         settings: &Settings,
@@ -97,6 +101,7 @@ impl Problem {
             .map_err(|e| CalibrateError::Options(format!("{e:?}")))?;
         let mut history = Vec::new();
         let (mut best_z, mut best) = (self.point_of(&searched_start), FAILED_COST);
+        let mut stopped = false;
         loop {
             let done = pool.install(|| cmaes.next_parallel());
             if let Some(b) = cmaes.overall_best_individual() {
@@ -107,10 +112,8 @@ impl Problem {
             }
             history.push((cmaes.function_evals(), best));
             if progress(cmaes.function_evals(), best).is_break() {
-                return Err(CalibrateError::Stopped {
-                    evaluations: cmaes.function_evals(),
-                    of: settings.max_evaluations,
-                });
+                stopped = true;
+                break;
             }
             if done.is_some() {
                 break;
@@ -123,13 +126,22 @@ impl Problem {
         } else {
             (start, start_cost)
         };
-        Ok(Outcome {
+        let outcome = Outcome {
             values,
             cost,
             start_cost,
             evaluations: cmaes.function_evals(),
             history,
-        })
+            stopped,
+        };
+        if stopped {
+            return Err(CalibrateError::Stopped {
+                evaluations: outcome.evaluations,
+                of: settings.max_evaluations,
+                best: Box::new(outcome),
+            });
+        }
+        Ok(outcome)
     }
 }
 
@@ -149,5 +161,7 @@ pub enum CalibrateError {
         evaluations: usize,
         /// Evaluations it would have made at most.
         of: usize,
+        /// The best found so far, re-driven (the start's if nothing beat it), marked stopped.
+        best: Box<Outcome>,
     },
 }
