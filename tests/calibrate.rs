@@ -1,7 +1,8 @@
 //! The `calibrate` command as long work (docs/emg.md "Calibration"): Ctrl-C stops it after the
 //! generation it is in and writes the best parameters so far under `--out`, marked stopped with
 //! the evaluations made, which reads back as a subject; an `--out` that cannot be written fails
-//! before any evaluation. Uses the person's data (data/ceinms). The calibration itself:
+//! before any evaluation; a trial no parameters can drive is an error, not a calibrated
+//! subject. Uses the person's data (data/ceinms). The calibration itself:
 //! crates/measured/tests/subject_calibration.rs.
 
 #[path = "common/cli.rs"]
@@ -102,4 +103,53 @@ fn an_out_that_cannot_be_written_fails_before_any_evaluation() {
     let o = calibrate(&out, 100_000).output().unwrap();
     assert_clean_failure(&o, &["cannot write", "no such folder"]);
     assert!(!stderr(&o).contains("calibrate: "), "{}", stderr(&o));
+}
+
+#[test]
+fn a_trial_no_parameters_can_drive_is_an_error_and_writes_nothing() {
+    let dir = temp_dir("calibrate_unreachable");
+    // The person's trial with every unit swinging between 0.2 m and 5 m from row to row: no
+    // tendon slack length the calibration may choose keeps a fibre within its reach at both.
+    let trial = dir.join("_FastWalking1_");
+    std::fs::create_dir_all(&trial).unwrap();
+    let source = data().join("_FastWalking1_");
+    for entry in std::fs::read_dir(&source).unwrap() {
+        let name = entry.unwrap().file_name();
+        std::fs::copy(source.join(&name), trial.join(&name)).unwrap();
+    }
+    let lmt = std::fs::read_to_string(source.join("lmt.txt")).unwrap();
+    let long: Vec<String> = (lmt.lines().enumerate())
+        .map(|(i, line)| match i {
+            0..=2 => line.to_string(),
+            _ => {
+                let mut cells: Vec<&str> = line.split('\t').collect();
+                let length = if i % 2 == 0 { "5" } else { "0.2" };
+                cells[1..].iter_mut().for_each(|c| *c = length);
+                cells.join("\t")
+            }
+        })
+        .collect();
+    std::fs::write(trial.join("lmt.txt"), long.join("\n") + "\n").unwrap();
+    let out = dir.join("calibrated.toml");
+    let o = bin()
+        .arg("calibrate")
+        .arg("--subject")
+        .arg(data().join("uncalibratedSubject.xml"))
+        .arg("--excitations")
+        .arg(data().join("emgGenerator-16To34.xml"))
+        .arg("--trials")
+        .arg(&trial)
+        .args(["--dofs", "R_knee_fe", "--model", "hill", "--threads", "1"])
+        .args(["--evaluations", "30", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_clean_failure(
+        &o,
+        &[
+            "no parameters tried could drive the trials: trial _FastWalking1_",
+            "optimal lengths long even with its tendon at slack",
+        ],
+    );
+    assert!(!out.exists());
 }

@@ -255,6 +255,7 @@ impl ToPyErr for CalibrateError {
         match self {
             CalibrateError::Threads(_) => PyOSError::new_err(self.to_string()),
             CalibrateError::Options(_) => ErrorKind::Config.err(self.to_string()),
+            CalibrateError::NothingDrives(_) => ErrorKind::Input.err(self.to_string()),
             CalibrateError::Stopped { .. } => {
                 pyo3::exceptions::PyKeyboardInterrupt::new_err(self.to_string())
             }

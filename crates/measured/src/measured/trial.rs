@@ -96,6 +96,16 @@ impl Trial {
 
     /// The cross-checks of the module's documentation.
     pub(crate) fn check(&self) -> Result<(), TrialError> {
+        for (index, unit) in self.lmt.columns().iter().enumerate() {
+            let lengths = self.lmt.column(index).unwrap_or_default();
+            if let Some(row) = lengths.iter().position(|&l| l <= 0.0) {
+                return Err(TrialError::LengthNotPositive {
+                    unit: unit.clone(),
+                    line: row + 4,
+                    length: lengths[row],
+                });
+            }
+        }
         for (dof, arms) in &self.moment_arms {
             let file = format!("{dof}{MOMENT_ARMS}");
             if let Some(unit) = arms
@@ -249,6 +259,19 @@ pub enum TrialError {
         present: String,
         /// The file missing.
         missing: String,
+    },
+    /// A muscle–tendon length that is zero or negative (no muscle has it).
+    #[error(
+        "lmt.txt: line {line}: unit {:?} has length {length} m; a muscle-tendon length is positive",
+        excerpt(.unit)
+    )]
+    LengthNotPositive {
+        /// The unit.
+        unit: String,
+        /// The line of the row.
+        line: usize,
+        /// The length, m.
+        length: f64,
     },
     /// A moment-arm column that is no unit of `lmt.txt`.
     #[error("{}: column {:?} is not a unit of lmt.txt", excerpt(.file), excerpt(.unit))]

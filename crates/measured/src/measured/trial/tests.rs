@@ -152,6 +152,29 @@ fn tables_are_cross_checked() {
 }
 
 #[test]
+fn a_length_that_no_muscle_has_is_refused_with_its_line_and_unit() {
+    for (tag, bad) in [("zero", "0"), ("negative", "-0.173")] {
+        let dir = folder(tag, &[]);
+        std::fs::write(dir.join("lmt.txt"), LMT.replace("0.41", bad)).unwrap();
+        let e = trial_error(&dir);
+        assert_eq!(
+            e,
+            TrialError::LengthNotPositive {
+                unit: "u2".into(),
+                line: 5,
+                length: bad.parse().unwrap(),
+            }
+        );
+        let text = Trial::read(&dir).unwrap_err().to_string();
+        assert!(
+            text.contains("lmt.txt: line 5: unit \"u2\" has length")
+                && text.contains("is positive"),
+            "{text}"
+        );
+    }
+}
+
+#[test]
 fn the_emg_covers_the_kinematics() {
     let dir = folder("late_emg", &[]);
     std::fs::write(

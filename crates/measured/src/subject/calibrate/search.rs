@@ -126,6 +126,9 @@ impl Problem {
         } else {
             (start, start_cost)
         };
+        if cost >= FAILED_COST {
+            return Err(self.why_nothing_drives(&values));
+        }
         let outcome = Outcome {
             values,
             cost,
@@ -145,6 +148,22 @@ impl Problem {
     }
 }
 
+impl Problem {
+    /// Why neither the start nor any candidate could be driven through every trial: the
+    /// reason the first trial that refuses `values` gives (it names the trial).
+    fn why_nothing_drives(&self, values: &[f64]) -> CalibrateError {
+        let params = self.params_at(values);
+        for trial in &self.trials {
+            if let Err(e) = trial.run(&params, self.model, self.stepping) {
+                return CalibrateError::NothingDrives(e.to_string());
+            }
+        }
+        CalibrateError::NothingDrives(format!(
+            "the moments' mean 1 - R2 is at least {FAILED_COST} or not finite"
+        ))
+    }
+}
+
 /// Why a calibration cannot run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CalibrateError {
@@ -154,6 +173,10 @@ pub enum CalibrateError {
     /// CMA-ES refuses its options.
     #[error("the optimiser refuses its options: {0}")]
     Options(String),
+    /// Neither the start nor any candidate could be driven through the trials: nothing to
+    /// calibrate from (lengths beyond the fibres' reach, say).
+    #[error("no parameters tried could drive the trials: {0}")]
+    NothingDrives(String),
     /// The progress callback asked to stop.
     #[error("calibration stopped after {evaluations} of {of} evaluations")]
     Stopped {
