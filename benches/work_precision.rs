@@ -158,7 +158,15 @@ fn main() {
     let dir = std::env::args()
         .skip(1)
         .find(|a| !a.starts_with('-'))
-        .map_or_else(|| PathBuf::from("target/work-precision"), PathBuf::from);
+        .map_or_else(
+            || {
+                // Cargo's target directory wherever it is (`CARGO_TARGET_DIR`), else ./target.
+                let target =
+                    std::env::var_os("CARGO_TARGET_DIR").unwrap_or_else(|| "target".into());
+                PathBuf::from(target).join("work-precision")
+            },
+            PathBuf::from,
+        );
     println!(
         "| model | formulation | load | tolerance | µs per tick | worst ΔF / Fmax | worst Δl_m (m) |"
     );

@@ -195,3 +195,38 @@ fn lengths_a_little_beyond_reach_are_held() {
     assert_eq!(moments, at_moments);
     assert_eq!(forces, at_forces);
 }
+
+/// Without `--csv` (or any other output) `predict` rates the moments on standard output and
+/// writes nothing.
+#[test]
+fn predict_rates_without_writing_when_no_output_is_asked() {
+    let dir = temp_dir("subject_predict_ratings_only");
+    let params = MuscleParams::default();
+    let (subject, map, trial) =
+        isometric_files(&dir, params.clone(), params.l_opt + params.l_ts + 0.002);
+    let before: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    let o = run_ok(
+        bin()
+            .args(["predict", "--model", "hill", "--subject"])
+            .arg(&subject)
+            .arg("--excitations")
+            .arg(&map)
+            .arg("--trial")
+            .arg(&trial),
+    );
+    let table = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        table.contains("R2") && table.lines().any(|l| l.starts_with("d ")),
+        "{table}"
+    );
+    let after: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    assert_eq!(before, after);
+}

@@ -37,7 +37,7 @@ pub struct Args {
     pub dofs: Option<String>,
     /// CSV of the moments: time, then per degree of freedom <dof> and <dof>_measured (N m).
     #[arg(long)]
-    pub csv: PathBuf,
+    pub csv: Option<PathBuf>,
     /// CSV of the units: time, then per unit its force (N), activation and fibre length (m).
     #[arg(long)]
     pub muscles_csv: Option<PathBuf>,
@@ -91,7 +91,9 @@ fn predict(a: &Args, model: ModelKind) -> Result<Vec<(String, Rating)>, SubjectE
         crate::figures::subject_plot::draw(&p, &ratings, &prepared.name, plot)
             .map_err(|e| not_drawn(plot, e))?;
     }
-    write(&a.csv, &moments_csv(&p))?;
+    if let Some(path) = &a.csv {
+        write(path, &moments_csv(&p))?;
+    }
     if let Some(path) = &a.muscles_csv {
         write(path, &muscles_csv(&p))?;
     }
@@ -124,7 +126,7 @@ fn check_outputs(a: &Args) -> Result<(), SubjectError> {
             .to_vec(),
         None => Vec::new(),
     };
-    let named = [Some(&a.csv), a.muscles_csv.as_ref(), a.out.as_ref()];
+    let named = [a.csv.as_ref(), a.muscles_csv.as_ref(), a.out.as_ref()];
     for out in named.into_iter().flatten().chain(&figures) {
         muscle_actuator_core::files::check_not_an_input(out, &inputs)?;
         inputs.push(out);
