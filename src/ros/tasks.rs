@@ -351,10 +351,11 @@ pub(crate) async fn events(
     log: &Reporter,
     rec: Option<&RecordTx>,
 ) {
-    let mut late = LateTicks::new();
+    let ticks = || stats.ticks.load(std::sync::atomic::Ordering::Relaxed);
+    let mut late = LateTicks::new(ticks());
     loop {
         smol::Timer::after(EVENT_POLL).await;
-        if let Some(summary) = late.summary_due() {
+        if let Some(summary) = late.summary_due(ticks()) {
             log.logger.info(&summary);
         }
         while let Ok(e) = rx.try_recv() {
