@@ -155,6 +155,17 @@ fn bad_inputs_are_refused_cleanly() {
         &predict(&subject, &bad_map, &trial),
         &["bad_map.xml", "\"x\""],
     );
+    // A degree of freedom neither the subject nor the trial has: the valid ones named.
+    let o = bin()
+        .args(["predict", "--dofs", "knee", "--subject"])
+        .arg(&subject)
+        .arg("--excitations")
+        .arg(&map)
+        .arg("--trial")
+        .arg(&trial)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, &["no degree of freedom \"knee\"; it has d"]);
 }
 
 /// A length a little beyond the reach of the unit's fibre (2 l_opt with the tendon at slack) is

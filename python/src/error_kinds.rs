@@ -233,7 +233,7 @@ pub fn drive_error_in(py: Python<'_>, path: &str, e: &DriveError) -> PyErr {
 fn drive_error(py: Python<'_>, e: &DriveError, msg: String) -> PyErr {
     let kind = match e {
         DriveError::Step { error, .. } => return failed_tick(py, error, msg),
-        DriveError::DofNotInSubject(_)
+        DriveError::DofNotInSubject { .. }
         | DriveError::DofNotInTrial { .. }
         | DriveError::UnitNotInSubject(_)
         | DriveError::UnitNotInMap(_)

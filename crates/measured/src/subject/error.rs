@@ -15,17 +15,24 @@ pub enum DriveError {
     #[error("no degree of freedom given")]
     NoDof,
     /// A degree of freedom the subject does not have.
-    #[error("the subject has no degree of freedom {0:?}")]
-    DofNotInSubject(String),
+    #[error("the subject has no degree of freedom {dof:?}; it has {known}")]
+    DofNotInSubject {
+        /// The degree of freedom asked for.
+        dof: String,
+        /// The subject's, joined.
+        known: String,
+    },
     /// A degree of freedom the trial has no moment or moment arms for.
     #[error(
-        "trial {trial}: no moment and moment arms of {dof:?} (no {dof}Torque.txt, {dof}Ma.txt)"
+        "trial {trial}: no moment and moment arms of {dof:?} (no {dof}Torque.txt, {dof}Ma.txt); it has {known}"
     )]
     DofNotInTrial {
         /// The trial.
         trial: String,
         /// The degree of freedom.
         dof: String,
+        /// The trial's, joined.
+        known: String,
     },
     /// A unit the subject's degree of freedom names but the subject does not describe.
     #[error("the subject has no unit {0:?}")]

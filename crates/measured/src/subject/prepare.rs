@@ -93,7 +93,10 @@ fn units_of(
     for dof in dofs {
         let spanning = subject
             .dof_units(dof)
-            .ok_or_else(|| DriveError::DofNotInSubject(excerpt(dof)))?;
+            .ok_or_else(|| DriveError::DofNotInSubject {
+                dof: excerpt(dof),
+                known: known(subject.dofs.iter().map(|(d, _)| d.as_str())),
+            })?;
         for u in spanning {
             if !units.contains(u) {
                 units.push(u.clone());
@@ -165,6 +168,7 @@ fn arms_of(
             return Err(DriveError::DofNotInTrial {
                 trial: name.clone(),
                 dof: excerpt(dof),
+                known: known(trial.dofs()),
             });
         };
         let mut of_dof = Vec::new();
@@ -211,4 +215,14 @@ fn emg_rate(trial: &Trial) -> Result<f64, DriveError> {
         }
     }
     Ok(1.0 / mean)
+}
+
+/// Names as an error lists the valid ones: each an excerpt, joined by ", " ("none" when empty).
+fn known<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<String> = names.map(excerpt).collect();
+    if names.is_empty() {
+        "none".into()
+    } else {
+        names.join(", ")
+    }
 }
