@@ -1,5 +1,5 @@
 # The environment shared by the scripts that run the node against an rclpy peer on this host only
-# (scripts/test-ros.sh, scripts/bench-flood.sh, benches/py-bench.sh, launch-scripts/demo.sh).
+# (scripts/test-ros.sh, scripts/bench-flood.sh, benches/rclpy-bench.sh, launch-scripts/demo.sh).
 # Sourced, not run:   source "$(dirname "${BASH_SOURCE[0]}")/../scripts/lib.sh"
 #
 #   ROOT                  the repository
