@@ -43,7 +43,10 @@ use std::path::Path;
 
 /// A subject file that cannot be read or is not one.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{path}: {reason}")]
+#[error(
+    "{}{path}: {reason}",
+    if .kind.is_some() { "cannot read subject file " } else { "" }
+)]
 pub struct SubjectFileError {
     /// The file (at most 200 characters).
     pub path: String,
