@@ -39,13 +39,13 @@ pub struct Args {
     #[arg(long)]
     out: PathBuf,
     /// The optimiser's seed (the same seed, the same result).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     seed: u64,
     /// Most objective evaluations.
-    #[arg(long, default_value_t = DEFAULT_EVALUATIONS)]
+    #[arg(long, default_value_t = DEFAULT_EVALUATIONS, allow_negative_numbers = true)]
     evaluations: usize,
     /// Threads the candidates are evaluated on (default: every core).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     threads: Option<usize>,
 }
 

@@ -21,9 +21,9 @@ pub struct Args {
     #[arg(long, help = energy_model_help())]
     energy_model: Option<String>,
     /// Tick rate, Hz.
-    #[arg(long, default_value_t = 1000.0)]
+    #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
     rate_hz: f64,
-    #[arg(long, help = substeps_help())]
+    #[arg(long, help = substeps_help(), allow_negative_numbers = true)]
     substeps: Option<usize>,
     /// CSV output file ('-' for standard output).
     #[arg(long)]

@@ -27,7 +27,7 @@ pub struct Args {
     /// The muscle, by name; default: the configuration's first.
     #[arg(long)]
     muscle: Option<String>,
-    #[arg(long, default_value_t = DEFAULT_POINTS, help = points_help())]
+    #[arg(long, default_value_t = DEFAULT_POINTS, help = points_help(), allow_negative_numbers = true)]
     points: usize,
     /// CSV of every row ('-' for standard output, and no table).
     #[arg(long)]
