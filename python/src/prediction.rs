@@ -201,7 +201,8 @@ impl PyPrediction {
         let ctor = py.get_type::<Self>().getattr("_from_state")?;
         Ok((ctor, PyTuple::new(py, [state])?))
     }
-    /// A prediction from the state `__reduce__` gives, its shapes checked.
+    /// A prediction from the state `__reduce__` gives, its shapes checked, its times rising and
+    /// every value finite.
     #[staticmethod]
     fn _from_state(state: &Bound<'_, PyAny>) -> PyResult<Self> {
         let bad = |what: &str| input_error(format!("not a Prediction's pickled state: {what}"));
@@ -217,8 +218,14 @@ impl PyPrediction {
             return Err(bad("a series per degree of freedom"));
         }
         let all = per_unit.into_iter().chain([&moment, &measured]);
-        if all.flatten().any(|s| s.len() != n) {
+        if all.clone().flatten().any(|s| s.len() != n) {
             return Err(bad("a sample per time"));
+        }
+        if times.iter().any(|t| !t.is_finite()) || times.windows(2).any(|w| w[0] >= w[1]) {
+            return Err(bad("times that rise, each finite"));
+        }
+        if all.flatten().flatten().any(|x| !x.is_finite()) {
+            return Err(bad("finite values"));
         }
         Ok(PyPrediction {
             p: Prediction {

@@ -96,6 +96,14 @@ def test_a_prediction_survives_pickle_and_a_tampered_state_is_refused(subject):
         ma.Prediction._from_state((meta, (times[:-1], *rest)))
     with pytest.raises(ma.InputError, match="layout"):
         ma.Prediction._from_state("not a state")
+    # times that go back, a force that is not a number
+    with pytest.raises(ma.InputError, match="times that rise"):
+        ma.Prediction._from_state((meta, (list(reversed(times)), *rest)))
+    units, force, *more = rest
+    nan_force = [list(f) for f in force]
+    nan_force[0][3] = float("nan")
+    with pytest.raises(ma.InputError, match="finite values"):
+        ma.Prediction._from_state((meta, (times, units, nan_force, *more)))
 
 
 def test_predict_of_chosen_dofs_takes_their_units_only(cli, subject, tmp_path):
