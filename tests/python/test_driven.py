@@ -52,7 +52,7 @@ def motion(t):
 @pytest.fixture(scope="module")
 def files(tmp_path_factory):
     d = tmp_path_factory.mktemp("driven")
-    text = (ROOT / "configs" / "elbow.toml").read_text()
+    text = (ROOT / "crates" / "core" / "configs" / "elbow.toml").read_text()
     cfg = d / "driven_elbow.toml"
     # The elbow starts where the motion does (the sine's offset), as `simulate` starts it.
     cfg.write_text(text.replace("initial_angle = 0.0", f"initial_angle = {OFFSET}\ndriven = true", 1))

@@ -115,7 +115,7 @@ def lock_node(node_factory, tmp_path_factory):
     """lockstep, with the elbow driven (so ~/joint_efforts exists), recording."""
     d = tmp_path_factory.mktemp("fox_lock")
     cfg = d / "driven_elbow.toml"
-    text = (ROOT / "configs" / "elbow.toml").read_text()
+    text = (ROOT / "crates" / "core" / "configs" / "elbow.toml").read_text()
     cfg.write_text(text.replace("initial_angle = 0.0", "initial_angle = 0.0\ndriven = true", 1))
     node = start_live_node(
         node_factory, "/t_fox_lock", "-p", "clock:=lockstep", "-p", "model:=hill",
