@@ -33,9 +33,11 @@ rm -f "$TARGET"/wheels/muscle_actuator-*.whl
 
 # The stubs against the built extension: every name, signature and class of _core.pyi as the
 # module has it (mypy's stubtest; run outside the source tree so that the installed package is
-# the one checked).
+# the one checked), with mypy's defaults: a configuration of an empty [mypy] section.
 echo "[test-python] checking python/muscle_actuator/_core.pyi (mypy.stubtest)" >&2
-(cd "$TARGET" && "$VENV/bin/python" -m mypy.stubtest --mypy-config-file /dev/null muscle_actuator._core) >&2
+printf '[mypy]\n' > "$TARGET/stubtest-mypy.ini"
+(cd "$TARGET" && "$VENV/bin/python" -m mypy.stubtest --mypy-config-file stubtest-mypy.ini \
+  muscle_actuator._core) >&2
 
 export MUSCLE_ACTUATOR_BIN="$BIN"
 loopback_env
