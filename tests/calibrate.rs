@@ -2,8 +2,8 @@
 //! generation it is in and writes the best parameters so far under `--out`, marked stopped with
 //! the evaluations made, which reads back as a subject; an `--out` that cannot be written fails
 //! before any evaluation; a trial no parameters can drive is an error, not a calibrated
-//! subject. Uses the person's data (data/ceinms). The calibration itself:
-//! crates/measured/tests/subject_calibration.rs.
+//! subject; a trial given twice is refused. Uses the person's data (data/ceinms). The
+//! calibration itself: crates/measured/tests/subject_calibration.rs.
 
 #[path = "common/cli.rs"]
 mod cli;
@@ -151,5 +151,29 @@ fn a_trial_no_parameters_can_drive_is_an_error_and_writes_nothing() {
             "optimal lengths long even with its tendon at slack",
         ],
     );
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_trial_given_twice_is_refused_before_any_evaluation() {
+    let dir = temp_dir("calibrate_twice");
+    let out = dir.join("calibrated.toml");
+    let trial = data().join("_FastWalking1_");
+    let again = trial.join("..").join("_FastWalking1_");
+    let o = bin()
+        .arg("calibrate")
+        .arg("--subject")
+        .arg(data().join("uncalibratedSubject.xml"))
+        .arg("--excitations")
+        .arg(data().join("emgGenerator-16To34.xml"))
+        .arg("--trials")
+        .arg(&trial)
+        .arg(&again)
+        .args(["--dofs", "R_knee_fe", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, &["--trials:", "is given twice"]);
+    assert!(!stderr(&o).contains("calibrate: "), "{}", stderr(&o));
     assert!(!out.exists());
 }

@@ -14,7 +14,7 @@ use crate::errors::{config_error, input_error, unknown_name, ErrorKind};
 use crate::prediction::PyPrediction;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::text::excerpt;
-use muscle_actuator_measured::measured::{ExcitationMap, MeasuredError, Trial};
+use muscle_actuator_measured::measured::{repeated_folder, ExcitationMap, MeasuredError, Trial};
 use muscle_actuator_measured::subject::calibrate::{CalibrateError, Outcome, Problem, Settings};
 use muscle_actuator_measured::subject::{DriveError, PreparedTrial, SubjectModel};
 use pyo3::prelude::*;
@@ -325,6 +325,12 @@ fn trial_dirs(py: Python<'_>, trials: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf
     };
     if dirs.is_empty() {
         return Err(input_error("trials: give at least one trial folder"));
+    }
+    if let Some(again) = repeated_folder(&dirs) {
+        let shown: String = again.display().to_string().chars().take(200).collect();
+        return Err(input_error(format!(
+            "trials: {shown} is given twice; each trial counts once"
+        )));
     }
     Ok(dirs)
 }

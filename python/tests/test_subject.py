@@ -309,6 +309,8 @@ def test_bad_calibration_settings_raise_config_or_input_error(subject):
             ma.calibrate(subject, MAP, TWO_TRIALS, dofs, evaluations=5)
     with pytest.raises(ma.InputError):
         ma.calibrate(subject, MAP, [], KNEE, evaluations=5)
+    with pytest.raises(ma.InputError, match="given twice"):
+        ma.calibrate(subject, MAP, [TRIAL, TRIAL], KNEE, evaluations=5)
 
 
 def test_bad_emg_arguments_raise_typed_errors():

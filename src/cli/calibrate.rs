@@ -9,7 +9,7 @@ use super::SubjectError;
 use muscle_actuator_core::files::AtomicFile;
 use muscle_actuator_core::physics::models::ModelKind;
 use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_measured::measured::ExcitationMap;
+use muscle_actuator_measured::measured::{repeated_folder, ExcitationMap};
 use muscle_actuator_measured::subject::calibrate::{CalibrateError, Problem, Settings};
 use muscle_actuator_measured::subject::SubjectModel;
 use std::io::{IsTerminal, Write};
@@ -101,6 +101,12 @@ fn calibrate(a: &Request) -> Result<(), SubjectError> {
         return Err(SubjectError::Setting(
             "--trials: give at least one trial folder".into(),
         ));
+    }
+    if let Some(again) = repeated_folder(a.trials) {
+        return Err(SubjectError::Setting(format!(
+            "--trials: {} is given twice; each trial counts once",
+            shown(again)
+        )));
     }
     let s = &a.settings;
     if s.max_evaluations == 0 || s.max_evaluations > MAX_EVALUATIONS {

@@ -35,7 +35,7 @@ pub use excitation_map::{
 };
 pub use subject::{Calibration, Dof, Subject, SubjectCurves, SubjectError, Unit, UnitDefaults};
 pub use table::{Table, TableError};
-pub use trial::{Trial, TrialError};
+pub use trial::{repeated_folder, Trial, TrialError};
 pub use xml::XmlError;
 
 use muscle_actuator_core::text::one_line;

@@ -228,6 +228,18 @@ fn same_times(file: &str, table: &Table, lmt: &Table) -> Result<(), TrialError> 
     }
 }
 
+/// The first of `dirs` that names the same folder as an earlier one (the same path, or another
+/// path to it: a link, `./x` and `x`), so that a calibration counts no trial twice.
+pub fn repeated_folder(dirs: &[std::path::PathBuf]) -> Option<&Path> {
+    (dirs.iter().enumerate())
+        .find(|(i, d)| {
+            dirs[..*i]
+                .iter()
+                .any(|e| muscle_actuator_core::files::same_file(e, d))
+        })
+        .map(|(_, d)| d.as_path())
+}
+
 /// What is wrong with a trial's folder; file names are those in it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TrialError {
