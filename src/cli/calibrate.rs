@@ -205,8 +205,9 @@ fn calibrate(a: &Request) -> Result<(), SubjectError> {
 }
 
 /// Ctrl-C (SIGINT) asks the calibration to stop after the generation it is in, while this
-/// lives; a second Ctrl-C ends the process at once (exit status 130). Dropped, the default
-/// action is back.
+/// lives; a second Ctrl-C ends the process at once (exit status 130). Dropped, its actions are
+/// removed but the default one is not restored (signal-hook leaves its handler in place), so a
+/// Ctrl-C while the result is written is ignored and the file is written whole.
 struct StopOnInterrupt {
     asked: Arc<AtomicBool>,
     ids: [signal_hook::SigId; 2],
