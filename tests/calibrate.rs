@@ -19,8 +19,9 @@ fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("data/ceinms")
 }
 
-/// `calibrate` of the knee on two of the person's trials, with Hill, `evaluations` at most.
-fn calibrate(out: &Path, evaluations: usize) -> std::process::Command {
+/// `calibrate` of the knee on `trials` (the person's, by default two), with Hill, `evaluations`
+/// at most.
+fn calibrate_on(trials: &[PathBuf], out: &Path, evaluations: usize) -> std::process::Command {
     let mut cmd = bin();
     cmd.arg("calibrate")
         .arg("--subject")
@@ -28,12 +29,17 @@ fn calibrate(out: &Path, evaluations: usize) -> std::process::Command {
         .arg("--excitations")
         .arg(data().join("emgGenerator-16To34.xml"))
         .arg("--trials")
-        .arg(data().join("_FastWalking1_"))
-        .arg(data().join("_CrossOvers1_"))
+        .args(trials)
         .args(["--dofs", "R_knee_fe", "--model", "hill", "--threads", "1"])
         .args(["--evaluations", &evaluations.to_string(), "--out"])
         .arg(out);
     cmd
+}
+
+/// [`calibrate_on`] the person's `_FastWalking1_` and `_CrossOvers1_`.
+fn calibrate(out: &Path, evaluations: usize) -> std::process::Command {
+    let trials = [data().join("_FastWalking1_"), data().join("_CrossOvers1_")];
+    calibrate_on(&trials, out, evaluations)
 }
 
 #[test]
@@ -131,19 +137,7 @@ fn a_trial_no_parameters_can_drive_is_an_error_and_writes_nothing() {
         .collect();
     std::fs::write(trial.join("lmt.txt"), long.join("\n") + "\n").unwrap();
     let out = dir.join("calibrated.toml");
-    let o = bin()
-        .arg("calibrate")
-        .arg("--subject")
-        .arg(data().join("uncalibratedSubject.xml"))
-        .arg("--excitations")
-        .arg(data().join("emgGenerator-16To34.xml"))
-        .arg("--trials")
-        .arg(&trial)
-        .args(["--dofs", "R_knee_fe", "--model", "hill", "--threads", "1"])
-        .args(["--evaluations", "30", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = calibrate_on(&[trial], &out, 30).output().unwrap();
     assert_clean_failure(
         &o,
         &[
@@ -160,19 +154,7 @@ fn a_trial_given_twice_is_refused_before_any_evaluation() {
     let out = dir.join("calibrated.toml");
     let trial = data().join("_FastWalking1_");
     let again = trial.join("..").join("_FastWalking1_");
-    let o = bin()
-        .arg("calibrate")
-        .arg("--subject")
-        .arg(data().join("uncalibratedSubject.xml"))
-        .arg("--excitations")
-        .arg(data().join("emgGenerator-16To34.xml"))
-        .arg("--trials")
-        .arg(&trial)
-        .arg(&again)
-        .args(["--dofs", "R_knee_fe", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = calibrate_on(&[trial, again], &out, 30).output().unwrap();
     assert_clean_failure(&o, &["--trials:", "is given twice"]);
     assert!(!stderr(&o).contains("calibrate: "), "{}", stderr(&o));
     assert!(!out.exists());
