@@ -16,3 +16,5 @@ pub mod ros;
 
 #[cfg(all(test, feature = "test-model"))]
 mod tests_fourth_model;
+#[cfg(all(test, feature = "test-topic"))]
+mod tests_topic;

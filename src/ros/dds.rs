@@ -1,30 +1,27 @@
 //! The DDS side's set-up: the participant (discovery kept on this host unless asked otherwise)
-//! and the node's endpoints ([`super::endpoints::ENDPOINTS`]) under the remap rules: those the
-//! executor serves (input topics, services, `/diagnostics`) and those the publisher thread
-//! writes the tick loop's states to.
+//! and the node's endpoints ([`super::endpoints::ENDPOINTS`]) under the remap rules, each made
+//! from its row: the executor serves the inputs (with their handlers), the services and
+//! `/diagnostics`; the publisher thread writes the outputs (with their producers).
 
 use super::args;
 use super::args::DEFAULT_NODE_NAME;
 use super::clock::ClockMode;
 use super::endpoints::{spec_of, Direction, Endpoint, Endpoint as E, Names, Qos, When, ENDPOINTS};
+use super::inputs::{InputHandler, Subscribed};
 use super::logging::Logger;
+use super::outputs::{Emitter, OutputProducer};
+use super::roles::{role, Role};
 use super::setup::Setup;
 use muscle_actuator_core::sim::input;
-use muscle_actuator_recording::msgs::muscle_actuator_msgs::{
-    ActivationCommand, ActuatorState, ExternalLoad,
-};
 use muscle_actuator_recording::msgs::{
-    Clock, DiagnosticArray, Float64, Float64MultiArray, Int64, JointState, StepRequest,
-    StepResponse, TriggerRequest, TriggerResponse,
+    DiagnosticArray, StepRequest, StepResponse, TriggerRequest, TriggerResponse,
 };
 use ros2_client::qos::{Durability, History, Reliability, WhenFull};
 use ros2_client::service::Server;
 use ros2_client::{
     Context, MessageTypeName, Name, Node, Publisher, QosProfile, ServiceMapping, ServiceTypeName,
-    Subscription,
 };
 use rustdds::DomainParticipantBuilder;
-use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::net::{IpAddr, Ipv4Addr};
 
@@ -96,12 +93,6 @@ pub enum DdsError {
         name: String,
         /// The library's error.
         reason: String,
-    },
-    /// An endpoint the node always has was not made (a bug of the endpoints' table).
-    #[error("internal error: endpoint {endpoint} was not made")]
-    NotMade {
-        /// The endpoint, as `{:?}` prints it.
-        endpoint: String,
     },
     /// The node's namespace and name the library refuses.
     #[error("invalid node name {fqn}: {reason}")]
@@ -220,36 +211,21 @@ fn dds_name(resolved: &str) -> Result<Name, DdsError> {
 /// The node's topics and services.
 pub(crate) struct Endpoints {
     pub(crate) served: Served,
-    pub(crate) published: Published,
+    /// What the publisher thread writes the tick loop's states and times to, in the table's
+    /// order.
+    pub(crate) published: Vec<Box<dyn Emitter>>,
     pub(crate) names: Names,
 }
 
 /// What the executor serves: the inputs, the services and `/diagnostics`.
 pub(crate) struct Served {
-    pub(crate) activation: Subscription<ActivationCommand>,
-    pub(crate) activation_array: Subscription<Float64MultiArray>,
-    /// `~/<muscle>/cmd_activation`: (muscle, subscription).
-    pub(crate) muscle_commands: Vec<(String, Subscription<Float64>)>,
-    pub(crate) load: Subscription<ExternalLoad>,
+    /// Every input topic's subscription, in the table's order.
+    pub(crate) inputs: Vec<Box<dyn Subscribed>>,
+    /// The muscle of each `~/<muscle>/...` instance, in order.
+    pub(crate) muscle_topics: Vec<String>,
     pub(crate) diagnostics: Publisher<DiagnosticArray>,
     pub(crate) reset: Server<TriggerRequest, TriggerResponse>,
-    /// `~/step`, the service and the fire-and-forget topic (answered in every clock mode).
     pub(crate) step: Server<StepRequest, StepResponse>,
-    pub(crate) step_topic: Subscription<Int64>,
-    /// `/clock` to follow (`use_sim_time` with `clock` wall).
-    pub(crate) clock_in: Option<Subscription<Clock>>,
-    /// With driven joints: their motion in.
-    pub(crate) joint_states_in: Option<Subscription<JointState>>,
-}
-
-/// What the publisher thread writes the tick loop's states and times to.
-pub(crate) struct Published {
-    pub(crate) state: Publisher<ActuatorState>,
-    pub(crate) joint_states: Publisher<JointState>,
-    /// `/clock`, with a simulated clock.
-    pub(crate) clock: Option<Publisher<Clock>>,
-    /// With driven joints: the muscles' torque on them.
-    pub(crate) joint_efforts: Option<Publisher<Float64MultiArray>>,
 }
 
 /// Creates the table's endpoints ([`ENDPOINTS`]) on one node under the set-up's namespace, name
@@ -306,41 +282,43 @@ impl Maker<'_> {
         Ok((t, resolved, qos))
     }
 
-    /// A subscription to `e`, if this node has it.
-    fn subscribe<M: 'static + DeserializeOwned>(
+    /// The subscription of the `k`-th instance of input `e`, named `relative`.
+    fn subscribe(
         &mut self,
-        e: Endpoint,
-    ) -> Result<Option<Subscription<M>>, DdsError> {
-        if !self.has(spec_of(e).when) {
-            return Ok(None);
-        }
-        self.subscribe_as(e, 0, spec_of(e).name).map(Some)
-    }
-
-    fn subscribe_as<M: 'static + DeserializeOwned>(
-        &mut self,
+        handler: &'static dyn InputHandler,
         e: Endpoint,
         k: usize,
         relative: &str,
-    ) -> Result<Subscription<M>, DdsError> {
+    ) -> Result<Box<dyn Subscribed>, DdsError> {
         let (t, resolved, qos) = self.topic(e, k, relative)?;
-        self.node
-            .create_subscription::<M>(&t, Some(qos))
-            .map_err(|e| DdsError::Subscribe {
+        handler
+            .subscribe(self.node, &t, qos, e, k)
+            .map_err(|reason| DdsError::Subscribe {
                 topic: resolved,
-                reason: format!("{e:?}"),
+                reason,
             })
     }
 
-    /// A publisher of `e`, if this node has it.
-    fn publish<M: Serialize>(&mut self, e: Endpoint) -> Result<Option<Publisher<M>>, DdsError> {
-        if !self.has(spec_of(e).when) {
-            return Ok(None);
-        }
+    /// The publisher of output `e`.
+    fn publish(
+        &mut self,
+        producer: &'static dyn OutputProducer,
+        e: Endpoint,
+    ) -> Result<Box<dyn Emitter>, DdsError> {
+        let (t, resolved, qos) = self.topic(e, 0, spec_of(e).name)?;
+        producer
+            .publisher(self.node, &t, qos, e)
+            .map_err(|reason| DdsError::Publish {
+                topic: resolved,
+                reason,
+            })
+    }
+
+    /// A publisher of `e`, whose messages its own code makes.
+    fn publish_own<M: Serialize>(&mut self, e: Endpoint) -> Result<Publisher<M>, DdsError> {
         let (t, resolved, qos) = self.topic(e, 0, spec_of(e).name)?;
         self.node
             .create_publisher::<M>(&t, Some(qos))
-            .map(Some)
             .map_err(|e| DdsError::Publish {
                 topic: resolved,
                 reason: format!("{e:?}"),
@@ -374,6 +352,40 @@ impl Maker<'_> {
         Ok(server)
     }
 
+    /// The subscriptions of input `e`: one, or one per muscle whose name makes a valid topic
+    /// name when its name holds `<muscle>` (the others are warned about).
+    fn subscribe_all(
+        &mut self,
+        handler: &'static dyn InputHandler,
+        e: Endpoint,
+        muscles: &[String],
+        logger: &Logger,
+        served: &mut Served,
+    ) -> Result<(), DdsError> {
+        let template = spec_of(e).name;
+        if !template.contains(MUSCLE) {
+            served.inputs.push(self.subscribe(handler, e, 0, template)?);
+            return Ok(());
+        }
+        let mut k = 0;
+        for muscle in muscles {
+            let rel = template.replace(MUSCLE, muscle);
+            if let Err(why) = args::check_name(&rel) {
+                logger.warn(&format!(
+                    "no {template} topic for muscle {}: not a valid name ({why})",
+                    input::quote(muscle)
+                ));
+                continue;
+            }
+            served.inputs.push(self.subscribe(handler, e, k, &rel)?);
+            if served.muscle_topics.len() == k {
+                served.muscle_topics.push(muscle.clone());
+            }
+            k += 1;
+        }
+        Ok(())
+    }
+
     /// Notes the endpoints made elsewhere: by the client library (`/rosout`) and the
     /// recording's own (`~/applied/...`, named under the node, never remapped).
     fn note_unmade(&mut self) {
@@ -391,16 +403,12 @@ impl Maker<'_> {
     }
 }
 
-/// Every `Some` of a table entry the node always has.
-fn always<T>(e: Endpoint, made: Option<T>) -> Result<T, DdsError> {
-    made.ok_or_else(|| DdsError::NotMade {
-        endpoint: format!("{e:?}"),
-    })
-}
+/// What a per-muscle endpoint's name holds in place of each muscle's name.
+const MUSCLE: &str = "<muscle>";
 
 impl Endpoints {
-    /// Every endpoint of [`ENDPOINTS`] this node has; one `~/<muscle>/cmd_activation` per
-    /// muscle of `muscles` whose name makes a valid topic name (the others are warned about).
+    /// Every endpoint of [`ENDPOINTS`] this node has: inputs subscribed with their handlers,
+    /// outputs published with their producers, then `/diagnostics` and the services.
     pub(crate) fn create(
         node: &mut Node,
         setup: &Setup,
@@ -416,53 +424,28 @@ impl Endpoints {
             driven_joints,
             names: Names::default(),
         };
-        let activation = always(E::Activation, m.subscribe(E::Activation)?)?;
-        let activation_array = always(E::ActivationArray, m.subscribe(E::ActivationArray)?)?;
-        let mut muscle_commands = Vec::new();
-        let template = spec_of(E::MuscleCommand).name;
-        for muscle in muscles {
-            let rel = template.replace("<muscle>", muscle);
-            if let Err(e) = args::check_name(&rel) {
-                logger.warn(&format!(
-                    "no {template} topic for muscle {}: not a valid name ({e})",
-                    input::quote(muscle)
-                ));
+        let mut inputs = Served {
+            inputs: Vec::new(),
+            muscle_topics: Vec::new(),
+            diagnostics: m.publish_own(E::Diagnostics)?,
+            reset: m.serve(E::Reset)?,
+            step: m.serve(E::Step)?,
+        };
+        let mut published = Vec::new();
+        for s in ENDPOINTS {
+            if !m.has(s.when) {
                 continue;
             }
-            let sub = m.subscribe_as(E::MuscleCommand, muscle_commands.len(), &rel)?;
-            muscle_commands.push((muscle.clone(), sub));
+            match role(s.endpoint) {
+                Role::Input(h) => m.subscribe_all(h, s.endpoint, muscles, logger, &mut inputs)?,
+                Role::Output(p) => published.push(m.publish(p, s.endpoint)?),
+                Role::Own => {}
+            }
         }
-        let load = always(E::Load, m.subscribe(E::Load)?)?;
-        let state = always(E::State, m.publish(E::State)?)?;
-        let joint_states = always(E::JointStates, m.publish(E::JointStates)?)?;
-        let diagnostics = always(E::Diagnostics, m.publish(E::Diagnostics)?)?;
-        let reset = m.serve(E::Reset)?;
-        let step = m.serve(E::Step)?;
-        let step_topic = always(E::StepTopic, m.subscribe(E::StepTopic)?)?;
-        let joint_states_in = m.subscribe(E::JointStatesIn)?;
-        let joint_efforts = m.publish(E::JointEfforts)?;
-        let clock = m.publish(E::ClockOut)?;
-        let clock_in = m.subscribe(E::ClockIn)?;
         m.note_unmade();
         Ok(Self {
-            served: Served {
-                activation,
-                activation_array,
-                muscle_commands,
-                load,
-                diagnostics,
-                reset,
-                step,
-                step_topic,
-                clock_in,
-                joint_states_in,
-            },
-            published: Published {
-                state,
-                joint_states,
-                clock,
-                joint_efforts,
-            },
+            served: inputs,
+            published,
             names: m.names,
         })
     }

@@ -14,7 +14,6 @@ use muscle_actuator_core::sim::input::Rejection;
 use muscle_actuator_recording::msgs::Time;
 use muscle_actuator_recording::msgs::{DiagnosticArray, DiagnosticStatus, Header, KeyValue};
 use muscle_actuator_recording::recording::{Recorder, RecorderState};
-use muscle_actuator_recording::runs::Channel;
 use ros2_client::Publisher;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
@@ -482,7 +481,11 @@ pub(crate) async fn publish_task(
             }
         }
         if let Some(r) = &rec {
-            r.put(Channel::Diagnostics, msg.header.stamp.to_nanos(), &msg);
+            r.put(
+                (Endpoint::Diagnostics, 0),
+                msg.header.stamp.to_nanos(),
+                &msg,
+            );
         }
         if let Some(l) = &live {
             l.put(Endpoint::Diagnostics, msg.header.stamp.to_nanos(), &msg);

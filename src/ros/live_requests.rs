@@ -3,15 +3,14 @@
 //! parameters through the node's parameter store (the validator and action of `ros2 param
 //! set`), and `~/reset` / `~/step` with their services' answers.
 
-use super::clock::ClockMode;
-use super::live::channels::Service;
+use super::endpoints::Service;
+use super::inputs::InputContext;
 use super::live::protocol::{self, Level, ParameterIn};
-use super::live::{Answer, Input, Request};
-use super::logging::Reporter;
-use super::node_state::NodeState;
+use super::live::{Answer, Request};
+use super::roles;
 use super::sample_messages::sample_to_msgs;
+use super::services;
 use super::severity::Severity;
-use super::tasks::{self, InputContext};
 use super::tick::Command;
 use futures::future::LocalBoxFuture;
 use futures::stream::FuturesUnordered;
@@ -22,15 +21,11 @@ use ros2_client::{Node, ParameterValue};
 use serde_json::{json, Value};
 use std::cell::Cell;
 
-/// What the requests are answered with.
+/// What the requests are answered with: the inputs' context (the node's state, log and
+/// recording) and the node's parameter store.
 pub(crate) struct Context<'a> {
     pub(crate) inputs: &'a InputContext<'a>,
     pub(crate) node: &'a Node,
-    pub(crate) shared: &'a NodeState,
-    pub(crate) mode: ClockMode,
-    pub(crate) log: &'a Reporter,
-    /// The muscle of each `~/<muscle>/cmd_activation` topic, in order.
-    pub(crate) muscle_topics: &'a [String],
 }
 
 /// Answers requests until the live view's queue closes (never, while the node runs). A
@@ -60,33 +55,15 @@ fn handle<'a>(
 ) -> Option<LocalBoxFuture<'a, ()>> {
     let ic = cx.inputs;
     match req {
-        Request::Input(input) => {
-            let stats = &ic.stats;
-            match input {
-                Input::Activation(m) => {
-                    count(&stats.activation_received);
-                    tasks::on_activation(ic, m)
-                }
-                Input::ActivationArray(m) => {
-                    count(&stats.activation_received);
-                    tasks::on_activation_array(ic, m)
-                }
-                Input::MuscleCommand(k, m) => {
-                    count(&stats.activation_received);
-                    if let Some(muscle) = cx.muscle_topics.get(k) {
-                        tasks::on_muscle_command(ic, k, muscle, m)
-                    }
-                }
-                Input::Load(m) => {
-                    count(&stats.load_received);
-                    tasks::on_load(ic, m)
-                }
-            }
-        }
-        Request::Unreadable { what, error } => ic.unreadable(what, error),
+        Request::Input {
+            endpoint,
+            k,
+            json,
+            payload,
+        } => roles::on_payload(ic, endpoint, k, json, &payload),
         Request::Log { key, warn, line } => {
             let sev = if warn { Severity::Warn } else { Severity::Info };
-            cx.log.report(key, sev, line)
+            ic.log.report(key, sev, line)
         }
         Request::GetParameters { names, id, answer } => {
             answer.text(parameter_values(cx.node, &names, id.as_deref()))
@@ -104,7 +81,7 @@ fn handle<'a>(
         } => {
             return Some(
                 async move {
-                    let resp = tasks::reset_answer(cx.shared).await;
+                    let resp = services::reset_answer(ic.shared).await;
                     reply(&answer, Service::Reset, call_id, &resp);
                 }
                 .boxed_local(),
@@ -118,10 +95,6 @@ fn handle<'a>(
         } => return step(cx, step_running, call_id, &payload, answer),
     }
     None
-}
-
-fn count(c: &std::sync::atomic::AtomicU64) {
-    c.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
 }
 
 fn reply<T: serde::Serialize>(answer: &Answer, service: Service, call_id: u32, resp: &T) {
@@ -163,14 +136,14 @@ fn step<'a>(
     let refusal = if running.get() {
         Some("a step is running; ask again once it has answered".to_string())
     } else {
-        tasks::step_refusal(cx.mode, req.ticks)
+        services::step_refusal(cx.inputs.mode, req.ticks)
     };
     if let Some(why) = refusal {
-        reply(&answer, Service::Step, call_id, &tasks::step_failed(why));
+        reply(&answer, Service::Step, call_id, &services::step_failed(why));
         return None;
     }
     let (tx, rx) = futures::channel::oneshot::channel();
-    cx.shared.send(Command::Step {
+    cx.inputs.shared.send(Command::Step {
         ticks: req.ticks as u64,
         reply: Some(tx),
     });
@@ -185,7 +158,7 @@ fn step<'a>(
                     state: sample_to_msgs(&s).0,
                 },
                 Err(_) => {
-                    tasks::step_failed("the tick loop stopped before the step was done".into())
+                    services::step_failed("the tick loop stopped before the step was done".into())
                 }
             };
             running.set(false);

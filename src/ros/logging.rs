@@ -9,7 +9,6 @@ use super::record::RecordTx;
 use super::severity::Severity;
 use muscle_actuator_recording::msgs::Log;
 use muscle_actuator_recording::msgs::Time;
-use muscle_actuator_recording::runs::Channel;
 use ros2_client::log::LogLevel;
 use ros2_client::{NodeLoggingHandle, RosoutRaw};
 use std::collections::HashMap;
@@ -77,7 +76,7 @@ impl Logger {
                     line: line!(),
                 };
                 if let Some(r) = rec {
-                    r.put(Channel::Rosout, stamp.to_nanos(), &line);
+                    r.put((Endpoint::Rosout, 0), stamp.to_nanos(), &line);
                 }
                 if let Some(l) = live {
                     l.put(Endpoint::Rosout, stamp.to_nanos(), &line);

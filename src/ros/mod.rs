@@ -13,9 +13,12 @@
 //! Running:
 //! - `tick`: the fixed-rate loop on its own thread (queues in and out, never waits on DDS);
 //! - `sample_messages`: a tick's sample as the published messages;
+//! - `outputs`: the output topics, one producer each, and the publisher thread that writes them;
 //! - `threads`: the tick loop, the publisher and the applied-inputs recorder, started and stopped
 //!   together;
-//! - `tasks`: the executor's tasks: the input topics, the services, the loop's events;
+//! - `inputs`: the input topics, one handler each, served on the executor; `roles`: which
+//!   handler or producer each endpoint has;
+//! - `services`: `~/reset` and `~/step`; `events`: the tick loop's events as log lines;
 //! - incoming commands are validated by [`muscle_actuator_core::sim::input`] (the core crate's rules, shared
 //!   with the Python package);
 //! - `diagnostics`: `/diagnostics`, once a second;
@@ -33,6 +36,8 @@ pub(crate) mod dds;
 pub(crate) mod diagnostics;
 pub(crate) mod endpoints;
 mod error;
+mod events;
+pub(crate) mod inputs;
 pub(crate) mod live;
 mod live_requests;
 pub(crate) mod logging;
@@ -40,14 +45,16 @@ pub(crate) mod logging;
 mod markdown_table;
 pub(crate) mod node;
 mod node_state;
+pub(crate) mod outputs;
 mod param_callbacks;
 pub(crate) mod params;
 pub(crate) mod record;
+mod roles;
 mod sample_messages;
+mod services;
 pub(crate) mod setup;
 pub(crate) mod severity;
 mod signals;
-mod tasks;
 mod threads;
 pub(crate) mod tick;
 

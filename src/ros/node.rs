@@ -1,21 +1,24 @@
 //! The node's main: set-up, the DDS endpoints, the recording, the threads, the tasks on the
-//! executor, and the stop. Each piece lives in its own module; this one only wires them.
+//! executor (the inputs, the services, `/diagnostics`, the live view's requests, the tick loop's
+//! events), and the stop. Each piece lives in its own module; this one only wires them.
 
 use super::clock::{ClockMode, NodeClock};
 use super::dds::{Dds, DdsError, Endpoints, Served};
 use super::diagnostics::{self, DiagSources, InputStats};
 use super::endpoints::{Endpoint, Names};
 use super::error::NodeError;
+use super::events;
+use super::inputs::{self, InputContext};
 use super::live::{Catalogue, LiveOptions, LiveStatus, LiveView, Request};
 use super::live_requests;
 use super::logging::{Logger, Reporter};
 use super::node_state::NodeState;
 use super::param_callbacks;
 use super::record::{self, NodeRecorder, RecordTx};
+use super::services;
 use super::setup::{setup, Setup};
 use super::severity::Severity;
 use super::signals::StopSignals;
-use super::tasks::{self, InputContext};
 use super::threads::{self, ThreadInputs, Threads};
 use super::tick::{self, Event, Pacing};
 use futures::FutureExt;
@@ -255,11 +258,14 @@ fn serve(x: Executor<'_>, spinner: Spinner) {
     let e = x.served;
     let log = Reporter::new(x.logger.clone());
     let inputs = InputStats::default();
+    let mode = x.clock.mode();
     let cx = InputContext {
         shared: x.shared,
         stats: &inputs,
         log: &log,
         rec: x.rec.clone(),
+        mode,
+        muscle_topics: &e.muscle_topics,
     };
     let diag = DiagSources {
         fqn: &x.setup.fqn,
@@ -278,30 +284,18 @@ fn serve(x: Executor<'_>, spinner: Spinner) {
         },
         participant: &x.participant,
     };
-    let muscle_topics: Vec<String> = e.muscle_commands.iter().map(|(m, _)| m.clone()).collect();
     let lcx = live_requests::Context {
         inputs: &cx,
         node: x.node,
-        shared: x.shared,
-        mode: x.clock.mode(),
-        log: &log,
-        muscle_topics: &muscle_topics,
     };
     // Biased: each wake polls the inputs before the step service, so that inputs received
     // before a step request take effect at its first tick.
-    let mode = x.clock.mode();
     smol::block_on(async {
         futures::select_biased! {
             _ = x.signals.requested.recv().fuse() => {},
-            _ = tasks::activation(&e.activation, &cx).fuse() => {},
-            _ = tasks::activation_array(&e.activation_array, &cx).fuse() => {},
-            _ = tasks::muscle_commands(&e.muscle_commands, &cx).fuse() => {},
-            _ = tasks::load(&e.load, &cx).fuse() => {},
-            _ = joint_states_in(e.joint_states_in.as_ref(), &cx).fuse() => {},
-            _ = clock_in(e.clock_in.as_ref(), &cx).fuse() => {},
-            _ = tasks::step_topic(&e.step_topic, &cx, mode).fuse() => {},
-            _ = tasks::step(&e.step, x.shared, mode, &log).fuse() => {},
-            _ = tasks::reset(&e.reset, x.shared, &log).fuse() => {},
+            _ = inputs::serve(&e.inputs, &cx).fuse() => {},
+            _ = services::step(&e.step, x.shared, mode, &log).fuse() => {},
+            _ = services::reset(&e.reset, x.shared, &log).fuse() => {},
             res = spinner.spin().fuse() => {
                 if let Err(e) = res {
                     x.logger.error(&format!("the node's spinner failed: {e:?}"));
@@ -311,7 +305,7 @@ fn serve(x: Executor<'_>, spinner: Spinner) {
                 diag, &e.diagnostics, &log, x.rec.clone(), x.live.map(LiveView::tap)
             ).fuse() => {},
             _ = live_in(x.live.map(|l| &l.requests), &lcx).fuse() => {},
-            _ = tasks::events(x.events, &x.threads.stats, &log, x.rec.as_ref()).fuse() => {},
+            _ = events::log_events(x.events, &x.threads.stats, &log, x.rec.as_ref()).fuse() => {},
         }
     });
 }
@@ -334,32 +328,10 @@ fn stop(
     Ok(())
 }
 
-/// `~/joint_states_in` when there are driven joints; otherwise nothing, for ever.
-async fn joint_states_in(
-    sub: Option<&ros2_client::Subscription<muscle_actuator_recording::msgs::JointState>>,
-    cx: &InputContext<'_>,
-) {
-    match sub {
-        Some(s) => tasks::joint_states_in(s, cx).await,
-        None => futures::future::pending().await,
-    }
-}
-
 /// The live view's requests when it runs; otherwise nothing, for ever.
 async fn live_in(rx: Option<&smol::channel::Receiver<Request>>, cx: &live_requests::Context<'_>) {
     match rx {
         Some(rx) => live_requests::serve(rx, cx).await,
-        None => futures::future::pending().await,
-    }
-}
-
-/// `/clock` when following one (`use_sim_time`); otherwise nothing, for ever.
-async fn clock_in(
-    sub: Option<&ros2_client::Subscription<muscle_actuator_recording::msgs::Clock>>,
-    cx: &InputContext<'_>,
-) {
-    match sub {
-        Some(s) => tasks::clock_in(s, cx).await,
         None => futures::future::pending().await,
     }
 }

@@ -5,8 +5,8 @@
 //! ([`super::clock`]): wall-clock time, simulated time with `clock` sim or lockstep, or the
 //! followed `/clock`'s time (docs/time.md, "Time in recordings").
 
-use super::clock::NodeClock;
-use super::endpoints::Names;
+use super::clock::{ClockMode, NodeClock};
+use super::endpoints::{Endpoint, Names};
 use super::params::NodeParams;
 use super::tick::{Applied, AppliedInput};
 use muscle_actuator_core::sim::Actuator;
@@ -17,18 +17,22 @@ use muscle_actuator_recording::msgs::{DiagnosticStatus, Header, KeyValue};
 use muscle_actuator_recording::recording::{
     encode_cdr, RecordSender, Recorder, RecorderOptions, RecorderState,
 };
-use muscle_actuator_recording::runs::{self, AttachmentMeta, Channel, Layout, RunMeta};
+use muscle_actuator_recording::runs::{self, AttachmentMeta, Layout, RunMeta};
+use ros2_client::ParameterValue;
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::Receiver;
 use std::sync::Arc;
+
+/// A channel of the node's recording: the `k`-th instance of an endpoint.
+pub(crate) type ChannelKey = (Endpoint, usize);
 
 /// Where the node's threads hand messages for the recording: the recorder's sender and the
 /// channel layout (cheap to clone).
 #[derive(Clone)]
 pub struct RecordTx {
     pub sender: RecordSender,
-    layout: Arc<Layout>,
+    layout: Arc<Layout<ChannelKey>>,
     clock: Arc<NodeClock>,
     /// The run's metadata as first written.
     meta: Arc<RunMeta>,
@@ -37,18 +41,24 @@ pub struct RecordTx {
 impl RecordTx {
     /// Serializes `msg` and hands it to the recorder on channel `ch` (log time: the node's
     /// clock now), for what the node received or logged.
-    pub fn put<T: serde::Serialize>(&self, ch: Channel, publish_ns: i64, msg: &T) {
+    pub(crate) fn put<T: serde::Serialize>(&self, ch: ChannelKey, publish_ns: i64, msg: &T) {
         self.put_logged(ch, self.clock.now_ns(), publish_ns, msg);
     }
 
     /// As [`RecordTx::put`] for what the tick loop made (states, joint states, efforts, inputs
     /// as applied): log time = the tick's stamp, so that the same ticks give the same records
     /// whenever the recorder's thread got to them.
-    pub fn put_tick<T: serde::Serialize>(&self, ch: Channel, stamp_ns: i64, msg: &T) {
+    pub(crate) fn put_tick<T: serde::Serialize>(&self, ch: ChannelKey, stamp_ns: i64, msg: &T) {
         self.put_logged(ch, stamp_ns, stamp_ns, msg);
     }
 
-    fn put_logged<T: serde::Serialize>(&self, ch: Channel, log_ns: i64, publish_ns: i64, msg: &T) {
+    fn put_logged<T: serde::Serialize>(
+        &self,
+        ch: ChannelKey,
+        log_ns: i64,
+        publish_ns: i64,
+        msg: &T,
+    ) {
         let Some(id) = self.layout.id(ch) else {
             return;
         };
@@ -93,7 +103,7 @@ pub enum RecordError {
 /// A running recording.
 pub struct NodeRecorder {
     pub recorder: Recorder,
-    layout: Arc<Layout>,
+    layout: Arc<Layout<ChannelKey>>,
     clock: Arc<NodeClock>,
     meta: Arc<RunMeta>,
 }
@@ -125,7 +135,7 @@ pub fn file_path(p: &NodeParams, fqn: &str, start_ns: i64) -> PathBuf {
 
 /// The recording's channels: every endpoint the node has that the table records
 /// ([`super::endpoints::ENDPOINTS`]), in the table's order, under its resolved name.
-pub(crate) fn layout(names: &Names) -> Result<Layout, RecordError> {
+pub(crate) fn layout(names: &Names) -> Result<Layout<ChannelKey>, RecordError> {
     let mut layout = Layout::new();
     for r in names.in_table_order() {
         if let Some(ch) = r.channel() {
@@ -135,6 +145,24 @@ pub(crate) fn layout(names: &Names) -> Result<Layout, RecordError> {
         }
     }
     Ok(layout)
+}
+
+/// The node's parameters as the recording's metadata holds them: every one of the parameter
+/// table with its value, and `use_sim_time` (whether the node follows `/clock`).
+fn parameters_json(p: &NodeParams, mode: ClockMode) -> String {
+    let mut m = serde_json::Map::new();
+    for (name, value) in p.values() {
+        let v = match value {
+            ParameterValue::Boolean(b) => b.into(),
+            ParameterValue::Integer(i) => i.into(),
+            ParameterValue::Double(d) => d.into(),
+            ParameterValue::String(s) => s.into(),
+            other => format!("{other:?}").into(),
+        };
+        m.insert(name.into(), v);
+    }
+    m.insert("use_sim_time".into(), (mode == ClockMode::Follow).into());
+    serde_json::Value::Object(m).to_string()
 }
 
 /// Starts the recording of a node run whose tick 0 is stamped `tick_origin_ns` on `clock`.
@@ -147,23 +175,7 @@ pub(crate) fn start(
     tick_origin_ns: i64,
 ) -> Result<NodeRecorder, RecordError> {
     let start_ns = time::now_ns();
-    let params_json = {
-        let mut m = serde_json::Map::new();
-        m.insert("model".into(), p.model.name().into());
-        m.insert("rate_hz".into(), p.rate_hz.into());
-        m.insert("publish_rate_hz".into(), p.publish_rate_hz.into());
-        m.insert("config".into(), p.config.clone().into());
-        m.insert("record".into(), p.record.into());
-        m.insert("record_dir".into(), p.record_dir.clone().into());
-        m.insert("clock".into(), p.clock.name().into());
-        m.insert(
-            "use_sim_time".into(),
-            (clock.mode() == super::clock::ClockMode::Follow).into(),
-        );
-        m.insert("real_time_factor".into(), p.real_time_factor.into());
-        m.insert("clock_rate_hz".into(), p.clock_rate_hz.into());
-        serde_json::Value::Object(m).to_string()
-    };
+    let params_json = parameters_json(p, clock.mode());
     let meta = RunMeta {
         source: format!("node {fqn}"),
         model: actuator.model(),
@@ -210,7 +222,7 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
                     muscle: v.iter().map(|(i, _)| name(*i)).collect(),
                     excitation: v.iter().map(|(_, u)| *u).collect(),
                 };
-                tx.put_tick(Channel::AppliedActivation, a.stamp_ns, &m);
+                tx.put_tick((Endpoint::AppliedActivation, 0), a.stamp_ns, &m);
             }
             AppliedInput::Load(v) => {
                 let m = ExternalLoad {
@@ -218,7 +230,7 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
                     joint: v.iter().map(|(j, _)| name(*j)).collect(),
                     torque: v.iter().map(|(_, t)| *t).collect(),
                 };
-                tx.put_tick(Channel::AppliedLoad, a.stamp_ns, &m);
+                tx.put_tick((Endpoint::AppliedLoad, 0), a.stamp_ns, &m);
             }
             AppliedInput::JointMotion(v) => {
                 let m = runs::joint_motion_msg(
@@ -226,7 +238,7 @@ pub fn applied_loop(rx: Receiver<Applied>, tx: RecordTx) {
                     v.iter()
                         .map(|&(j, angle, velocity)| (name(j), angle, velocity)),
                 );
-                tx.put_tick(Channel::AppliedJointMotion, a.stamp_ns, &m);
+                tx.put_tick((Endpoint::AppliedJointMotion, 0), a.stamp_ns, &m);
             }
         }
     }
@@ -307,7 +319,7 @@ mod tests {
     use super::*;
     use crate::ros::args::expand;
     use crate::ros::clock::ClockMode;
-    use crate::ros::endpoints::{Endpoint, ENDPOINTS};
+    use crate::ros::endpoints::ENDPOINTS;
 
     /// Every endpoint the table records is a channel of the file the node's recorder writes,
     /// under its name and with its type (here every endpoint made, as with driven joints).
@@ -349,7 +361,7 @@ mod tests {
             })
             .collect();
         let mut recorded = 0;
-        for s in ENDPOINTS.iter().filter(|s| s.record.is_some()) {
+        for s in ENDPOINTS.iter().filter(|s| s.record) {
             let name = expand(s.name, "/lab", "muscle_actuator");
             assert!(
                 channels.contains(&(name.clone(), s.type_name.to_string())),

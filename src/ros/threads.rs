@@ -1,20 +1,16 @@
-//! The node's threads beside the DDS executor: the tick loop, the publisher, and (when
-//! recording) the thread that turns applied inputs into messages. Started together; stopped in
+//! The node's threads beside the DDS executor: the tick loop, the publisher
+//! ([`outputs::publish_loop`]), and (when recording) the thread that turns applied inputs into
+//! messages. Started together; stopped in
 //! order, the tick loop first, each ending when its input channel closes.
 
-use super::dds::Published;
-use super::endpoints::{spec_of, Endpoint};
 use super::live::LiveTap;
 use super::logging::Logger;
+use super::outputs::{self, Emitter, Sinks};
 use super::record::{self, RecordTx};
-use super::sample_messages::{efforts_msg, sample_to_msgs};
 use super::tick::{
     self, Applied, CommandReceiver, Event, LoopIo, Output, Pacing, RunSummary, TickStats,
 };
 use muscle_actuator_core::sim::Actuator;
-use muscle_actuator_recording::msgs::Clock;
-use muscle_actuator_recording::msgs::Time;
-use ros2_client::Publisher;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver};
 use std::sync::Arc;
@@ -30,78 +26,13 @@ const APPLIED_QUEUE: usize = 1024;
 /// How long a stop waits for the tick loop to return from its step.
 const TICK_STOP_GRACE: Duration = Duration::from_millis(500);
 
-/// Where the publisher thread sends what the tick loop hands over.
-struct Outlets {
-    published: Published,
-    errors: Arc<AtomicU64>,
-    rec: Option<RecordTx>,
-    /// The live view's clients.
-    live: Option<LiveTap>,
-}
-
-impl Outlets {
-    /// `msg` of endpoint `e`, stamped with its tick's `stamp_ns`, to wherever the endpoints'
-    /// table sends it: the recording (its channel), the live view (its outlet) and DDS
-    /// (`publisher`, when the node has it). A failed publication is counted.
-    fn emit<M: serde::Serialize>(
-        &self,
-        e: Endpoint,
-        stamp_ns: i64,
-        msg: M,
-        publisher: Option<&Publisher<M>>,
-    ) {
-        if let (Some(r), Some(ch)) = (&self.rec, spec_of(e).record) {
-            r.put_tick(ch, stamp_ns, &msg);
-        }
-        if let Some(l) = &self.live {
-            l.put(e, stamp_ns, &msg);
-        }
-        if let Some(p) = publisher {
-            if p.publish(msg).is_err() {
-                self.errors.fetch_add(1, Ordering::Relaxed);
-            }
-        }
-    }
-}
-
-/// The publisher thread: takes states and times from the tick thread, records and publishes
-/// them ([`Outlets::emit`]).
-fn publish_loop(rx: Receiver<Output>, out: Outlets) {
-    let p = &out.published;
-    while let Ok(o) = rx.recv() {
-        match o {
-            Output::State(s) => {
-                let (state, js) = sample_to_msgs(&s);
-                out.emit(Endpoint::State, s.stamp_ns, state, Some(&p.state));
-                out.emit(Endpoint::JointStates, s.stamp_ns, js, Some(&p.joint_states));
-                if let (Some(efforts), false) = (&p.joint_efforts, s.driven.is_empty()) {
-                    out.emit(
-                        Endpoint::JointEfforts,
-                        s.stamp_ns,
-                        efforts_msg(&s),
-                        Some(efforts),
-                    );
-                }
-            }
-            Output::Clock(ns) => {
-                let clock = Clock {
-                    clock: Time::from_nanos(ns),
-                };
-                out.emit(Endpoint::ClockOut, ns, clock, p.clock.as_ref());
-                if let Some(l) = &out.live {
-                    l.time(ns);
-                }
-            }
-        }
-    }
-}
-
 /// What the threads are given.
 pub(crate) struct ThreadInputs {
     pub(crate) actuator: Actuator,
     pub(crate) publish_every: u64,
     pub(crate) commands: CommandReceiver,
-    pub(crate) published: Published,
+    /// The outputs the node publishes ([`outputs`]).
+    pub(crate) published: Vec<Box<dyn Emitter>>,
     pub(crate) rec: Option<RecordTx>,
     pub(crate) live: Option<LiveTap>,
     /// The stamp of tick 0, ns (since the Unix epoch for the wall clock).
@@ -171,15 +102,15 @@ impl Threads {
         let (sample_tx, sample_rx) = mpsc::sync_channel::<Output>(SAMPLE_QUEUE);
         let (event_tx, event_rx) = mpsc::sync_channel::<Event>(EVENT_QUEUE);
         let publish_errors = Arc::new(AtomicU64::new(0));
-        let outlets = Outlets {
-            published: t.published,
+        let sinks = Sinks {
             errors: publish_errors.clone(),
             rec: t.rec.clone(),
             live: t.live,
         };
+        let published = t.published;
         let publisher = std::thread::Builder::new()
             .name("publish".into())
-            .spawn(move || publish_loop(sample_rx, outlets))
+            .spawn(move || outputs::publish_loop(sample_rx, published, sinks))
             .map_err(spawn_error("publisher"))?;
         let tick = tick::spawn(
             t.actuator,

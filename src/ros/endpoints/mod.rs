@@ -2,11 +2,12 @@
 //! [`Names`] holds the names a running node gave them.
 
 #[cfg(test)]
-mod docs_table;
-mod live_kinds;
+pub(crate) mod docs_table;
 mod names;
 pub(crate) mod table;
 
-pub(crate) use live_kinds::{InputTopic, Service};
 pub(crate) use names::Names;
-pub(crate) use table::{spec_of, Direction, Endpoint, Live, Outlet, Qos, When, ENDPOINTS, OUTLETS};
+pub(crate) use table::{
+    endpoint_list, spec_of, Direction, Endpoint, Live, Outlet, Qos, Service, When, ENDPOINTS,
+    OUTLETS,
+};

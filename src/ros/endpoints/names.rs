@@ -1,8 +1,7 @@
 //! The resolved names of the endpoints a node made (namespace, node name and remapping
 //! applied), one list for the recording, the live view and the start-up line.
 
-use super::table::{spec_of, Endpoint, EndpointSpec, Live, ENDPOINTS};
-use muscle_actuator_recording::runs::channels::Channel;
+use super::table::{spec_of, Endpoint, EndpointSpec, ENDPOINTS};
 
 /// One endpoint as made: its entry, which instance (the k-th muscle topic) and its name.
 #[derive(Debug, Clone)]
@@ -18,23 +17,9 @@ impl Resolved {
         spec_of(self.endpoint)
     }
 
-    /// The recording's channel of this instance.
-    pub(crate) fn channel(&self) -> Option<Channel> {
-        match self.spec().record? {
-            Channel::MuscleCommand(_) => Some(Channel::MuscleCommand(self.k)),
-            other => Some(other),
-        }
-    }
-
-    /// The live view's input kind of this instance.
-    pub(crate) fn live(&self) -> Live {
-        use super::live_kinds::InputTopic;
-        match self.spec().live {
-            Live::Input(InputTopic::MuscleCommand(_)) => {
-                Live::Input(InputTopic::MuscleCommand(self.k))
-            }
-            other => other,
-        }
+    /// The recording's channel of this instance, if it is recorded.
+    pub(crate) fn channel(&self) -> Option<(Endpoint, usize)> {
+        self.spec().record.then_some((self.endpoint, self.k))
     }
 }
 

@@ -1,58 +1,44 @@
-//! The node's topics and services, each declared once: name (before remapping), type, QoS,
-//! direction, when the node has it, whether the recording holds it (on which channel) and
-//! whether the live view serves it. The DDS set-up (`dds.rs`), the recording's channels
+//! The node's topics and services, each declared once, in one row of [`endpoint_list`]: name
+//! (before remapping), type, QoS, direction, when the node has it, whether the recording holds
+//! it, whether the live view serves it, and what takes or makes its messages (its role: an
+//! input's handler, an output's producer). The DDS set-up (`dds.rs`), the recording's channels
 //! (`record.rs`), the live view's channels and inputs (`live/channels.rs`), the resolved names
-//! ([`super::Names`]) and the publisher thread (`threads.rs`) read [`ENDPOINTS`];
-//! docs/ros-interface.md's topics table is checked against it (`docs_table`).
+//! ([`super::Names`]), the publisher thread (`outputs/`) and the input handling (`inputs/`) read
+//! [`ENDPOINTS`]; `roles.rs` reads the roles; docs/ros-interface.md's topics table is checked
+//! against it (`docs_table`).
 //!
-//! Adding a topic: a variant of [`Endpoint`], one entry here, and its handler (a `tasks.rs`
-//! function and its arm in `node.rs` for an input; a message made in `threads.rs`'s
-//! `publish_loop` for an output); its row in docs/ros-interface.md follows.
+//! Adding a topic: its row here, and its handler (an input: a file in `inputs/`) or its producer
+//! (an output: a file in `outputs/`). `src/tests_topic.rs` adds one that way.
 
-use super::live_kinds::{InputTopic, Service};
-use muscle_actuator_recording::runs::channels::{
-    Channel, ACTIVATION_TYPE, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATE_TYPE,
-    LOAD_TYPE, LOG_TYPE, STATE_TYPE,
+use muscle_actuator_recording::runs::{
+    NodeTopic, ACTIVATION, APPLIED_ACTIVATION, APPLIED_JOINT_MOTION, APPLIED_LOAD,
+    DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATES, JOINT_STATE_TYPE, LOAD,
+    LOG_TYPE, STATE,
 };
 
-/// Declares [`Endpoint`] and, for the tests, [`Endpoint::ALL`] (every variant in order) from
-/// one list, so that a new endpoint is one line here and its entry in [`ENDPOINTS`].
+/// Declares [`Endpoint`] (one variant per row), [`ENDPOINTS`] (the rows' data, in order) and,
+/// for the tests, [`Endpoint::ALL`], from [`endpoint_list`]; the rows' roles are read by
+/// `roles.rs`.
 macro_rules! endpoints {
-    ($($(#[$doc:meta])* $variant:ident,)*) => {
+    ($($(#[doc = $doc:literal])* $(#[cfg($cfg:meta)])* $variant:ident: $row:expr => $role:expr,)*) => {
         /// A topic or service of the node.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
         pub(crate) enum Endpoint {
-            $($(#[$doc])* $variant,)*
+            $($(#[doc = $doc])* $(#[cfg($cfg)])* $variant,)*
         }
+
+        /// Every endpoint. The order is that of the recording's channels, then of the live
+        /// view's channels (their ids) and inputs, and of the inputs' polling.
+        pub(crate) const ENDPOINTS: &[EndpointSpec] = &[
+            $($(#[cfg($cfg)])* $row.of(Endpoint::$variant),)*
+        ];
 
         #[cfg(test)]
         impl Endpoint {
             /// Every endpoint, in declaration order.
-            pub(crate) const ALL: &'static [Endpoint] = &[$(Endpoint::$variant,)*];
+            pub(crate) const ALL: &'static [Endpoint] = &[$($(#[cfg($cfg)])* Endpoint::$variant,)*];
         }
     };
-}
-
-endpoints! {
-    State,
-    JointStates,
-    Activation,
-    Load,
-    AppliedActivation,
-    AppliedLoad,
-    Diagnostics,
-    Rosout,
-    ActivationArray,
-    /// `~/<muscle>/cmd_activation`, one per muscle.
-    MuscleCommand,
-    ClockOut,
-    ClockIn,
-    JointStatesIn,
-    JointEfforts,
-    AppliedJointMotion,
-    Reset,
-    Step,
-    StepTopic,
 }
 
 /// How the node takes part.
@@ -111,12 +97,30 @@ pub(crate) enum Live {
     /// A channel clients subscribe to.
     Outlet,
     /// A topic clients may publish on.
-    Input(InputTopic),
+    Input,
     /// A service clients may call.
     Service(Service),
 }
 
+/// A service served to the live view's clients (its id in the protocol).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Service {
+    Reset = 1,
+    Step = 2,
+}
+
+impl Service {
+    pub(crate) fn from_id(id: u32) -> Option<Self> {
+        match id {
+            1 => Some(Self::Reset),
+            2 => Some(Self::Step),
+            _ => None,
+        }
+    }
+}
+
 /// One endpoint.
+#[derive(Clone, Copy)]
 pub(crate) struct EndpointSpec {
     pub(crate) endpoint: Endpoint,
     pub(crate) direction: Direction,
@@ -127,32 +131,37 @@ pub(crate) struct EndpointSpec {
     pub(crate) type_name: &'static str,
     pub(crate) qos: Qos,
     pub(crate) when: When,
-    /// The recording's channel.
-    pub(crate) record: Option<Channel>,
+    /// Whether the recording holds it (a channel per instance).
+    pub(crate) record: bool,
     pub(crate) live: Live,
 }
 
-const fn spec(
-    endpoint: Endpoint,
-    direction: Direction,
-    name: &'static str,
-    type_name: &'static str,
-) -> EndpointSpec {
+/// A row, as the table writes it ([`EndpointSpec::of`] names its endpoint).
+const fn spec(direction: Direction, name: &'static str, type_name: &'static str) -> EndpointSpec {
     EndpointSpec {
-        endpoint,
+        endpoint: Endpoint::State,
         direction,
         name,
         type_name,
         qos: Qos::Reliable,
         when: When::Always,
-        record: None,
+        record: false,
         live: Live::No,
     }
 }
 
+/// The row of a topic offline runs share.
+const fn topic(direction: Direction, t: NodeTopic) -> EndpointSpec {
+    spec(direction, t.name, t.type_name)
+}
+
 impl EndpointSpec {
-    const fn recorded(mut self, ch: Channel) -> Self {
-        self.record = Some(ch);
+    const fn of(mut self, endpoint: Endpoint) -> Self {
+        self.endpoint = endpoint;
+        self
+    }
+    const fn recorded(mut self) -> Self {
+        self.record = true;
         self
     }
     const fn live(mut self, live: Live) -> Self {
@@ -176,88 +185,85 @@ impl EndpointSpec {
 }
 
 use Direction::{Pub, Recorded, Srv, Sub};
-use Endpoint as E;
 
-/// Every endpoint. The order is that of the recording's channels, then of the live view's
-/// channels (their ids) and inputs.
-pub(crate) const ENDPOINTS: &[EndpointSpec] = &[
-    spec(E::State, Pub, "~/state", STATE_TYPE)
-        .recorded(Channel::State)
-        .live(Live::Outlet),
-    spec(E::JointStates, Pub, "joint_states", JOINT_STATE_TYPE)
-        .recorded(Channel::JointStates)
-        .live(Live::Outlet),
-    spec(E::Activation, Sub, "~/activation", ACTIVATION_TYPE)
-        .recorded(Channel::Activation)
-        .live(Live::Input(InputTopic::Activation)),
-    spec(E::Load, Sub, "~/external_load", LOAD_TYPE)
-        .recorded(Channel::Load)
-        .live(Live::Input(InputTopic::Load)),
-    spec(
-        E::AppliedActivation,
-        Recorded,
-        "~/applied/activation",
-        ACTIVATION_TYPE,
-    )
-    .recorded(Channel::AppliedActivation),
-    spec(
-        E::AppliedLoad,
-        Recorded,
-        "~/applied/external_load",
-        LOAD_TYPE,
-    )
-    .recorded(Channel::AppliedLoad),
-    spec(E::Diagnostics, Pub, "/diagnostics", DIAGNOSTICS_TYPE)
-        .recorded(Channel::Diagnostics)
-        .live(Live::Outlet),
-    spec(E::Rosout, Pub, "/rosout", LOG_TYPE)
-        .when(When::Library)
-        .recorded(Channel::Rosout)
-        .live(Live::Outlet),
-    spec(
-        E::ActivationArray,
-        Sub,
-        "~/activation_array",
-        FLOAT64_ARRAY_TYPE,
-    )
-    .recorded(Channel::ActivationArray)
-    .live(Live::Input(InputTopic::ActivationArray)),
-    spec(
-        E::MuscleCommand,
-        Sub,
-        "~/<muscle>/cmd_activation",
-        FLOAT64_TYPE,
-    )
-    .recorded(Channel::MuscleCommand(0))
-    .live(Live::Input(InputTopic::MuscleCommand(0))),
-    spec(E::ClockOut, Pub, "/clock", CLOCK_TYPE)
-        .when(When::PublishesClock)
-        .qos(Qos::BestEffort { depth: 1 })
-        .live(Live::Outlet),
-    // Deeper, so that a jump back between two looks is still seen.
-    spec(E::ClockIn, Sub, "/clock", CLOCK_TYPE)
-        .when(When::FollowsClock)
-        .qos(Qos::BestEffort { depth: 10 }),
-    spec(E::JointStatesIn, Sub, "~/joint_states_in", JOINT_STATE_TYPE)
-        .when(When::DrivenJoints)
-        .recorded(Channel::JointStatesIn),
-    spec(E::JointEfforts, Pub, "~/joint_efforts", FLOAT64_ARRAY_TYPE)
-        .when(When::DrivenJoints)
-        .recorded(Channel::JointEfforts)
-        .live(Live::Outlet),
-    spec(
-        E::AppliedJointMotion,
-        Recorded,
-        "~/applied/joint_motion",
-        JOINT_STATE_TYPE,
-    )
-    .when(When::DrivenJoints)
-    .recorded(Channel::AppliedJointMotion),
-    spec(E::Reset, Srv, "~/reset", "std_srvs/srv/Trigger").live(Live::Service(Service::Reset)),
-    spec(E::Step, Srv, "~/step", "muscle_actuator_msgs/srv/Step")
-        .live(Live::Service(Service::Step)),
-    spec(E::StepTopic, Sub, "~/step", "std_msgs/msg/Int64"),
-];
+/// The node's endpoints, one row each: `Variant: data => role,`. The data (name, type, QoS,
+/// when, recording, live view) is read here; the role (what takes or makes the messages: an
+/// input's handler in `inputs/`, an output's producer in `outputs/`, or `own` for those made by
+/// their own code) is read by `roles.rs`, which is above the handlers, so that nothing the
+/// handlers use depends on them. `$then` is the macro that reads the list.
+macro_rules! endpoint_list {
+    ($then:ident) => {
+        $then! {
+            State: topic(Pub, STATE).recorded().live(Live::Outlet)
+                => output(&outputs::STATE),
+            JointStates: topic(Pub, JOINT_STATES).recorded().live(Live::Outlet)
+                => output(&outputs::JOINT_STATES),
+            Activation: topic(Sub, ACTIVATION).recorded().live(Live::Input)
+                => input(&inputs::ACTIVATION),
+            Load: topic(Sub, LOAD).recorded().live(Live::Input)
+                => input(&inputs::LOAD),
+            AppliedActivation: topic(Recorded, APPLIED_ACTIVATION).recorded() => own(),
+            AppliedLoad: topic(Recorded, APPLIED_LOAD).recorded() => own(),
+            Diagnostics: spec(Pub, "/diagnostics", DIAGNOSTICS_TYPE)
+                .recorded()
+                .live(Live::Outlet)
+                => own(),
+            Rosout: spec(Pub, "/rosout", LOG_TYPE)
+                .when(When::Library)
+                .recorded()
+                .live(Live::Outlet)
+                => own(),
+            ActivationArray: spec(Sub, "~/activation_array", FLOAT64_ARRAY_TYPE)
+                .recorded()
+                .live(Live::Input)
+                => input(&inputs::ACTIVATION_ARRAY),
+            /// `~/<muscle>/cmd_activation`, one per muscle.
+            MuscleCommand: spec(Sub, "~/<muscle>/cmd_activation", FLOAT64_TYPE)
+                .recorded()
+                .live(Live::Input)
+                => input(&inputs::MUSCLE_COMMAND),
+            #[cfg(feature = "test-topic")]
+            TestExcitation: spec(Sub, "~/test_excitation", FLOAT64_TYPE)
+                .recorded()
+                .live(Live::Input)
+                => input(&inputs::test_excitation::TEST_EXCITATION),
+            ClockOut: spec(Pub, "/clock", CLOCK_TYPE)
+                .when(When::PublishesClock)
+                .qos(Qos::BestEffort { depth: 1 })
+                .live(Live::Outlet)
+                => output(&outputs::CLOCK),
+            // Deeper, so that a jump back between two looks is still seen.
+            ClockIn: spec(Sub, "/clock", CLOCK_TYPE)
+                .when(When::FollowsClock)
+                .qos(Qos::BestEffort { depth: 10 })
+                => input(&inputs::CLOCK_IN),
+            JointStatesIn: spec(Sub, "~/joint_states_in", JOINT_STATE_TYPE)
+                .when(When::DrivenJoints)
+                .recorded()
+                => input(&inputs::JOINT_STATES_IN),
+            JointEfforts: spec(Pub, "~/joint_efforts", FLOAT64_ARRAY_TYPE)
+                .when(When::DrivenJoints)
+                .recorded()
+                .live(Live::Outlet)
+                => output(&outputs::JOINT_EFFORTS),
+            AppliedJointMotion: topic(Recorded, APPLIED_JOINT_MOTION)
+                .when(When::DrivenJoints)
+                .recorded()
+                => own(),
+            Reset: spec(Srv, "~/reset", "std_srvs/srv/Trigger")
+                .live(Live::Service(Service::Reset))
+                => own(),
+            Step: spec(Srv, "~/step", "muscle_actuator_msgs/srv/Step")
+                .live(Live::Service(Service::Step))
+                => own(),
+            StepTopic: spec(Sub, "~/step", "std_msgs/msg/Int64")
+                => input(&inputs::STEP_TOPIC),
+        }
+    };
+}
+pub(crate) use endpoint_list;
+
+endpoint_list!(endpoints);
 
 /// `/clock`'s type.
 pub(crate) const CLOCK_TYPE: &str = "rosgraph_msgs/msg/Clock";

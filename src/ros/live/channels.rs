@@ -3,12 +3,22 @@
 //! ones, the endpoints' table says ([`crate::ros::endpoints::Live`]).
 
 use super::error::LiveError;
-use crate::ros::endpoints::{Live, Names};
+use crate::ros::endpoints::{Endpoint, Live, Names, Service};
 use muscle_actuator_recording::msgs::definition;
 use muscle_actuator_recording::recording::schema::ros2msg_schema;
 use serde_json::{json, Value};
 
-pub(crate) use crate::ros::endpoints::{InputTopic, Outlet, Service, OUTLETS};
+pub(crate) use crate::ros::endpoints::{Outlet, OUTLETS};
+
+/// An input topic clients may publish on, under its resolved name.
+#[derive(Debug, Clone)]
+pub(crate) struct InputInfo {
+    pub(crate) topic: String,
+    pub(crate) endpoint: Endpoint,
+    /// The instance (the k-th `~/<muscle>/...` topic).
+    pub(crate) k: usize,
+    pub(crate) type_name: &'static str,
+}
 
 /// One advertised channel: id (its [`Outlet`]'s index + 1), topic, type and schema.
 #[derive(Debug, Clone)]
@@ -64,8 +74,8 @@ fn service_part(name: &str) -> Option<&'static str> {
 #[derive(Debug, Clone)]
 pub(crate) struct Catalogue {
     pub(crate) channels: Vec<ChannelInfo>,
-    /// Resolved input topic names with their kind and type.
-    pub(crate) inputs: Vec<(String, InputTopic, &'static str)>,
+    /// The input topics.
+    pub(crate) inputs: Vec<InputInfo>,
     /// `advertiseServices`, as sent to each client.
     pub(crate) services_json: String,
 }
@@ -79,7 +89,7 @@ impl Catalogue {
         let mut services = Vec::new();
         for r in names.in_table_order() {
             let type_name = r.spec().type_name;
-            match r.live() {
+            match r.spec().live {
                 Live::No => {}
                 Live::Outlet => {
                     let Some(outlet) = Outlet::of(r.endpoint) else {
@@ -94,7 +104,12 @@ impl Catalogue {
                             .map_err(LiveError::Schema)?,
                     });
                 }
-                Live::Input(kind) => inputs.push((r.name.clone(), kind, type_name)),
+                Live::Input => inputs.push(InputInfo {
+                    topic: r.name.clone(),
+                    endpoint: r.endpoint,
+                    k: r.k,
+                    type_name,
+                }),
                 Live::Service(service) => services.push((service, r.name.as_str(), type_name)),
             }
         }
@@ -129,19 +144,24 @@ impl Catalogue {
         self.channels.iter().find(|c| c.id == id)
     }
 
-    /// The input topic `topic` of type `type_name`, or why a client cannot publish on it.
-    pub(crate) fn input(&self, topic: &str, type_name: &str) -> Result<InputTopic, InputRefused> {
+    /// The input topic `topic` of type `type_name` (endpoint and instance), or why a client
+    /// cannot publish on it.
+    pub(crate) fn input(
+        &self,
+        topic: &str,
+        type_name: &str,
+    ) -> Result<(Endpoint, usize), InputRefused> {
         // Clients name types `pkg/msg/Type` or `pkg/Type`.
         let normal = match type_name.split('/').collect::<Vec<_>>()[..] {
             [pkg, ty] => format!("{pkg}/msg/{ty}"),
             _ => type_name.to_string(),
         };
         let excerpt = muscle_actuator_core::text::excerpt;
-        match self.inputs.iter().find(|(t, _, _)| t == topic) {
-            Some((_, kind, ty)) if *ty == normal => Ok(*kind),
-            Some((_, _, ty)) => Err(InputRefused::WrongType {
+        match self.inputs.iter().find(|i| i.topic == topic) {
+            Some(i) if i.type_name == normal => Ok((i.endpoint, i.k)),
+            Some(i) => Err(InputRefused::WrongType {
                 topic: excerpt(topic),
-                expected: ty.to_string(),
+                expected: i.type_name.to_string(),
                 given: excerpt(type_name),
             }),
             None => Err(InputRefused::NotAnInput {
@@ -150,7 +170,7 @@ impl Catalogue {
                     &self
                         .inputs
                         .iter()
-                        .map(|(t, _, _)| t.as_str())
+                        .map(|i| i.topic.as_str())
                         .collect::<Vec<_>>()
                         .join(", "),
                 ),
@@ -209,7 +229,7 @@ mod tests {
     use super::*;
 
     use crate::ros::endpoints::{Endpoint as E, ENDPOINTS};
-    use muscle_actuator_recording::runs::channels::STATE_TYPE;
+    use muscle_actuator_recording::runs::STATE_TYPE;
 
     /// A node `/m` (`prefix`) with one muscle, `/clock` when `clock`.
     fn names_under(prefix: &str, clock: bool) -> Names {
@@ -259,7 +279,7 @@ mod tests {
                     .unwrap()
                     .iter()
                     .any(|ch| ch["topic"] == name.as_str() && ch["schemaName"] == s.type_name),
-                Live::Input(_) => c.input(&name, s.type_name).is_ok(),
+                Live::Input => c.input(&name, s.type_name).is_ok(),
                 Live::Service(_) => services["services"]
                     .as_array()
                     .unwrap()
@@ -291,8 +311,7 @@ mod tests {
                 "/clock"
             ]
         );
-        let state =
-            muscle_actuator_recording::runs::channels::channel("/m/state", STATE_TYPE).unwrap();
+        let state = muscle_actuator_recording::runs::channel("/m/state", STATE_TYPE).unwrap();
         assert_eq!(c.channels[0].schema, state.schema);
         assert!(c.channels[4]
             .schema
@@ -355,7 +374,7 @@ mod tests {
                 publish["topicName"].as_str().unwrap(),
                 publish["datatype"].as_str().unwrap()
             ),
-            Ok(InputTopic::Activation)
+            Ok((E::Activation, 0))
         );
     }
 
@@ -364,11 +383,11 @@ mod tests {
         let c = Catalogue::new(&names()).unwrap();
         assert_eq!(
             c.input("/m/activation", "muscle_actuator_msgs/ActivationCommand"),
-            Ok(InputTopic::Activation)
+            Ok((E::Activation, 0))
         );
         assert_eq!(
             c.input("/m/flexor/cmd_activation", "std_msgs/msg/Float64"),
-            Ok(InputTopic::MuscleCommand(0))
+            Ok((E::MuscleCommand, 0))
         );
         assert!(c.input("/m/activation", "std_msgs/msg/Float64").is_err());
         assert!(c.input("/m/state", STATE_TYPE).is_err());

@@ -7,12 +7,11 @@
 //! a mistake within the protocol (an unknown channel, a topic the node does not take) is
 //! answered with a `status` message and the connection kept.
 
-use super::channels::{InputTopic, Service};
-use super::decode::decode_input;
 use super::hub::Hub;
 use super::protocol::{self, ClientBinary, ClientOp, FrameError, Level};
 use super::queue::{Client, Frame, CLIENT_QUEUE};
 use super::request::{Answer, Request};
+use crate::ros::endpoints::{Endpoint, Service};
 use std::collections::HashMap;
 use std::io::ErrorKind;
 use std::net::TcpStream;
@@ -153,11 +152,12 @@ fn handshake(stream: TcpStream) -> Option<WebSocket<TcpStream>> {
     Some(ws)
 }
 
-/// A connection's own state: the client's channels (its id → input topic and encoding).
+/// A connection's own state: the client's channels (its id → input topic, instance and
+/// encoding).
 struct Connection {
     hub: Arc<Hub>,
     client: Arc<Client>,
-    channels: HashMap<u32, (InputTopic, bool)>,
+    channels: HashMap<u32, (Endpoint, usize, bool)>,
 }
 
 impl Connection {
@@ -271,8 +271,8 @@ impl Connection {
                         }
                     };
                     match self.hub.catalogue.input(&c.topic, &c.schema_name) {
-                        Ok(kind) => {
-                            self.channels.insert(c.id, (kind, json));
+                        Ok((endpoint, k)) => {
+                            self.channels.insert(c.id, (endpoint, k, json));
                         }
                         Err(e) => self.status(Level::Error, &e.to_string(), None),
                     }
@@ -315,12 +315,11 @@ impl Connection {
                 channel_id,
                 payload,
             } => match self.channels.get(&channel_id) {
-                Some(&(kind, json)) => self.ask(match decode_input(kind, json, payload) {
-                    Ok(input) => Request::Input(input),
-                    Err(e) => Request::Unreadable {
-                        what: e.what,
-                        error: e.error.to_string(),
-                    },
+                Some(&(endpoint, k, json)) => self.ask(Request::Input {
+                    endpoint,
+                    k,
+                    json,
+                    payload: payload.to_vec(),
                 }),
                 None => self.status(
                     Level::Error,

@@ -19,7 +19,6 @@
 
 pub(crate) mod channels;
 mod client;
-mod decode;
 mod error;
 mod hub;
 pub(crate) mod protocol;
@@ -29,5 +28,5 @@ mod server;
 
 pub(crate) use channels::Catalogue;
 pub(crate) use hub::LiveTap;
-pub(crate) use request::{Answer, Input, Request};
+pub(crate) use request::{Answer, Request};
 pub(crate) use server::{LiveOptions, LiveStatus, LiveView};

@@ -1,21 +1,9 @@
 //! What a client asks of the node, on its way to the executor, and where the answer goes.
 
-use super::channels::Service;
 use super::protocol::ParameterIn;
 use super::queue::{Client, Frame, LiveStats};
-use muscle_actuator_recording::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
-use muscle_actuator_recording::msgs::{Float64, Float64MultiArray};
+use crate::ros::endpoints::{Endpoint, Service};
 use std::sync::Arc;
-
-/// A message a client published on an input topic, decoded.
-#[derive(Debug)]
-pub(crate) enum Input {
-    Activation(ActivationCommand),
-    ActivationArray(Float64MultiArray),
-    /// The k-th muscle topic.
-    MuscleCommand(usize, Float64),
-    Load(ExternalLoad),
-}
 
 /// Where an answer goes: the client that asked.
 pub(crate) struct Answer {
@@ -34,11 +22,13 @@ impl Answer {
 
 /// What a client asks of the node, for the executor.
 pub(crate) enum Request {
-    Input(Input),
-    /// A message on an input topic that could not be decoded.
-    Unreadable {
-        what: &'static str,
-        error: String,
+    /// A message a client published on the `k`-th instance of an input topic, as sent (CDR, or
+    /// JSON when `json`): the input's handler decodes it on the executor.
+    Input {
+        endpoint: Endpoint,
+        k: usize,
+        json: bool,
+        payload: Vec<u8>,
     },
     GetParameters {
         names: Vec<String>,

@@ -104,7 +104,7 @@ pub struct Int64 {
 ros2_message!(Int64);
 
 /// `rosgraph_msgs/msg/Clock`: the time of a graph that runs on simulated time.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Clock {
     /// The graph's current time, ns.
     pub clock: Time,

@@ -2,7 +2,7 @@
 //! ([`super::checks`]); what replay, compare and export start from.
 
 use super::channels::{
-    ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX, APPLIED_JOINT_MOTION_SUFFIX, APPLIED_LOAD_SUFFIX,
+    NodeTopic, ACTIVATION_TYPE, APPLIED_ACTIVATION, APPLIED_JOINT_MOTION, APPLIED_LOAD,
     JOINT_STATE_TYPE, LOAD_TYPE, STATE_TYPE,
 };
 use super::checks::{self, CheckError};
@@ -159,14 +159,14 @@ fn load_from(rec: &Recording) -> Result<LoadedRun, InvalidRun> {
     let meta = RunMeta::from_map(meta_map)?;
     checks::check_state_schema(rec)?;
     let ours = [STATE_TYPE, JOINT_STATE_TYPE, ACTIVATION_TYPE, LOAD_TYPE];
-    let applied = |ty: &str, suffix: &str| {
+    let applied = |t: NodeTopic| {
         rec.messages
             .iter()
-            .any(|m| m.type_name == ty && m.topic.ends_with(suffix))
+            .any(|m| m.type_name == t.type_name && m.topic.ends_with(t.suffix()))
     };
     let applied = AppliedTopics {
-        activation: applied(ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX),
-        load: applied(LOAD_TYPE, APPLIED_LOAD_SUFFIX),
+        activation: applied(APPLIED_ACTIVATION),
+        load: applied(APPLIED_LOAD),
     };
     let mut run = LoadedRun {
         meta,
@@ -225,7 +225,7 @@ impl LoadedRun {
             // messages do not decode is not accepted.
             JOINT_STATE_TYPE => {
                 let js: JointState = recording::decode_cdr(&m.data).map_err(cdr)?;
-                if m.topic.ends_with(APPLIED_JOINT_MOTION_SUFFIX) {
+                if m.topic.ends_with(APPLIED_JOINT_MOTION.suffix()) {
                     let n = js.name.len();
                     if js.position.len() != n || js.velocity.len() != n {
                         return Err(InvalidRun::MotionLengths {
@@ -243,7 +243,7 @@ impl LoadedRun {
             }
             ACTIVATION_TYPE => {
                 let a: ActivationCommand = recording::decode_cdr(&m.data).map_err(cdr)?;
-                if !applied.activation || m.topic.ends_with(APPLIED_ACTIVATION_SUFFIX) {
+                if !applied.activation || m.topic.ends_with(APPLIED_ACTIVATION.suffix()) {
                     let tick =
                         (time_base.tick_of(a.header.stamp.to_nanos(), rate_hz)).map_err(stamp)?;
                     self.activations.push((tick, a.muscle, a.excitation));
@@ -251,7 +251,7 @@ impl LoadedRun {
             }
             _ => {
                 let l: ExternalLoad = recording::decode_cdr(&m.data).map_err(cdr)?;
-                if !applied.load || m.topic.ends_with(APPLIED_LOAD_SUFFIX) {
+                if !applied.load || m.topic.ends_with(APPLIED_LOAD.suffix()) {
                     let tick =
                         (time_base.tick_of(l.header.stamp.to_nanos(), rate_hz)).map_err(stamp)?;
                     self.loads.push((tick, l.joint, l.torque));

@@ -24,10 +24,9 @@ pub(crate) mod writer;
 /// The channels of a run, for the node (`muscle_actuator::ros`) and the tests, which name them
 /// from here; the time base is [`muscle_actuator_core::time`]'s.
 pub use channels::{
-    channel, Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_ACTIVATION_SUFFIX,
-    APPLIED_JOINT_MOTION_SUFFIX, APPLIED_JOINT_MOTION_TOPIC, APPLIED_LOAD_SUFFIX,
-    DIAGNOSTICS_TOPIC, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE, JOINT_STATES_TOPIC,
-    JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, LOG_TYPE, ROSOUT_TOPIC, STATE_TOPIC, STATE_TYPE,
+    channel, Channel, Layout, NodeTopic, ACTIVATION, ACTIVATION_TYPE, APPLIED_ACTIVATION,
+    APPLIED_JOINT_MOTION, APPLIED_LOAD, DIAGNOSTICS_TYPE, FLOAT64_ARRAY_TYPE, FLOAT64_TYPE,
+    JOINT_STATES, JOINT_STATE_TYPE, LOAD, LOAD_TYPE, LOG_TYPE, OFFLINE_NODE, STATE, STATE_TYPE,
 };
 pub use error::{CompareError, ExportError, RunError};
 pub use load::{load_run, InputsAt, InvalidRun, JointMotionAt, LoadError, LoadedRun};

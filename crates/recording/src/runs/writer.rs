@@ -3,8 +3,7 @@
 //! which the node records too.
 
 use super::channels::{
-    Channel, Layout, ACTIVATION_TOPIC, ACTIVATION_TYPE, APPLIED_JOINT_MOTION_TOPIC,
-    JOINT_STATES_TOPIC, JOINT_STATE_TYPE, LOAD_TOPIC, LOAD_TYPE, STATE_TOPIC, STATE_TYPE,
+    Channel, Layout, NodeTopic, ACTIVATION, APPLIED_JOINT_MOTION, JOINT_STATES, LOAD, STATE,
 };
 use super::error::RunError;
 use super::metadata::{RunMeta, METADATA_NAME};
@@ -72,11 +71,12 @@ impl RunWriter {
     pub(super) fn start(path: &Path, meta: &RunMeta) -> Result<Self, RunError> {
         let has_joint = !meta.joints.is_empty();
         let mut layout = Layout::new();
-        layout.add(Channel::State, STATE_TOPIC, STATE_TYPE)?;
-        layout.add(Channel::Activation, ACTIVATION_TOPIC, ACTIVATION_TYPE)?;
+        let mut add = |ch, t: NodeTopic| layout.add(ch, &t.offline(), t.type_name);
+        add(Channel::State, STATE)?;
+        add(Channel::Activation, ACTIVATION)?;
         if has_joint {
-            layout.add(Channel::JointStates, JOINT_STATES_TOPIC, JOINT_STATE_TYPE)?;
-            layout.add(Channel::Load, LOAD_TOPIC, LOAD_TYPE)?;
+            add(Channel::JointStates, JOINT_STATES)?;
+            add(Channel::Load, LOAD)?;
         }
         let driven: Vec<usize> = (meta.config.joints.iter().enumerate())
             .filter(|(_, j)| j.driven && has_joint)
@@ -85,8 +85,8 @@ impl RunWriter {
         if !driven.is_empty() {
             layout.add(
                 Channel::AppliedJointMotion,
-                APPLIED_JOINT_MOTION_TOPIC,
-                JOINT_STATE_TYPE,
+                &APPLIED_JOINT_MOTION.offline(),
+                APPLIED_JOINT_MOTION.type_name,
             )?;
         }
         let what = |source| RunError::Output {

@@ -1,24 +1,12 @@
-//! A client's message on an input topic, decoded from CDR (as DDS delivers it) or JSON (the
-//! Foxglove app's other encoding) into the same message types the DDS inputs give.
+//! A live-view client's message on an input topic, decoded from CDR (as DDS delivers it) or
+//! JSON (the Foxglove app's other encoding) into the message type the DDS subscription gives.
 //!
 //! JSON may leave fields out (a hand-written `{"muscle": [...], "excitation": [...]}` without a
 //! header): the missing ones take the message's default values, as an all-zero CDR header would.
 
-use super::channels::InputTopic;
-use super::request::Input;
-use muscle_actuator_recording::msgs::muscle_actuator_msgs::{ActivationCommand, ExternalLoad};
-use muscle_actuator_recording::msgs::{Float64, Float64MultiArray};
+use super::InputMessage;
 use muscle_actuator_recording::recording::decode_cdr;
-use serde::de::DeserializeOwned;
-use serde::Serialize;
 use serde_json::Value;
-
-/// Why a message could not be read: the input's name (as the DDS tasks name it) and the error.
-#[derive(Debug)]
-pub(crate) struct Unreadable {
-    pub(crate) what: &'static str,
-    pub(crate) error: DecodeError,
-}
 
 /// Why a payload is not the input topic's message.
 #[derive(Debug, thiserror::Error)]
@@ -37,37 +25,8 @@ pub(crate) enum DecodeError {
     Fields(String),
 }
 
-/// The message `payload` carries for an input topic.
-pub(crate) fn decode_input(
-    kind: InputTopic,
-    json: bool,
-    payload: &[u8],
-) -> Result<Input, Unreadable> {
-    let what = match kind {
-        InputTopic::Activation => "activation",
-        InputTopic::ActivationArray => "activation_array",
-        InputTopic::MuscleCommand(_) => "cmd_activation",
-        InputTopic::Load => "external load",
-    };
-    let err = |error: DecodeError| Unreadable { what, error };
-    Ok(match kind {
-        InputTopic::Activation => Input::Activation(decode(json, payload).map_err(err)?),
-        InputTopic::ActivationArray => Input::ActivationArray(decode(json, payload).map_err(err)?),
-        InputTopic::MuscleCommand(k) => {
-            Input::MuscleCommand(k, decode(json, payload).map_err(err)?)
-        }
-        InputTopic::Load => Input::Load(decode(json, payload).map_err(err)?),
-    })
-}
-
-/// Types a client may send, with the defaults that fill a JSON message's missing fields.
-trait InputMessage: DeserializeOwned + Serialize + Default {}
-impl InputMessage for ActivationCommand {}
-impl InputMessage for ExternalLoad {}
-impl InputMessage for Float64 {}
-impl InputMessage for Float64MultiArray {}
-
-fn decode<T: InputMessage>(json: bool, payload: &[u8]) -> Result<T, DecodeError> {
+/// The message `payload` carries: CDR, or JSON when `json`.
+pub(crate) fn decode<T: InputMessage>(json: bool, payload: &[u8]) -> Result<T, DecodeError> {
     let excerpt = |e: serde_json::Error| muscle_actuator_core::text::excerpt(&e.to_string());
     if !json {
         return decode_cdr(payload).map_err(DecodeError::Cdr);
@@ -99,6 +58,7 @@ fn merge(base: &mut Value, given: Value) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use muscle_actuator_recording::msgs::muscle_actuator_msgs::ActivationCommand;
     use muscle_actuator_recording::recording::encode_cdr;
 
     #[test]
@@ -109,22 +69,14 @@ mod tests {
             ..Default::default()
         };
         let cdr = encode_cdr(&msg).unwrap();
-        let Input::Activation(a) = decode_input(InputTopic::Activation, false, &cdr).unwrap()
-        else {
-            panic!()
-        };
+        let a: ActivationCommand = decode(false, &cdr).unwrap();
         assert_eq!(a, msg);
         let json = br#"{"muscle": ["flexor"], "excitation": [0.5]}"#;
-        let Input::Activation(b) = decode_input(InputTopic::Activation, true, json).unwrap() else {
-            panic!()
-        };
+        let b: ActivationCommand = decode(true, json).unwrap();
         assert_eq!(b, msg);
         let stamped =
             br#"{"header": {"stamp": {"sec": 2, "nanosec": 5}}, "muscle": [], "excitation": []}"#;
-        let Input::Activation(c) = decode_input(InputTopic::Activation, true, stamped).unwrap()
-        else {
-            panic!()
-        };
+        let c: ActivationCommand = decode(true, stamped).unwrap();
         assert_eq!(c.header.stamp.to_nanos(), 2_000_000_005);
     }
 
@@ -137,8 +89,7 @@ mod tests {
             (false, &[0, 1, 0, 0, 0xff, 0xff, 0xff, 0x7f][..]),
             (false, &[1, 2][..]),
         ] {
-            let e = decode_input(InputTopic::Activation, json, bytes).unwrap_err();
-            assert_eq!(e.what, "activation");
+            assert!(decode::<ActivationCommand>(json, bytes).is_err());
         }
     }
 }
