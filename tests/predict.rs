@@ -241,3 +241,80 @@ fn predict_rates_without_writing_when_no_output_is_asked() {
         .collect();
     assert_eq!(before, after);
 }
+
+/// An output that cannot be made is refused before the work, and nothing is left of the others
+/// (no figure, no CSV, no folder made for them); folders an output needs are made as `mkdir -p`
+/// does, for the CSVs and figures as for the recording.
+#[test]
+fn outputs_are_all_made_or_none() {
+    let dir = temp_dir("subject_predict_all_or_none");
+    let params = MuscleParams::default();
+    let (subject, map, trial) =
+        isometric_files(&dir, params.clone(), params.l_opt + params.l_ts + 0.002);
+    let listing = |d: &Path| {
+        let mut v: Vec<_> = walk(d);
+        v.sort();
+        v
+    };
+    let before = listing(&dir);
+    let blocked = dir.join("a_file");
+    std::fs::write(&blocked, "not a folder").unwrap();
+    let before_blocked = listing(&dir);
+    let predict = |plot: &Path, csv: &Path, muscles: &Path| {
+        let mut c = bin();
+        c.args(["predict", "--model", "hill", "--subject"])
+            .arg(&subject)
+            .arg("--excitations")
+            .arg(&map)
+            .arg("--trial")
+            .arg(&trial)
+            .arg("--plot")
+            .arg(plot)
+            .arg("--csv")
+            .arg(csv)
+            .arg("--muscles-csv")
+            .arg(muscles);
+        c
+    };
+    let o = predict(
+        &dir.join("new/figs/p.png"),
+        &dir.join("new/m.csv"),
+        &blocked.join("u.csv"),
+    )
+    .output()
+    .unwrap();
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(e.contains("a_file/u.csv") && e.lines().count() == 1, "{e}");
+    assert_eq!(listing(&dir), before_blocked);
+    std::fs::remove_file(&blocked).unwrap();
+    assert_eq!(listing(&dir), before);
+    run_ok(&mut predict(
+        &dir.join("new/figs/p.png"),
+        &dir.join("new/m.csv"),
+        &dir.join("other/u.csv"),
+    ));
+    for made in [
+        "new/figs/p.png",
+        "new/figs/p.svg",
+        "new/figs/p_forces.png",
+        "new/figs/p_forces.svg",
+        "new/m.csv",
+        "other/u.csv",
+    ] {
+        assert!(dir.join(made).is_file(), "{made}");
+    }
+}
+
+/// Every file and folder under `d`.
+fn walk(d: &Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(d).unwrap().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            out.extend(walk(&p));
+        }
+        out.push(p);
+    }
+    out
+}

@@ -15,15 +15,15 @@ use crate::prediction::PyPrediction;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::text::excerpt;
 use muscle_actuator_measured::measured::{repeated_folder, ExcitationMap, MeasuredError, Trial};
-use muscle_actuator_measured::subject::calibrate::{CalibrateError, Outcome, Problem, Settings};
+use muscle_actuator_measured::subject::calibrate::{
+    CalibrateError, Outcome, Problem, Settings, MAX_EVALUATIONS, MIN_EVALUATIONS,
+};
 use muscle_actuator_measured::subject::{DriveError, PreparedTrial, SubjectModel};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
-/// Most objective evaluations a calibration may ask (the command line's `--evaluations`).
-pub const MAX_EVALUATIONS: usize = 1_000_000;
 /// Most threads a calibration may ask (the command line's `--threads`).
 pub const MAX_THREADS: usize = 256;
 
@@ -290,9 +290,9 @@ fn settings(seed: &Bound<'_, PyAny>, evaluations: i64, threads: Option<i64>) -> 
         .extract()
         .map_err(|_| config_error("seed must be an integer from 0 to 2**64 - 1"))?;
     let max_evaluations = count("evaluations", evaluations)?;
-    if max_evaluations == 0 || max_evaluations > MAX_EVALUATIONS {
+    if !(MIN_EVALUATIONS..=MAX_EVALUATIONS).contains(&max_evaluations) {
         return Err(config_error(format!(
-            "evaluations must be 1 to {MAX_EVALUATIONS}, not {evaluations}"
+            "evaluations must be {MIN_EVALUATIONS} to {MAX_EVALUATIONS}, not {evaluations}"
         )));
     }
     let threads = match threads {

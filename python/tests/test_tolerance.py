@@ -107,5 +107,5 @@ def test_fixed_sub_steps_refuse_a_tolerance():
             make()
         msg = str(e.value)
         assert msg.startswith("stepper.tolerance applies to adaptive sub-steps") and "\n" not in msg, msg
-    with pytest.raises(ma.ConfigError, match="unknown field `tol`"):
+    with pytest.raises(ma.ConfigError, match="unknown key `tol`; did you mean `tolerance`"):
         ma.Actuator(overrides={"stepper.tol": 1e-6})

@@ -10,7 +10,9 @@ use muscle_actuator_core::files::AtomicFile;
 use muscle_actuator_core::physics::models::ModelKind;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_measured::measured::{repeated_folder, ExcitationMap};
-use muscle_actuator_measured::subject::calibrate::{CalibrateError, Problem, Settings};
+use muscle_actuator_measured::subject::calibrate::{
+    CalibrateError, Problem, Settings, MAX_EVALUATIONS, MIN_EVALUATIONS,
+};
 use muscle_actuator_measured::subject::SubjectModel;
 use std::io::{IsTerminal, Write};
 use std::ops::ControlFlow;
@@ -92,9 +94,6 @@ struct Request<'a> {
     progress: bool,
 }
 
-/// Most evaluations `--evaluations` may ask.
-const MAX_EVALUATIONS: usize = 1_000_000;
-
 /// `calibrate`: the subject's parameters fitted; the calibrated subject written to `out`.
 fn calibrate(a: &Request) -> Result<(), SubjectError> {
     if a.trials.is_empty() {
@@ -109,9 +108,9 @@ fn calibrate(a: &Request) -> Result<(), SubjectError> {
         )));
     }
     let s = &a.settings;
-    if s.max_evaluations == 0 || s.max_evaluations > MAX_EVALUATIONS {
+    if !(MIN_EVALUATIONS..=MAX_EVALUATIONS).contains(&s.max_evaluations) {
         return Err(SubjectError::Setting(format!(
-            "--evaluations must be 1 to {MAX_EVALUATIONS}, not {}",
+            "--evaluations must be {MIN_EVALUATIONS} to {MAX_EVALUATIONS}, not {}",
             s.max_evaluations
         )));
     }

@@ -16,6 +16,7 @@ mod prediction_run;
 mod recover;
 mod replay;
 mod simulate;
+mod staged;
 mod steady;
 mod subject;
 

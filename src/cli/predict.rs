@@ -4,7 +4,8 @@
 
 use super::common::{default_model, model_help, parse_model};
 use super::prediction_run::{record_prediction, PredictionRunError};
-use super::subject::{parse_dofs, prepare, shown, write};
+use super::staged::Staged;
+use super::subject::{parse_dofs, prepare, shown};
 use super::CliError;
 use super::SubjectError;
 use crate::figures::FigureError;
@@ -64,11 +65,13 @@ pub(super) fn run(a: Args) -> Result<(), CliError> {
 }
 
 /// `predict` with `model`: the subject through the trial; the moments' CSV, the units' CSV, the
-/// recording and the figures, a rating per degree of freedom on standard output. Nothing is
-/// written before the drive and the ratings succeed, and the recording is renamed into place
-/// last.
+/// recording and the figures, a rating per degree of freedom on standard output. Every output
+/// is checked before the work (its folders made as `mkdir -p` does), made under a temporary
+/// name after it, and all are renamed into place at the end, the recording last: a failure
+/// leaves none of them.
 fn predict(a: &Args, model: ModelKind) -> Result<Vec<(String, Rating)>, SubjectError> {
-    check_outputs(a)?;
+    let mut staged = Staged::default();
+    check_outputs(a, &mut staged)?;
     let subject = SubjectModel::read(&a.subject)?;
     let map = ExcitationMap::read(&a.excitations)?;
     let dofs = a.dofs.as_deref().map(parse_dofs).transpose()?;
@@ -88,15 +91,21 @@ fn predict(a: &Args, model: ModelKind) -> Result<Vec<(String, Rating)>, SubjectE
     let (p, recording) = drive(a, model, &prepared, &params)?;
     let ratings = ratings(&p)?;
     if let Some(plot) = &a.plot {
-        crate::figures::subject_plot::draw(&p, &ratings, &prepared.name, plot)
+        let figures = crate::figures::subject_plot::stage(&p, &ratings, &prepared.name, plot)
             .map_err(|e| not_drawn(plot, e))?;
+        figures.into_iter().for_each(|f| staged.push(f));
     }
     if let Some(path) = &a.csv {
-        write(path, &moments_csv(&p))?;
+        staged
+            .text(path, &moments_csv(&p))
+            .map_err(not_written(path))?;
     }
     if let Some(path) = &a.muscles_csv {
-        write(path, &muscles_csv(&p))?;
+        staged
+            .text(path, &muscles_csv(&p))
+            .map_err(not_written(path))?;
     }
+    staged.commit().map_err(|(path, e)| not_written(&path)(e))?;
     if let (Some(recording), Some(out)) = (recording, &a.out) {
         recording.commit().map_err(|e| not_recorded(out, e))?;
     }
@@ -112,9 +121,18 @@ fn predict(a: &Args, model: ModelKind) -> Result<Vec<(String, Rating)>, SubjectE
     Ok(ratings)
 }
 
+/// The output `path` that could not be written.
+fn not_written(path: &Path) -> impl FnOnce(std::io::Error) -> SubjectError + '_ {
+    move |e| SubjectError::Write {
+        path: shown(path),
+        reason: e.to_string(),
+    }
+}
+
 /// Every output of `predict` (the figures' four files) refused if it names one of its inputs
-/// (the subject, the map, the trial's files) or another of its outputs.
-fn check_outputs(a: &Args) -> Result<(), SubjectError> {
+/// (the subject, the map, the trial's files) or another of its outputs, or if it cannot be
+/// made (probed in `staged`, its folders made).
+fn check_outputs(a: &Args, staged: &mut Staged) -> Result<(), SubjectError> {
     let trial_files: Vec<PathBuf> = std::fs::read_dir(&a.trial)
         .map(|d| d.flatten().map(|e| e.path()).collect())
         .unwrap_or_default();
@@ -129,6 +147,7 @@ fn check_outputs(a: &Args) -> Result<(), SubjectError> {
     let named = [a.csv.as_ref(), a.muscles_csv.as_ref(), a.out.as_ref()];
     for out in named.into_iter().flatten().chain(&figures) {
         muscle_actuator_core::files::check_not_an_input(out, &inputs)?;
+        staged.probe(out).map_err(not_written(out))?;
         inputs.push(out);
     }
     Ok(())

@@ -235,8 +235,18 @@ pub fn write_chart_with_legend(
 
 /// Writes `stem.png` and `stem.svg` in `dir`: the panels side by side, each `PANEL_PX` (pixels).
 pub fn write_panels(dir: &Path, stem: &str, panels: &[Panel]) -> Result<(), FigureError> {
+    commit_all(stage_panels(dir, stem, panels)?)
+}
+
+/// As [`write_panels`], the two files left under their temporary names for the caller to commit
+/// ([`commit_all`]).
+pub fn stage_panels(
+    dir: &Path,
+    stem: &str,
+    panels: &[Panel],
+) -> Result<[AtomicFile; 2], FigureError> {
     let size = (PANEL_PX.0 * panels.len().max(1) as u32, PANEL_PX.1);
-    write_png_svg(
+    stage_png_svg(
         dir,
         stem,
         size,
@@ -255,6 +265,28 @@ fn write_png_svg(
     png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), PlotError>,
     svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), PlotError>,
 ) -> Result<(), FigureError> {
+    commit_all(stage_png_svg(dir, stem, size, png, svg)?)
+}
+
+/// Renames drawn figures into place ([`AtomicFile::commit`]).
+pub fn commit_all(staged: impl IntoIterator<Item = AtomicFile>) -> Result<(), FigureError> {
+    for out in staged {
+        let path = out.target().to_path_buf();
+        out.commit()
+            .map_err(|source| FigureError::Write { path, source })?;
+    }
+    Ok(())
+}
+
+/// As [`write_png_svg`], the two files left under their temporary names for the caller to
+/// commit.
+fn stage_png_svg(
+    dir: &Path,
+    stem: &str,
+    size: (u32, u32),
+    png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), PlotError>,
+    svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), PlotError>,
+) -> Result<[AtomicFile; 2], FigureError> {
     register_font();
     let create = |ext: &str| {
         let path = dir.join(format!("{stem}.{ext}"));
@@ -267,10 +299,5 @@ fn write_png_svg(
     };
     png(BitMapBackend::new(png_out.path(), size).into_drawing_area()).map_err(drawn(&png_out))?;
     svg(SVGBackend::new(svg_out.path(), size).into_drawing_area()).map_err(drawn(&svg_out))?;
-    for out in [png_out, svg_out] {
-        let path = out.target().to_path_buf();
-        out.commit()
-            .map_err(|source| FigureError::Write { path, source })?;
-    }
-    Ok(())
+    Ok([png_out, svg_out])
 }

@@ -5,7 +5,7 @@
 
 use super::error::{FigureError, PlotError};
 use super::palette::{BLACK, BLUE};
-use super::plot::{register_font, write_panels, Chart, Panel, Series};
+use super::plot::{register_font, stage_panels, Chart, Panel, Series};
 use muscle_actuator_core::files::AtomicFile;
 use muscle_actuator_measured::measured::rating::Rating;
 use muscle_actuator_measured::subject::Prediction;
@@ -33,7 +33,7 @@ const COLORS: [RGBColor; 10] = [
     RGBColor(23, 190, 207),
 ];
 
-/// The images `draw` writes for `out`: `OUT.png`, `OUT.svg`, `OUT_forces.png`,
+/// The images `stage` draws for `out`: `OUT.png`, `OUT.svg`, `OUT_forces.png`,
 /// `OUT_forces.svg` (beside `out`).
 pub fn outputs(out: &Path) -> Result<[PathBuf; 4], FigureError> {
     let (dir, stem) = dir_and_stem(out)?;
@@ -58,25 +58,19 @@ fn dir_and_stem(out: &Path) -> Result<(&Path, &str), FigureError> {
     Ok((dir, stem))
 }
 
-/// Draws the prediction `p` of the trial `trial`, rated by `ratings` (one per degree of
-/// freedom, in order): the moments as `out` (PNG, an SVG beside it), the forces as
-/// `<stem>_forces.png` and `.svg`. The four files are written under temporary names and
-/// renamed into place once all are drawn: a drawing that fails leaves none of them.
-pub fn draw(
+/// The figures of `p` for `out` ([`outputs`]) drawn under temporary names beside them, not yet
+/// in place: the caller renames them ([`super::plot::commit_all`]) once all its outputs are
+/// made, so that a failure leaves none.
+pub fn stage(
     p: &Prediction,
     ratings: &[(String, Rating)],
     trial: &str,
     out: &Path,
-) -> Result<(), FigureError> {
+) -> Result<Vec<AtomicFile>, FigureError> {
     let (dir, stem) = dir_and_stem(out)?;
-    let forces = forces_figure(dir, &format!("{stem}_forces"), p, trial)?;
-    moments_figure(dir, stem, p, ratings)?;
-    for f in forces {
-        let path = f.target().to_path_buf();
-        f.commit()
-            .map_err(|source| FigureError::Write { path, source })?;
-    }
-    Ok(())
+    let mut staged = Vec::from(moments_figure(dir, stem, p, ratings)?);
+    staged.extend(forces_figure(dir, &format!("{stem}_forces"), p, trial)?);
+    Ok(staged)
 }
 
 /// One panel per degree of freedom: measured (black) and predicted (blue) moment, N m.
@@ -85,7 +79,7 @@ fn moments_figure(
     stem: &str,
     p: &Prediction,
     ratings: &[(String, Rating)],
-) -> Result<(), FigureError> {
+) -> Result<[AtomicFile; 2], FigureError> {
     let titles: Vec<String> = (p.dofs.iter().enumerate())
         .map(|(d, dof)| match ratings.get(d) {
             Some((_, r)) => format!("{dof}: R² {:.3}, RMSE {:.1} N m", r.r_squared, r.rmse),
@@ -118,7 +112,7 @@ fn moments_figure(
             legend: SeriesLabelPosition::UpperRight,
         })
         .collect();
-    write_panels(dir, stem, &panels)
+    stage_panels(dir, stem, &panels)
 }
 
 /// The forces figure drawn as `stem.png` and `stem.svg` in `dir` under temporary names, not

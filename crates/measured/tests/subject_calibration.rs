@@ -272,6 +272,39 @@ fn calibrated_on_three_trials_the_person_s_other_three_are_predicted() {
     }
 }
 
+/// A calibration makes at most the evaluations it is given: whole CMA-ES generations that fit
+/// (a budget below a generation's size makes that one generation smaller).
+#[test]
+fn the_budget_is_never_exceeded() {
+    let subject = knee_subject(&["vaslat_r", "bicfemlh_r", "gasmed_r"]);
+    let trials = vec![prepared(&subject, &data().join("_FastWalking_"))];
+    let model = ModelKind::HILL;
+    let problem = Problem::new(&subject, &map(), trials, model, default_stepping(model)).unwrap();
+    // CMA-ES's population for the searched parameters (Hansen 2016): 4 + ⌊3 ln n⌋.
+    let lambda = 4 + (3.0 * (problem.searched.len() as f64).ln()).floor() as usize;
+    for budget in [2, lambda - 1, lambda, 2 * lambda + 1, 3 * lambda - 1] {
+        let settings = Settings {
+            max_evaluations: budget,
+            threads: 2,
+            ..Settings::default()
+        };
+        let mut seen = Vec::new();
+        let outcome = problem
+            .calibrate(&settings, |n, _| {
+                seen.push(n);
+                ControlFlow::Continue(())
+            })
+            .unwrap();
+        let want = if budget < lambda {
+            budget
+        } else {
+            budget / lambda * lambda
+        };
+        assert_eq!(outcome.evaluations, want, "budget {budget}, λ {lambda}");
+        assert_eq!(seen.last(), Some(&want), "{seen:?}");
+    }
+}
+
 /// The floor of a held-out trial's knee R² after the test's short calibration (docs/emg.md).
 const FLOOR_R2: f64 = 0.3;
 

@@ -39,6 +39,7 @@ pub(crate) mod parse;
 pub(crate) mod parse_error;
 pub(crate) mod schema;
 pub(crate) mod stepper;
+mod unknown_key;
 pub(crate) mod validate;
 
 use crate::physics::params::ParamError;

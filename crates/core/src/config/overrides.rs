@@ -121,7 +121,7 @@ pub fn with_overrides(
         })?;
     }
     let text = toml::to_string(&table).map_err(|e| OverridesError::ToText(one_line(&e)))?;
-    ActuatorConfig::from_toml_str(&text).map_err(|e| {
+    ActuatorConfig::from_written_toml(&text).map_err(|e| {
         ConfigError::Overrides(match e {
             ConfigError::Parse { error, .. } => OverridesError::Parse(error),
             ConfigError::Invalid(errors) => OverridesError::Invalid(errors),

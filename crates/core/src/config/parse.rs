@@ -4,6 +4,7 @@
 use super::pair::{pair_config, single_joint, PairJoint};
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig};
 use super::stepper::StepperConfig;
+use super::unknown_key;
 use super::{ConfigError, ParseError};
 use crate::files::{read_regular_file, MAX_FILE_BYTES};
 use crate::physics::params::{JointParams, MuscleParams};
@@ -75,6 +76,17 @@ impl ActuatorConfig {
 
     /// Parses and validates TOML text.
     pub fn from_toml_str(text: &str) -> Result<Self, ConfigError> {
+        Self::parse_toml(text, Some(text))
+    }
+
+    /// As [`ActuatorConfig::from_toml_str`] for text the program wrote (overrides applied): its
+    /// errors name no line, which the user never saw.
+    pub(crate) fn from_written_toml(text: &str) -> Result<Self, ConfigError> {
+        Self::parse_toml(text, None)
+    }
+
+    /// `text` parsed; `lines`: the user's text, whose lines errors name.
+    fn parse_toml(text: &str, lines: Option<&str>) -> Result<Self, ConfigError> {
         let parse_err = |error: ParseError| ConfigError::Parse {
             path: "<text>".into(),
             error,
@@ -91,11 +103,11 @@ impl ActuatorConfig {
             None => StepperConfig::default(),
             Some(v) => StepperConfig::deserialize(v).map_err(|e| {
                 parse_err(ParseError::Stepper {
-                    reason: e.to_string().trim().to_string(),
+                    reason: unknown_key::reason(e.to_string().trim(), lines, None),
                 })
             })?,
         };
-        let muscles = muscles_from(raw.remove("muscle")).map_err(parse_err)?;
+        let muscles = muscles_from(raw.remove("muscle"), lines).map_err(parse_err)?;
         let joints = match raw.remove("joint") {
             Some(toml::Value::Array(a)) => a
                 .into_iter()
@@ -104,7 +116,7 @@ impl ActuatorConfig {
                     JointParams::deserialize(v).map_err(|e| {
                         parse_err(ParseError::Joint {
                             index: i,
-                            reason: e.to_string().trim().to_string(),
+                            reason: unknown_key::reason(e.to_string().trim(), lines, None),
                         })
                     })
                 })
@@ -141,7 +153,10 @@ impl ActuatorConfig {
 }
 
 /// The `[[muscle]]` tables, in order (none when the key is absent).
-fn muscles_from(value: Option<toml::Value>) -> Result<Vec<MuscleConfig>, ParseError> {
+fn muscles_from(
+    value: Option<toml::Value>,
+    lines: Option<&str>,
+) -> Result<Vec<MuscleConfig>, ParseError> {
     let tables = match value {
         None => return Ok(Vec::new()),
         Some(toml::Value::Array(a)) => a
@@ -157,11 +172,16 @@ fn muscles_from(value: Option<toml::Value>) -> Result<Vec<MuscleConfig>, ParseEr
     tables
         .into_iter()
         .enumerate()
-        .map(|(i, t)| muscle_from_table(i, t))
+        .map(|(i, t)| muscle_from_table(i, t, lines))
         .collect()
 }
 
-fn muscle_from_table(i: usize, mut table: toml::Table) -> Result<MuscleConfig, ParseError> {
+/// The `i`-th `[[muscle]]` table (of the user's text `lines`, if given).
+fn muscle_from_table(
+    i: usize,
+    mut table: toml::Table,
+    lines: Option<&str>,
+) -> Result<MuscleConfig, ParseError> {
     let name = match table.remove("name") {
         Some(toml::Value::String(s)) => s,
         Some(other) => {
@@ -175,7 +195,7 @@ fn muscle_from_table(i: usize, mut table: toml::Table) -> Result<MuscleConfig, P
     let value = |key, e: toml::de::Error| ParseError::MuscleValue {
         muscle: name.clone(),
         key,
-        reason: e.to_string().trim().to_string(),
+        reason: unknown_key::reason(e.to_string().trim(), lines, Some(i)),
     };
     let path_length = match table.remove("path_length") {
         None => None,

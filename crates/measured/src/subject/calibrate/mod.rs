@@ -48,7 +48,7 @@ mod result;
 mod search;
 pub(crate) mod strengths;
 
-pub use search::{CalibrateError, Outcome, Settings};
+pub use search::{CalibrateError, Outcome, Settings, MAX_EVALUATIONS, MIN_EVALUATIONS};
 
 /// The cost of a candidate whose drive fails: above any mean of `1 − R²` a usable candidate
 /// gives on real data.

@@ -6,12 +6,20 @@ use super::{Problem, FAILED_COST};
 use cmaes::{CMAESOptions, DVector};
 use std::ops::ControlFlow;
 
+/// Fewest evaluations a calibration may be given: a CMA-ES generation samples two points at
+/// least.
+pub const MIN_EVALUATIONS: usize = 2;
+
+/// Most evaluations a calibration may be given.
+pub const MAX_EVALUATIONS: usize = 1_000_000;
+
 /// The optimiser's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
     /// The seed of CMA-ES's sampling.
     pub seed: u64,
-    /// Most objective evaluations.
+    /// Most objective evaluations of the search (whole generations of CMA-ES that fit in it,
+    /// from [`MIN_EVALUATIONS`] to [`MAX_EVALUATIONS`]).
     pub max_evaluations: usize,
     /// Threads the candidates are evaluated on.
     pub threads: usize,
@@ -94,9 +102,18 @@ impl Problem {
             .build()
             .map_err(|e| CalibrateError::Threads(e.to_string()))?;
         let objective = |z: &DVector<f64>| self.evaluate(&self.values_of(z.as_slice())).0;
-        let mut cmaes = CMAESOptions::new(self.point_of(&searched_start), settings.initial_step)
+        let budget = settings.max_evaluations;
+        let mut options = CMAESOptions::new(self.point_of(&searched_start), settings.initial_step)
             .seed(settings.seed)
-            .max_function_evals(settings.max_evaluations)
+            .max_function_evals(budget);
+        // Never more evaluations than asked: a budget below CMA-ES's population (Hansen 2016,
+        // λ = 4 + ⌊3 ln n⌋) makes the one generation that small, and the search ends before a
+        // generation that would not fit.
+        if budget < options.population_size {
+            options = options.population_size(budget.max(MIN_EVALUATIONS));
+        }
+        let lambda = options.population_size;
+        let mut cmaes = options
             .build(objective)
             .map_err(|e| CalibrateError::Options(format!("{e:?}")))?;
         let mut history = Vec::new();
@@ -115,7 +132,7 @@ impl Problem {
                 stopped = true;
                 break;
             }
-            if done.is_some() {
+            if done.is_some() || cmaes.function_evals() + lambda > budget {
                 break;
             }
         }
