@@ -3,8 +3,8 @@
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::limb_params::MuscleParams;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
 use muscle_actuator_core::sim::scenario::Scenario;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::sim::Actuator;

@@ -6,7 +6,7 @@
 //! per tick of the pulse (one muscle) on this machine.
 
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::contractile::calibration::calibrate_exact;
+use muscle_actuator_core::physics::contractile::crossbridge_scale::calibrate_exact;
 use muscle_actuator_core::physics::contractile::force_length::force_length;
 use muscle_actuator_core::physics::contractile::huxley_exact;
 use muscle_actuator_core::physics::contractile::huxley_grid::CrossBridgeGrid;

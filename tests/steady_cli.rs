@@ -4,7 +4,7 @@
 //! configuration; and the refusals: one clear line on stderr, a non-zero exit, never a panic.
 
 use muscle_actuator_core::physics::contractile::hill_equation::force_velocity;
-use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::physics::limb_params::MuscleParams;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 

@@ -21,7 +21,7 @@ use crate::errors::{with_step_attributes, ErrorKind};
 use muscle_actuator_core::config::{ConfigError, StepperError};
 use muscle_actuator_core::emg::EmgError;
 use muscle_actuator_core::files::OverwritesInput;
-use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
+use muscle_actuator_core::physics::energetics::model_inputs::UnknownEnergyModel;
 use muscle_actuator_core::physics::models::UnknownModel;
 use muscle_actuator_core::sim::rollout::OutputsError;
 use muscle_actuator_core::sim::saved::SavedStateError;

@@ -3,8 +3,8 @@
 
 use super::CliError;
 use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::limb_params::EnergyModel;
 use muscle_actuator_core::physics::models::{join, ModelKind};
-use muscle_actuator_core::physics::params::EnergyModel;
 use muscle_actuator_core::physics::stepping::Stepping;
 use std::path::{Path, PathBuf};
 

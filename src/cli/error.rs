@@ -6,7 +6,7 @@ use crate::ros::NodeError;
 use muscle_actuator_core::config::ConfigError;
 use muscle_actuator_core::csv::CsvWriteError;
 use muscle_actuator_core::files::OverwritesInput;
-use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
+use muscle_actuator_core::physics::energetics::model_inputs::UnknownEnergyModel;
 use muscle_actuator_core::physics::models::UnknownModel;
 use muscle_actuator_core::text::one_line;
 use muscle_actuator_measured::measured::rating::RatingError;

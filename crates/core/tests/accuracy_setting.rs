@@ -7,8 +7,8 @@ mod common;
 
 use muscle_actuator_core::config::overrides::with_overrides;
 use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::limb_params::MuscleParams;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
 use muscle_actuator_core::sim::scenario::Scenario;
 use muscle_actuator_core::sim::simulation::{default_stepping, Stepping, DEFAULT_MAX_SUBSTEPS};
 use muscle_actuator_core::sim::Actuator;

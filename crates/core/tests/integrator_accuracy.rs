@@ -5,8 +5,8 @@
 mod common;
 
 use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::limb_params::MuscleParams;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
 use muscle_actuator_core::sim::scenario::Scenario;
 use muscle_actuator_core::sim::simulation::{default_stepping, Stepping};
 use std::path::Path;

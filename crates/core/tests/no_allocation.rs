@@ -7,8 +7,10 @@
 //! `sim::rollout`) into buffers sized before it.
 
 use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::limb_params::formulation::{
+    ActivationKind, FibreKind, TendonKind,
+};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::{ActivationKind, FibreKind, TendonKind};
 use muscle_actuator_core::sim::scenario::Scenario;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use muscle_actuator_core::sim::Actuator;

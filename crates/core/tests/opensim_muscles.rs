@@ -11,8 +11,8 @@
 //! checked first: a reference made from other inputs fails.
 
 use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::physics::limb_params::formulation::TendonKind;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::TendonKind;
 use muscle_actuator_core::sim::scenario::Scenario;
 use muscle_actuator_core::sim::simulation::default_stepping;
 use std::path::{Path, PathBuf};

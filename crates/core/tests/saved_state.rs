@@ -419,7 +419,8 @@ fn the_configuration_comes_back_bit_for_bit() {
     cfg.muscles[0].params.f_max = 4000.000000000001;
     cfg.muscles[1].params.l_opt = std::f64::consts::PI / 30.0;
     cfg.muscles[2].path_length = Some(0.3 + 1e-16);
-    let cfg = cfg.with_energy_model(muscle_actuator_core::physics::params::EnergyModel::Bhargava);
+    let cfg =
+        cfg.with_energy_model(muscle_actuator_core::physics::limb_params::EnergyModel::Bhargava);
     for model in MODELS {
         let a = Actuator::new(&cfg, model, 999.9999999999999).unwrap();
         let b = Actuator::from_bytes(&a.to_bytes()).unwrap();

@@ -1,8 +1,8 @@
 //! The exponential-then-linear springs (docs/model.md §4): continuity, inverses and strain energies,
 //! checked against independent computations (finite differences, quadrature).
 
+use muscle_actuator_core::physics::limb_params::MuscleParams;
 use muscle_actuator_core::physics::parallel_element::parallel_spring;
-use muscle_actuator_core::physics::params::MuscleParams;
 use muscle_actuator_core::physics::spring::ExpLinearSpring;
 use muscle_actuator_core::physics::tendon::tendon;
 

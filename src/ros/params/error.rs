@@ -4,7 +4,7 @@
 
 use super::limits::{MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
 use crate::ros::clock::UnknownClock;
-use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
+use muscle_actuator_core::physics::energetics::model_inputs::UnknownEnergyModel;
 use muscle_actuator_core::physics::models::UnknownModel;
 
 /// Why a parameter value is refused.

@@ -41,7 +41,7 @@ pub(crate) mod schema;
 pub(crate) mod stepper;
 pub(crate) mod validate;
 
-use crate::physics::params::ParamError;
+use crate::physics::limb_params::ParamError;
 pub use overrides::OverridesError;
 /// For src/main.rs, which quotes warnings with it; the text helpers are [`crate::text`]'s.
 pub use parse::BUILT_IN;

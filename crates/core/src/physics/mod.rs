@@ -1,6 +1,6 @@
 //! The muscle physics (docs/model.md): pure functions and plain state, no I/O.
 //!
-//! - [`params`]: the parameters and their defaults (§1, §6, §8);
+//! - [`limb_params`]: the parameters of the muscles and joints and their defaults (§1, §6, §8);
 //! - [`activation`]: excitation to activation (§2);
 //! - [`contractile`]: the contractile elements' mathematics (§3, §6, §7); [`models`]: the
 //!   interface a model implements, the models, one file each, and [`MODELS`], the one place
@@ -21,12 +21,12 @@ pub mod contractile;
 pub mod curves;
 pub mod energetics;
 pub(crate) mod joint;
+pub mod limb_params;
 pub mod models;
 pub mod moment_arm;
 pub mod mtu;
 pub mod observables;
 pub mod parallel_element;
-pub mod params;
 pub(crate) mod pennation;
 pub mod plant;
 pub mod spring;

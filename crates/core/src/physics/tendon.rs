@@ -4,7 +4,7 @@
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
 use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
 use std::sync::Arc;
 

@@ -11,7 +11,7 @@
 //!   `Actuator::from_bytes`), for a copy that continues bit for bit;
 //! - [`scenario`]: the paper's experiments and scenario files; `scenario_kinds`: their
 //!   attachments and signals; [`schedule`]: their input schedules; [`scenario_error`]: why one
-//!   cannot be read or run; [`run`]: a run's records, tick after tick.
+//!   cannot be read or run; [`records`]: a run's records, tick after tick.
 //! - [`rollout`]: an actuator stepped over per-tick inputs, chosen outputs into flat buffers
 //!   (the Python package's rollouts).
 //! - [`input`]: commands by name checked against the actuator's names (unknown names,
@@ -25,8 +25,8 @@ pub mod input;
 pub mod jacobian;
 pub(crate) mod neural_drive;
 pub(crate) mod part;
+pub mod records;
 pub mod rollout;
-pub mod run;
 pub mod saved;
 pub mod scenario;
 pub mod scenario_error;

@@ -3,8 +3,8 @@
 //! `scenarios/example.toml`).
 
 use crate::config::ActuatorConfig;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::models::ModelKind;
-use crate::physics::params::MuscleParams;
 use crate::physics::plant::{Inputs, Plant};
 use crate::physics::topology::Topology;
 use crate::sim::schedule::Schedule;
@@ -14,7 +14,7 @@ use crate::sim::snapshot::StateSnapshot;
 use serde::Deserialize;
 use std::path::Path;
 
-pub use crate::sim::run::{Record, RecordMismatch, Run};
+pub use crate::sim::records::{Record, RecordMismatch, Run};
 pub use crate::sim::scenario_error::{BadScenario, ScenarioError, ScenarioRunError};
 pub use crate::sim::scenario_kinds::{SetupKind, Signal};
 

@@ -3,8 +3,8 @@
 use crate::measured::resample::ResampleError;
 use crate::measured::ExcitationMapError;
 use crate::subject::limits::MAX_FIBRE_LOPT;
+use muscle_actuator_core::physics::limb_params::ParamError;
 use muscle_actuator_core::physics::models::ModelBuildError;
-use muscle_actuator_core::physics::params::ParamError;
 use muscle_actuator_core::physics::plant::PlantError;
 use muscle_actuator_core::sim::simulation::{SetupError, StepError};
 

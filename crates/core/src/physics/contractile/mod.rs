@@ -8,13 +8,13 @@
 //!   `closure_limits`: its limits' values kept for the fluxes at a tick's end (§11.1);
 //! - [`huxley_grid`]: the full model's bond distribution by characteristics (§7);
 //!   [`huxley_exact`]: its closed-form steady states (§7);
-//! - [`calibration`]: the cross-bridge models scaled to a muscle's Fmax and vmax (§6–7).
+//! - [`crossbridge_scale`]: the cross-bridge models scaled to a muscle's Fmax and vmax (§6–7).
 //!
 //! Sections are those of docs/model.md.
 
-pub mod calibration;
 pub(crate) mod closure_limits;
 pub mod crossbridge;
+pub mod crossbridge_scale;
 pub mod distribution_moment;
 pub mod force_length;
 pub mod hill_equation;

@@ -5,7 +5,7 @@ use crate::physics::contractile::hill_equation::{force_velocity, force_velocity_
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
 use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 use std::sync::Arc;
 
 /// The fastest an equilibrium fibre moves, in units of vmax: where no velocity balances the

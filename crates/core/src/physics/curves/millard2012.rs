@@ -18,8 +18,8 @@
 use super::quintic_bezier::{
     corner_control_points, scaled_curviness, ControlPoints, NotACorner, SegmentedBezier,
 };
-use crate::physics::params::formulation::{FibreKind, TendonKind};
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::formulation::{FibreKind, TendonKind};
+use crate::physics::limb_params::MuscleParams;
 
 /// `min_norm_active_fiber_length`: where the active curve leaves its floor.
 pub(crate) const ACTIVE_MIN_NORM_FIBER_LENGTH: f64 = 0.4441;

@@ -31,8 +31,8 @@ pub(crate) mod rising_root;
 pub mod tabulated;
 pub mod thelen2003;
 
-pub use crate::physics::params::curve_set::{CurveSet, UnknownCurveSet};
-use crate::physics::params::MuscleParams;
+pub use crate::physics::limb_params::curve_set::{CurveSet, UnknownCurveSet};
+use crate::physics::limb_params::MuscleParams;
 
 /// One normalised curve of a set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -10,8 +10,9 @@
 //!   et al. (2016), and Bhargava et al. (2004), as OpenSim's metabolic probes compute them
 //!   (`probe`, [`umberger`], `bhargava`; the selection in [`phenomenological`]).
 //!
-//! [`metabolic`] is what a run publishes of them per muscle and instant. [`params`] holds a muscle's energetics parameters (the configuration's `[muscle.energetics]`).
-//! [`steady`] puts both together for isovelocity steady states at full activation and optimal
+//! [`metabolic`] is what a run publishes of them per muscle and instant. [`model_inputs`]: a muscle's energetics parameters (the configuration's `[muscle.energetics]`) as
+//! the models' inputs.
+//! [`isovelocity`] puts both together for isovelocity steady states at full activation and optimal
 //! length. Every function is stateless; units are SI (W, J, mol/s, N, m/s) unless a name says
 //! otherwise. Velocities follow docs/model.md: `v` lengthens the fibre, `v_s = -v` shortens it;
 //! work rates count work done by the contractile element on its load, positive when shortening.
@@ -20,11 +21,11 @@ pub(crate) mod bhargava;
 pub(crate) mod bridge_flux;
 pub mod bridge_power;
 pub mod huxley_steady;
+pub mod isovelocity;
 pub mod metabolic;
-pub mod params;
+pub mod model_inputs;
 pub mod phenomenological;
 pub(crate) mod probe;
-pub mod steady;
 pub mod umberger;
 
 #[cfg(test)]
