@@ -7,9 +7,8 @@
 //! Tick 0 of the recording is the trial's first EMG sample ([`PreparedTrial::start_s`], named in
 //! the metadata's `source`).
 
-use muscle_actuator_core::physics::limb_params::MuscleParams;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::simulation::Stepping;
+use muscle_actuator_core::physics::{MuscleParams, Stepping};
 use muscle_actuator_core::time::{now_ns, TimeBase};
 use muscle_actuator_measured::subject::{DriveError, Prediction, PreparedTrial};
 use muscle_actuator_recording::runs::{AttachmentMeta, ObservedRun, RunError, RunMeta};

@@ -8,8 +8,8 @@ mod common;
 
 use common::fixtures::refusal;
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::limb_params::formulation::ActivationKind;
 use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::ActivationKind;
 use muscle_actuator_core::sim::Actuator;
 
 const RATE: f64 = 1000.0;

@@ -4,11 +4,9 @@
 //! held load times the displacement over the tick.
 
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::limb_params::MuscleParams;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::physics::MuscleParams;
+use muscle_actuator_core::sim::{default_stepping, Actuator, Scenario};
 
 const RATE: f64 = 20_000.0;
 

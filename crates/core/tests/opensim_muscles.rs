@@ -11,10 +11,9 @@
 //! checked first: a reference made from other inputs fails.
 
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::limb_params::formulation::TendonKind;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::physics::TendonKind;
+use muscle_actuator_core::sim::{default_stepping, Scenario};
 use std::path::{Path, PathBuf};
 
 /// The bound on the RMS tendon-force difference, as a fraction of Fmax.

@@ -2,8 +2,8 @@
 
 use crate::ros::clock::ClockMode;
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError};
-use muscle_actuator_core::physics::limb_params::EnergyModel;
 use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::EnergyModel;
 use muscle_actuator_core::sim::Actuator;
 
 /// Why the parameters give no actuator.

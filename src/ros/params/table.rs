@@ -12,8 +12,8 @@ use super::error::ParameterError;
 use super::given::{Given, Kind};
 use super::limits::{DEFAULT_FOXGLOVE_PORT, MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
 use super::node_params::NodeParams;
-use muscle_actuator_core::physics::limb_params::EnergyModel;
 use muscle_actuator_core::physics::models::ModelKind;
+use muscle_actuator_core::physics::EnergyModel;
 use ros2_client::ParameterValue;
 
 /// A default value (a constant, unlike [`ParameterValue`]).

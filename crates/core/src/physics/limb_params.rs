@@ -7,16 +7,16 @@ use serde::{Deserialize, Serialize};
 
 mod activation_rules;
 mod curve_rules;
-pub mod curve_set;
-pub mod energetics_table;
-pub mod formulation;
-pub mod tabulated_points;
+pub(crate) mod curve_set;
+pub(crate) mod energetics_table;
+pub(crate) mod formulation;
+pub(crate) mod tabulated_points;
 
 use curve_set::CurveSet;
 use formulation::{ActivationKind, FibreKind, TendonKind};
 use tabulated_points::TabulatedCurves;
 
-pub use energetics_table::{EnergeticsParams, EnergyModel};
+pub(crate) use energetics_table::{EnergeticsParams, EnergyModel};
 
 /// Shape of the force–length curve f(l_m) (docs/model.md §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]

@@ -63,7 +63,7 @@ pub enum Tendon {
         f_max: f64,
         /// Slack length l_s, m.
         l_s: f64,
-        /// The curve of l̃_T ([`millard2012::tendon_force_length_curve`]).
+        /// The curve of l̃_T (`millard2012::tendon_force_length_curve`).
         curve: Arc<SegmentedBezier>,
     },
     /// The muscle's own points of force against strain `l_T / l_s - 1`, interpolated as CEINMS

@@ -44,7 +44,7 @@ pub enum HillForceVelocity {
         /// Its shape (Af, Flen; OpenSim's extrapolation threshold).
         shape: thelen2003::ForceVelocityShape,
     },
-    /// Millard 2012's quintic Bézier curve ([`millard2012::force_velocity_curve`]).
+    /// Millard 2012's quintic Bézier curve (`millard2012::force_velocity_curve`).
     Millard2012 {
         /// vmax, m/s.
         v_max: f64,

@@ -1,8 +1,7 @@
 //! A muscle's energetics parameters as the energetics models' inputs (docs/model.md §11,
 //! docs/configuration.md; the data of the configuration's `[muscle.energetics]` table are
-//! `physics::limb_params::energetics_table`, re-exported here): their defaults, the cross-bridge
-//! energetics' parameters, the probes' view of the muscle, and each energy model with its
-//! options.
+//! `physics::limb_params::energetics_table`): their defaults, the cross-bridge energetics'
+//! parameters, the probes' view of the muscle, and each energy model with its options.
 
 use crate::physics::energetics::bhargava::BhargavaOptions;
 use crate::physics::energetics::bridge_power::BridgeEnergyParams;
@@ -11,7 +10,6 @@ use crate::physics::energetics::probe::{
     muscle_mass_kg, ProbeMuscle, MUSCLE_DENSITY_KG_M3, SLOW_TWITCH_RATIO, SPECIFIC_TENSION_PA,
 };
 use crate::physics::energetics::umberger::UmbergerOptions;
-pub use crate::physics::limb_params::energetics_table::UnknownEnergyModel;
 pub(crate) use crate::physics::limb_params::energetics_table::{EnergeticsParams, EnergyModel};
 
 impl EnergyModel {

@@ -39,9 +39,8 @@ use crate::measured::{Excitation, ExcitationMap};
 pub use crate::subject::bounds::Bounds;
 use crate::subject::drive::{DriveError, PreparedTrial};
 use crate::subject::units::SubjectModel;
-use muscle_actuator_core::physics::limb_params::MuscleParams;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::stepping::Stepping;
+use muscle_actuator_core::physics::{MuscleParams, Stepping};
 use strengths::{best_strengths, Term};
 
 mod result;
