@@ -1,6 +1,7 @@
-//! The Huxley-type contractile element reduced by Zahalak's Distribution-Moment approximation
-//! (docs/model.md §6, paper eqs. 9–12): state Q0, Q1, Q2, rates from eq. (12) with the Gaussian
-//! closure, calibrated from its own steady states.
+//! The model `huxley`: the Huxley-type contractile element reduced by Zahalak's
+//! Distribution-Moment approximation (docs/model.md §6, paper eqs. 9–12): state Q0, Q1, Q2, rates
+//! from eq. (12) with the Gaussian closure, calibrated from its own steady states. Its equations
+//! are `physics::contractile::distribution_moment`'s.
 
 use crate::physics::contractile::closure_limits::ClosureLimits;
 use crate::physics::contractile::crossbridge_scale::{self, CrossBridgeScale};

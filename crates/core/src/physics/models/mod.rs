@@ -1,9 +1,10 @@
 //! The contractile-element models: the interface each implements (`contractile_model`:
 //! `ContractileModel`, its `ModelSpec` and the [`ModelKind`] that names it), one file per
-//! model, and [`MODELS`], the one place where they are named. Adding a model is its file plus
-//! its line in [`MODELS`]. Everything that names models (the command line's help and default,
-//! the node's `model` parameter and its usage text, figures, the `MODEL_*` constants of
-//! `ActuatorState.msg`, checked by `crates/recording/tests/msg_definitions.rs`) reads this list.
+//! model, named by the model's name (`hill`, `huxley`, `huxley_pde`), and [`MODELS`], the one
+//! place where they are named. Adding a model is its file plus its line in [`MODELS`].
+//! Everything that names models (the command line's help and default, the node's `model`
+//! parameter and its usage text, figures, the `MODEL_*` constants of `ActuatorState.msg`,
+//! checked by `crates/recording/tests/msg_definitions.rs`) reads this list.
 
 pub(crate) mod contractile_model;
 pub(crate) mod hill;
