@@ -22,7 +22,7 @@ mod bank;
 use bank::{bank, Lcg};
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::{FibreKind, TendonKind};
+use muscle_actuator_core::physics::{FibreKind, TendonKind};
 use muscle_actuator_core::sim::Actuator;
 use std::hint::black_box;
 use std::time::Instant;

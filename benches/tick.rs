@@ -4,10 +4,8 @@
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::physics::MuscleParams;
+use muscle_actuator_core::sim::{default_stepping, Actuator, Scenario};
 use std::hint::black_box;
 
 /// An actuator in a representative working state: co-contracted, moving, after 200 ticks.

@@ -21,10 +21,10 @@ use muscle_actuator::figures::palette::{BLACK, BLUE, RED};
 use muscle_actuator::figures::plot::{write_panels, Chart, Markers, Panel, Series};
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::{FibreKind, TendonKind};
-use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator_core::sim::schedule::Schedule;
-use muscle_actuator_core::sim::simulation::{default_stepping, Stepping};
+use muscle_actuator_core::physics::{FibreKind, Stepping, TendonKind};
+use muscle_actuator_core::sim::{
+    default_stepping, Scenario, Schedule, ScheduledInput, SetupKind, Signal,
+};
 use plotters::chart::SeriesLabelPosition;
 use std::path::PathBuf;
 use std::time::Instant;

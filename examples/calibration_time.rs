@@ -7,7 +7,7 @@
 //!   (defaults: 1000 evaluations, 2 threads, hill and huxley)
 
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::default_stepping;
 use muscle_actuator_measured::measured::{ExcitationMap, Subject, Trial};
 use muscle_actuator_measured::subject::calibrate::{Problem, Settings};
 use muscle_actuator_measured::subject::{PreparedTrial, SubjectModel};

@@ -6,13 +6,12 @@
 //! per tick of the pulse (one muscle) on this machine.
 
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::contractile::calibration::calibrate_exact;
-use muscle_actuator_core::physics::contractile::force_length::force_length;
-use muscle_actuator_core::physics::contractile::huxley_exact;
-use muscle_actuator_core::physics::contractile::huxley_grid::CrossBridgeGrid;
+use muscle_actuator_core::physics::contractile::{
+    calibrate_exact, force_length, steady_q1, CrossBridgeGrid,
+};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::Stepping;
+use muscle_actuator_core::physics::Stepping;
+use muscle_actuator_core::sim::Scenario;
 use std::time::Instant;
 
 fn main() {
@@ -45,7 +44,7 @@ fn main() {
                 g.advance(&cal.rates, 1.0, dt, -u * dt);
             }
             let steady = cal.force(g.moments()[1]);
-            let oracle = cal.force(huxley_exact::steady_q1(&cal.rates, 1.0, u));
+            let oracle = cal.force(steady_q1(&cal.rates, 1.0, u));
             println!(
                 "| {cells} | {substeps} | {:.2} | {:.3} | {per_tick:.1} |",
                 rec.ce_force - exact,

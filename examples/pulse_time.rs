@@ -18,10 +18,8 @@
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::curves::CurveSet;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::{FibreKind, TendonKind};
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::physics::{FibreKind, MuscleParams, TendonKind};
+use muscle_actuator_core::sim::{default_stepping, Scenario};
 use std::hint::black_box;
 use std::time::Instant;
 

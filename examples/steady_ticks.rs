@@ -8,7 +8,7 @@
 //! MODEL: hill, huxley; FORMULATION (docs/model.md §5b): massed (the default), equilibrium, rigid.
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::{FibreKind, TendonKind};
+use muscle_actuator_core::physics::{FibreKind, TendonKind};
 use muscle_actuator_core::sim::Actuator;
 use std::hint::black_box;
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """OpenSim's own evaluation of the curve sets `degroote2016`, `thelen2003` and `millard2012`, the
 reference that
-crates/core/tests/opensim_curves.rs compares the Rust curves (crates/core/src/physics/curves/)
+crates/core/src/physics/curves/tests/opensim.rs compares the Rust curves (crates/core/src/physics/curves/)
 against. Writes crates/core/tests/reference/opensim_curves.csv: a comment line naming the OpenSim version and
 this command, then `set,curve,x,value`, one row per point, numbers in Python's shortest
 round-trip form (exact doubles).

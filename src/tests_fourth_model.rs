@@ -8,7 +8,7 @@ use crate::cli::{self, Cli};
 use crate::ros::params::NodeParams;
 use clap::{CommandFactory, Parser};
 use muscle_actuator_core::physics::models::{test_model, ModelKind};
-use muscle_actuator_core::physics::stepping::Stepping;
+use muscle_actuator_core::physics::Stepping;
 use ros2_client::ParameterValue;
 use std::path::{Path, PathBuf};
 
@@ -40,7 +40,7 @@ fn it_is_registered_with_its_own_spec() {
     assert_eq!(fourth().spec().name, test_model::SPEC.name);
     assert!(std::ptr::eq(fourth().spec(), &test_model::SPEC));
     assert_eq!(
-        muscle_actuator_core::sim::simulation::default_stepping(fourth()),
+        muscle_actuator_core::sim::default_stepping(fourth()),
         test_model::SPEC.stepping
     );
 }

@@ -8,7 +8,7 @@ mod cli;
 
 use cli::{assert_clean_failure, bin, run_ok};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::simulation::{Stepping, DEFAULT_MAX_SUBSTEPS};
+use muscle_actuator_core::physics::{Stepping, DEFAULT_MAX_SUBSTEPS};
 use muscle_actuator_recording::runs::{self, load_run};
 use std::path::PathBuf;
 

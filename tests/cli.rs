@@ -3,7 +3,7 @@
 //! those of the message definitions (`msg/msg/*.msg`).
 
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use muscle_actuator_core::sim::{JointSnapshot, MuscleSnapshot};
 use std::path::PathBuf;
 use std::process::Output;
 

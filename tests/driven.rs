@@ -5,10 +5,9 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator_core::sim::schedule::Schedule;
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::sim::{
+    default_stepping, Actuator, Scenario, Schedule, ScheduledInput, SetupKind, Signal,
+};
 
 #[path = "common/cli.rs"]
 mod cli;

@@ -9,7 +9,7 @@ mod cli;
 mod trials;
 
 use cli::{assert_clean_failure, bin, read_csv, run_ok, stderr, temp_dir};
-use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::physics::MuscleParams;
 use std::path::Path;
 use trials::{isometric_files, own_channels};
 

@@ -3,8 +3,8 @@
 //! table for the full model, Hill's g(v), the muscle and its `[muscle.energetics]` from the
 //! configuration; and the refusals: one clear line on stderr, a non-zero exit, never a panic.
 
-use muscle_actuator_core::physics::contractile::hill_equation::force_velocity;
-use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::physics::contractile::force_velocity;
+use muscle_actuator_core::physics::MuscleParams;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 

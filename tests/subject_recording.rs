@@ -10,7 +10,7 @@ mod cli;
 mod trials;
 
 use cli::{assert_clean_failure, bin, read_csv, run_ok, stderr, temp_dir};
-use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::physics::MuscleParams;
 use muscle_actuator_measured::subject::calibrate::Bounds;
 use muscle_actuator_measured::subject::{SubjectModel, UnitModel};
 use muscle_actuator_recording::runs::{load_run, AttachmentMeta};

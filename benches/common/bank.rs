@@ -2,8 +2,7 @@
 //! independent elbows and the generator of their random excitations.
 
 use muscle_actuator_core::config::{ActuatorConfig, MuscleConfig, SpanConfig};
-use muscle_actuator_core::physics::moment_arm::MomentArm;
-use muscle_actuator_core::physics::params::{JointParams, MuscleParams};
+use muscle_actuator_core::physics::{JointParams, MomentArm, MuscleParams};
 
 /// k antagonistic elbows, independent.
 pub fn bank(k: usize) -> ActuatorConfig {

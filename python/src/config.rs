@@ -4,11 +4,9 @@
 
 use crate::error_kinds::py_err;
 use crate::errors::config_error;
-use muscle_actuator_core::config::overrides::with_overrides;
-use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::config::{with_overrides, ActuatorConfig};
 use muscle_actuator_core::physics::models::{ModelKind, UnknownModel};
-use muscle_actuator_core::physics::params::energetics::UnknownEnergyModel;
-use muscle_actuator_core::physics::params::EnergyModel;
+use muscle_actuator_core::physics::{EnergyModel, UnknownEnergyModel};
 use muscle_actuator_core::sim::Actuator;
 use muscle_actuator_recording::runs::limits;
 use pyo3::exceptions::PyUserWarning;

@@ -8,12 +8,10 @@ use crate::config::count;
 use crate::error_kinds::py_err;
 use crate::errors::{config_error, input_error, unknown_name};
 use crate::inputs::{checked, float_array};
-use muscle_actuator_core::emg::envelope::{
-    linear_envelopes, BandPass, EnvelopeOptions, LowPass, Normalisation, Phase,
+use muscle_actuator_core::emg::{
+    activation, linear_envelopes, neural_activation, BandPass, EmgError, EnvelopeOptions, LowPass,
+    NeuralParams, Normalisation, Phase, ShapeFactor,
 };
-use muscle_actuator_core::emg::neural::{neural_activation, NeuralParams};
-use muscle_actuator_core::emg::nonlinearity::{activation, ShapeFactor};
-use muscle_actuator_core::emg::EmgError;
 use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};

@@ -21,12 +21,11 @@ use crate::errors::{with_step_attributes, ErrorKind};
 use muscle_actuator_core::config::{ConfigError, StepperError};
 use muscle_actuator_core::emg::EmgError;
 use muscle_actuator_core::files::OverwritesInput;
-use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
 use muscle_actuator_core::physics::models::UnknownModel;
-use muscle_actuator_core::sim::rollout::OutputsError;
-use muscle_actuator_core::sim::saved::SavedStateError;
-use muscle_actuator_core::sim::scenario::{ScenarioError, ScenarioRunError};
-use muscle_actuator_core::sim::{SetupError, StepError};
+use muscle_actuator_core::physics::UnknownEnergyModel;
+use muscle_actuator_core::sim::{
+    OutputsError, SavedStateError, ScenarioError, ScenarioRunError, SetupError, StepError,
+};
 use muscle_actuator_core::text::one_line;
 use muscle_actuator_measured::measured::rating::RatingError;
 use muscle_actuator_measured::measured::MeasuredError;

@@ -1,4 +1,4 @@
-//! The outputs a trajectory carries (`muscle_actuator_core::sim::rollout::Outputs`: by the names of
+//! The outputs a trajectory carries (`muscle_actuator_core::sim::Outputs`: by the names of
 //! the one field list) as numpy arrays.
 
 use crate::error_kinds::py_err;
@@ -6,7 +6,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-pub use muscle_actuator_core::sim::rollout::{write_tick, Outputs};
+pub use muscle_actuator_core::sim::{write_tick, Outputs};
 
 /// The outputs named (None: all): an unknown name refused as an `UnknownNameError`, a repeated
 /// one as an `InputError`.

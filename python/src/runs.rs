@@ -8,7 +8,7 @@ use crate::error_kinds::{py_err, ToPyErr};
 use crate::errors::{input_error, ErrorKind};
 use crate::outputs::{self, Outputs};
 use muscle_actuator_core::files::check_not_an_input;
-use muscle_actuator_core::sim::scenario::Run;
+use muscle_actuator_core::sim::Run;
 use muscle_actuator_recording::runs::RunError;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -125,7 +125,7 @@ fn check_scenario(
     let Some(first) = cfg.muscles.first() else {
         return Ok(());
     };
-    muscle_actuator_core::sim::scenario::Scenario::resolve(scenario, &first.params)
+    muscle_actuator_core::sim::Scenario::resolve(scenario, &first.params)
         .map(|_| ())
         .map_err(py_err)
 }

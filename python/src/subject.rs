@@ -12,7 +12,7 @@ use crate::config::{count, parse_model};
 use crate::error_kinds::{drive_error_in, subject_file_error, ToPyErr};
 use crate::errors::{config_error, input_error, unknown_name, ErrorKind};
 use crate::prediction::PyPrediction;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::default_stepping;
 use muscle_actuator_core::text::excerpt;
 use muscle_actuator_measured::measured::{repeated_folder, ExcitationMap, MeasuredError, Trial};
 use muscle_actuator_measured::subject::calibrate::{

@@ -1,6 +1,6 @@
 """OpenSim 4.6 itself, evaluated now, against the curve table the Rust tests read.
 
-crates/core/tests/opensim_curves.rs checks the project's DeGroote-Fregly 2016 and Thelen 2003
+crates/core/src/physics/curves/tests/opensim.rs checks the project's DeGroote-Fregly 2016 and Thelen 2003
 curves (crates/core/src/physics/curves/) against crates/core/tests/reference/opensim_curves.csv; this test
 regenerates that table with the installed OpenSim (scripts/opensim_curves.py) and requires it to
 be the committed one, value for value: the Rust tests compare against OpenSim's numbers, not

@@ -8,7 +8,7 @@ use super::CliError;
 use super::SubjectError;
 use muscle_actuator_core::files::AtomicFile;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::default_stepping;
 use muscle_actuator_measured::measured::{repeated_folder, ExcitationMap};
 use muscle_actuator_measured::subject::calibrate::{
     CalibrateError, Problem, Settings, MAX_EVALUATIONS, MIN_EVALUATIONS,

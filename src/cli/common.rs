@@ -4,8 +4,7 @@
 use super::CliError;
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::{join, ModelKind};
-use muscle_actuator_core::physics::params::EnergyModel;
-use muscle_actuator_core::physics::stepping::Stepping;
+use muscle_actuator_core::physics::{EnergyModel, Stepping};
 use std::path::{Path, PathBuf};
 
 /// The default `--model` of every command: the registry's default, the node's (the

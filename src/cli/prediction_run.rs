@@ -8,8 +8,7 @@
 //! the metadata's `source`).
 
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::simulation::Stepping;
+use muscle_actuator_core::physics::{MuscleParams, Stepping};
 use muscle_actuator_core::time::{now_ns, TimeBase};
 use muscle_actuator_measured::subject::{DriveError, Prediction, PreparedTrial};
 use muscle_actuator_recording::runs::{AttachmentMeta, ObservedRun, RunError, RunMeta};

@@ -8,11 +8,10 @@ use super::plot::{write_chart, write_chart_with_legend, Chart, Series};
 use super::samples::{at, run, series};
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::EnergyModel;
-use muscle_actuator_core::sim::scenario::{Run, Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator_core::sim::schedule::Schedule;
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::MuscleSnapshot;
+use muscle_actuator_core::physics::EnergyModel;
+use muscle_actuator_core::sim::{
+    default_stepping, MuscleSnapshot, Run, Scenario, Schedule, ScheduledInput, SetupKind, Signal,
+};
 use plotters::chart::SeriesLabelPosition;
 use plotters::style::RGBColor;
 use std::fmt::Write as _;

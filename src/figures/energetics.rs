@@ -9,14 +9,12 @@
 use super::error::FigureError;
 use super::palette::{color, BLACK, ORANGE};
 use super::plot::{write_panels, Chart, Markers, Panel, Series};
-use muscle_actuator_core::physics::contractile::calibration::calibrate_exact;
-use muscle_actuator_core::physics::energetics::bridge_power::{
-    activation_heat_w, BridgeEnergyScale,
+use muscle_actuator_core::physics::contractile::calibrate_exact;
+use muscle_actuator_core::physics::energetics::{
+    activation_heat_w, energy_rate_ratio, exact_isometric_bridge_w, exact_point, BridgeEnergyScale,
 };
-use muscle_actuator_core::physics::energetics::huxley_steady::energy_rate_ratio;
-use muscle_actuator_core::physics::energetics::steady::{exact_isometric_bridge_w, exact_point};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::{EnergyModel, MuscleParams};
+use muscle_actuator_core::physics::{EnergyModel, MuscleParams};
 use muscle_actuator_core::sim::steady::{steady_table, EnergySource, SteadyRow};
 use plotters::prelude::SeriesLabelPosition;
 use plotters::style::RGBColor;

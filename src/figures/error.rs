@@ -1,7 +1,7 @@
 //! Why a figure, or `summary.md`, cannot be made: a run or a curve it shows, the drawing, or a
 //! file it writes (named by its path).
 
-use muscle_actuator_core::physics::contractile::distribution_moment::SteadyStateError;
+use muscle_actuator_core::physics::contractile::SteadyStateError;
 use std::path::PathBuf;
 
 /// Why a figure cannot be made.
@@ -9,10 +9,10 @@ use std::path::PathBuf;
 pub enum FigureError {
     /// A built-in scenario that cannot be found.
     #[error(transparent)]
-    Scenario(#[from] muscle_actuator_core::sim::scenario::ScenarioError),
+    Scenario(#[from] muscle_actuator_core::sim::ScenarioError),
     /// A scenario that cannot be set up or run.
     #[error(transparent)]
-    ScenarioRun(#[from] muscle_actuator_core::sim::scenario::ScenarioRunError),
+    ScenarioRun(#[from] muscle_actuator_core::sim::ScenarioRunError),
     /// Steady states that cannot be computed.
     #[error(transparent)]
     Steady(#[from] muscle_actuator_core::sim::steady::SteadyError),

@@ -15,16 +15,12 @@ pub mod subject_plot;
 
 pub use error::{FigureError, PlotError};
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::contractile::calibration::{
-    calibrate_distribution_moment, calibrate_exact,
+use muscle_actuator_core::physics::contractile::{
+    calibrate_distribution_moment, calibrate_exact, force_velocity, steady_curve, steady_q1,
 };
-use muscle_actuator_core::physics::contractile::distribution_moment::steady_curve;
-use muscle_actuator_core::physics::contractile::hill_equation::force_velocity;
-use muscle_actuator_core::physics::contractile::huxley_exact::steady_q1;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::Run;
-use muscle_actuator_core::sim::MuscleSnapshot;
+use muscle_actuator_core::physics::MuscleParams;
+use muscle_actuator_core::sim::{MuscleSnapshot, Run};
 use palette::{color, BLUE, RED};
 use plot::{write_chart, Chart, Series};
 use samples::{at, run, series};

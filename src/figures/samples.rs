@@ -4,9 +4,7 @@
 use super::error::FigureError;
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::{Run, Scenario};
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::MuscleSnapshot;
+use muscle_actuator_core::sim::{default_stepping, MuscleSnapshot, Run, Scenario};
 
 /// The built-in scenario `name` with `model` on `cfg`, at 1 kHz with the model's stepping.
 pub fn run(name: &str, model: ModelKind, cfg: &ActuatorConfig) -> Result<Run, FigureError> {

@@ -3,14 +3,15 @@
 //! Columns: `time`, `name` (the muscle), the `MuscleState` fields in `.msg` order, then for each
 //! joint J of the run `J.position`, `J.velocity`, `J.torque`, `J.external_torque`,
 //! `J.stiffness` (the `ActuatorState` per-joint fields), filled on the rows of the muscles that
-//! span J and empty on the others. The field lists are those of [`crate::sim::snapshot`].
+//! span J and empty on the others. The field lists are those of [`crate::sim::MuscleSnapshot`]
+//! and [`crate::sim::JointSnapshot`].
 //!
 //! Every CSV the project writes goes through the `csv` crate ([`writer`]): a name with a comma,
 //! a quote or a line break is quoted (RFC 4180), every other field is written as it is, so an
 //! ordinary table is the plain comma-joined text. The numbers are formatted here (Rust's
 //! shortest round-trip form) and handed to it as text.
 
-use crate::sim::scenario::Run;
+use crate::sim::records::Run;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 use std::fmt::Write as _;
 use std::io::Write;

@@ -3,7 +3,8 @@
 //! and the Python package build on it.
 //!
 //! - [`physics`]: the mathematics of docs/model.md, no I/O.
-//! - [`integrator`]: the fixed-tick implicit stepper, its tableaux and iteration matrices.
+//! - `integrator`: the fixed-tick implicit stepper, its tableaux and iteration matrices (the
+//!   crate's).
 //! - [`sim`]: the actuator stepped tick by tick, its inputs checked by name, the offline
 //!   scenarios, saved states, rollouts and steady states.
 //! - [`emg`]: EMG to activation: Butterworth filters, the raw-EMG chain to a normalised linear
@@ -22,7 +23,7 @@ pub mod config;
 pub mod csv;
 pub mod emg;
 pub mod files;
-pub mod integrator;
+pub(crate) mod integrator;
 pub mod physics;
 pub mod sim;
 pub mod state_bytes;

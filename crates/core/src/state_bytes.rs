@@ -1,8 +1,7 @@
 //! The bytes of a saved state (neutral): a writer of little-endian values and a reader whose
 //! every read is checked, against what is left of the bytes and against the size the reader
-//! expects, with errors on one line that name the value. [`crate::sim::saved`] frames these
-//! bytes (magic, version, checksum); each part of the state writes and reads its own values
-//! (`SavedState`).
+//! expects, with errors on one line that name the value. `sim::saved` frames these bytes (magic,
+//! version, checksum); each part of the state writes and reads its own values (`SavedState`).
 //!
 //! Values: `u8`; flags as one byte 0 or 1; `u64` and sizes as 8 bytes little-endian; `f64` as its
 //! bits (`to_bits`, 8 bytes little-endian: every value comes back bit for bit, −0 and NaNs too);

@@ -5,13 +5,10 @@
 
 mod common;
 
-use muscle_actuator_core::config::overrides::with_overrides;
-use muscle_actuator_core::config::ActuatorConfig;
+use muscle_actuator_core::config::{with_overrides, ActuatorConfig};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::{default_stepping, Stepping, DEFAULT_MAX_SUBSTEPS};
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::physics::{MuscleParams, Stepping, DEFAULT_MAX_SUBSTEPS};
+use muscle_actuator_core::sim::{default_stepping, Actuator, Scenario};
 
 /// The default elbow with `[stepper] tolerance = t` (None: no `[stepper]` table), set as the
 /// override `stepper.tolerance`.

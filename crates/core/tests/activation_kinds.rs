@@ -9,7 +9,7 @@ mod common;
 use common::fixtures::refusal;
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::ActivationKind;
+use muscle_actuator_core::physics::ActivationKind;
 use muscle_actuator_core::sim::Actuator;
 
 const RATE: f64 = 1000.0;

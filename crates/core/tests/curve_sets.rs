@@ -12,13 +12,8 @@ use muscle_actuator_core::physics::curves::{
     degroote2016 as dgf, thelen2003, Curve as Named, CurveSet,
 };
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::mtu::{Mtu, TendonEnd};
-use muscle_actuator_core::physics::observables::EnergeticsOutputs;
-use muscle_actuator_core::physics::parallel_element::passive_strain;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::physics::tendon::tendon_strain;
-use muscle_actuator_core::sim::scenario::{Scenario, SetupKind};
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::physics::{passive_strain, tendon_strain, Mtu, MuscleParams, TendonEnd};
+use muscle_actuator_core::sim::{default_stepping, EnergeticsOutputs, Scenario, SetupKind};
 
 const OPENSIM_SETS: [CurveSet; 3] = [
     CurveSet::DeGroote2016,

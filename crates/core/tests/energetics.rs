@@ -4,13 +4,11 @@
 //! the phenomenological models', the cost of stiffness rising with co-contraction).
 
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::contractile::calibration;
-use muscle_actuator_core::physics::energetics::bridge_power::BridgeEnergyScale;
+use muscle_actuator_core::physics::contractile::{calibrate_distribution_moment, calibrate_exact};
+use muscle_actuator_core::physics::energetics::BridgeEnergyScale;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::{EnergyModel, MuscleParams};
-use muscle_actuator_core::sim::scenario::{Run, Scenario};
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::{Actuator, MuscleSnapshot};
+use muscle_actuator_core::physics::{EnergyModel, MuscleParams};
+use muscle_actuator_core::sim::{default_stepping, Actuator, MuscleSnapshot, Run, Scenario};
 use std::path::Path;
 
 fn scenario(name: &str) -> Scenario {
@@ -40,9 +38,9 @@ fn integral(run: &Run, i: usize, f: impl Fn(&MuscleSnapshot) -> f64) -> f64 {
 /// Energy per unit Q0 of the bridges yet to split their ATP, `e N_hs B`, J (§11.2).
 fn atp_energy_per_q0(model: ModelKind, p: &MuscleParams) -> f64 {
     let scale = if model == ModelKind::HUXLEY {
-        calibration::calibrate_distribution_moment(p).unwrap()
+        calibrate_distribution_moment(p).unwrap()
     } else {
-        calibration::calibrate_exact(p)
+        calibrate_exact(p)
     };
     BridgeEnergyScale::new(&scale, p, &p.energetics.bridge()).chemical_power_w(1.0)
 }

@@ -5,10 +5,8 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::physics::MuscleParams;
+use muscle_actuator_core::sim::{default_stepping, Actuator, Scenario};
 
 const RATE: f64 = 20_000.0;
 

@@ -9,10 +9,10 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::observables::MuscleSnapshot;
-use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator_core::sim::schedule::Schedule;
-use muscle_actuator_core::sim::simulation::{default_stepping, Stepping};
+use muscle_actuator_core::physics::Stepping;
+use muscle_actuator_core::sim::{
+    default_stepping, MuscleSnapshot, Scenario, Schedule, ScheduledInput, SetupKind, Signal,
+};
 
 const MODELS: [ModelKind; 2] = [ModelKind::HILL, ModelKind::HUXLEY];
 const RATE: f64 = 1000.0;

@@ -6,9 +6,8 @@ mod common;
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::{default_stepping, Stepping};
+use muscle_actuator_core::physics::{MuscleParams, Stepping};
+use muscle_actuator_core::sim::{default_stepping, Scenario};
 use std::path::Path;
 
 const FORCE_TOL: f64 = 1e-3 * 3913.0;

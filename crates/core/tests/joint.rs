@@ -3,7 +3,7 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::stiffness::series_stiffness;
+use muscle_actuator_core::physics::series_stiffness;
 use muscle_actuator_core::sim::Actuator;
 
 fn settle(act: &mut Actuator, seconds: f64) {

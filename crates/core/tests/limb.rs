@@ -7,10 +7,9 @@ mod common;
 
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, Signal};
-use muscle_actuator_core::sim::schedule::Schedule;
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::sim::{
+    default_stepping, Actuator, Scenario, Schedule, ScheduledInput, Signal,
+};
 use std::path::PathBuf;
 
 const FORCE_TOL: f64 = 1e-3 * 3913.0;
@@ -270,7 +269,7 @@ fn limb_runs_are_bit_identical() {
             .run(&arm, model, 1000.0, default_stepping(model))
             .unwrap();
         for (ra, rb) in a.records().zip(b.records()) {
-            let bits = |r: &muscle_actuator_core::sim::scenario::Record| -> Vec<u64> {
+            let bits = |r: &muscle_actuator_core::sim::Record| -> Vec<u64> {
                 r.muscles
                     .iter()
                     .flat_map(|m| m.values())

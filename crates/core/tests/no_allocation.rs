@@ -8,10 +8,8 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::{ActivationKind, FibreKind, TendonKind};
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::physics::{ActivationKind, FibreKind, TendonKind};
+use muscle_actuator_core::sim::{default_stepping, Actuator, Scenario};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -165,7 +163,7 @@ fn scenario_runs_allocate_alike_at_any_length() {
 
 #[test]
 fn rollouts_allocate_alike_at_any_length() {
-    use muscle_actuator_core::sim::rollout::{rollout, Outputs};
+    use muscle_actuator_core::sim::{rollout, Outputs};
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     for cfg in [
         ActuatorConfig::default(),

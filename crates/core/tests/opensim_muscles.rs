@@ -12,9 +12,8 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::TendonKind;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::physics::TendonKind;
+use muscle_actuator_core::sim::{default_stepping, Scenario};
 use std::path::{Path, PathBuf};
 
 /// The bound on the RMS tendon-force difference, as a fraction of Fmax.

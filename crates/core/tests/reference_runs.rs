@@ -8,9 +8,8 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::Scenario;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::physics::MuscleParams;
+use muscle_actuator_core::sim::{default_stepping, Scenario};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

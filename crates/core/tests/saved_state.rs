@@ -9,8 +9,7 @@
 
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::snapshot::{JointSnapshot, MuscleSnapshot};
-use muscle_actuator_core::sim::Actuator;
+use muscle_actuator_core::sim::{Actuator, JointSnapshot, MuscleSnapshot};
 use sha2::{Digest, Sha256};
 use std::ops::Range;
 
@@ -295,7 +294,7 @@ fn several_parts_and_a_large_core_continue_bit_for_bit() {
             continue_both(&what, &mut a, SAVE..END);
         }
     }
-    let stepping = muscle_actuator_core::sim::simulation::Stepping::Adaptive {
+    let stepping = muscle_actuator_core::physics::Stepping::Adaptive {
         tolerance: 3e-6,
         max_substeps: 17,
     };
@@ -419,7 +418,7 @@ fn the_configuration_comes_back_bit_for_bit() {
     cfg.muscles[0].params.f_max = 4000.000000000001;
     cfg.muscles[1].params.l_opt = std::f64::consts::PI / 30.0;
     cfg.muscles[2].path_length = Some(0.3 + 1e-16);
-    let cfg = cfg.with_energy_model(muscle_actuator_core::physics::params::EnergyModel::Bhargava);
+    let cfg = cfg.with_energy_model(muscle_actuator_core::physics::EnergyModel::Bhargava);
     for model in MODELS {
         let a = Actuator::new(&cfg, model, 999.9999999999999).unwrap();
         let b = Actuator::from_bytes(&a.to_bytes()).unwrap();

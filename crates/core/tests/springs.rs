@@ -1,10 +1,7 @@
 //! The exponential-then-linear springs (docs/model.md §4): continuity, inverses and strain energies,
 //! checked against independent computations (finite differences, quadrature).
 
-use muscle_actuator_core::physics::parallel_element::parallel_spring;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::physics::spring::ExpLinearSpring;
-use muscle_actuator_core::physics::tendon::tendon;
+use muscle_actuator_core::physics::{parallel_spring, tendon, ExpLinearSpring, MuscleParams};
 
 fn springs() -> [(&'static str, ExpLinearSpring); 2] {
     let p = MuscleParams::default();

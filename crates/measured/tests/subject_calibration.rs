@@ -8,7 +8,7 @@
 mod trials;
 
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::sim::default_stepping;
 use muscle_actuator_measured::measured::rating::rate;
 use muscle_actuator_measured::measured::{ExcitationMap, Subject, Trial};
 use muscle_actuator_measured::subject::calibrate::{Problem, Quantity, Settings};

@@ -7,11 +7,8 @@
 mod trials;
 
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::FibreKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::physics::plant::{Inputs, Plant};
-use muscle_actuator_core::physics::topology::Topology;
-use muscle_actuator_core::sim::simulation::{default_stepping, Simulation};
+use muscle_actuator_core::physics::{FibreKind, Inputs, MuscleParams, Plant, Topology};
+use muscle_actuator_core::sim::{default_stepping, Simulation};
 use muscle_actuator_measured::measured::{ExcitationMap, Trial};
 use muscle_actuator_measured::subject::{PreparedTrial, SubjectModel};
 use std::path::PathBuf;

@@ -9,15 +9,10 @@ mod fixtures;
 
 use fixtures::{clamped, refusal};
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::curves::tabulated::TabulatedCurve;
-use muscle_actuator_core::physics::curves::{Curve, CurveSet};
+use muscle_actuator_core::physics::curves::{Curve, CurveSet, TabulatedCurve};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::formulation::FibreKind;
-use muscle_actuator_core::physics::params::tabulated::{Points, TabulatedCurves};
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, Signal};
-use muscle_actuator_core::sim::schedule::Schedule;
-use muscle_actuator_core::sim::simulation::default_stepping;
+use muscle_actuator_core::physics::{FibreKind, MuscleParams, Points, TabulatedCurves};
+use muscle_actuator_core::sim::{default_stepping, Scenario, Schedule, ScheduledInput, Signal};
 use muscle_actuator_measured::measured::Subject;
 use std::path::PathBuf;
 
@@ -255,8 +250,8 @@ fn bad_tables_are_refused_on_one_line() {
 /// the equilibrium balance never falls as v rises; the spline's bulge to 2.7 at ṽ = −7 unread).
 #[test]
 fn a_slack_tendon_pushes_nothing_and_the_force_velocity_curve_ends_at_vmax() {
-    use muscle_actuator_core::physics::curves::force_velocity::HillForceVelocity;
-    use muscle_actuator_core::physics::tendon::Tendon;
+    use muscle_actuator_core::physics::curves::HillForceVelocity;
+    use muscle_actuator_core::physics::Tendon;
     let root = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
     let subject = Subject::read(&root.join("data/ceinms/uncalibratedSubject.xml")).unwrap();
     let model = muscle_actuator_measured::subject::SubjectModel::of_ceinms(&subject).unwrap();

@@ -3,7 +3,7 @@
 //! nested messages. The Rust side is read through serde (what actually goes on the wire), with
 //! a serializer that records the field names and primitive types.
 
-use muscle_actuator_core::sim::snapshot::{JointSnapshot, MuscleSnapshot, MUSCLE_FIELD_COUNT};
+use muscle_actuator_core::sim::{JointSnapshot, MuscleSnapshot, MUSCLE_FIELD_COUNT};
 use muscle_actuator_recording::msgs::muscle_actuator_msgs::{
     ActivationCommand, ActuatorState, ExternalLoad, MuscleState,
 };

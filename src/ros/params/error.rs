@@ -4,8 +4,8 @@
 
 use super::limits::{MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
 use crate::ros::clock::UnknownClock;
-use muscle_actuator_core::physics::energetics::params::UnknownEnergyModel;
 use muscle_actuator_core::physics::models::UnknownModel;
+use muscle_actuator_core::physics::UnknownEnergyModel;
 
 /// Why a parameter value is refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -7,7 +7,7 @@ pub const DEFAULT_FOXGLOVE_PORT: u16 = 8765;
 pub const MAX_REAL_TIME_FACTOR: f64 = 1e6;
 
 /// Upper bound on the tick rate (the simulation's).
-pub use muscle_actuator_core::sim::simulation::MAX_RATE_HZ;
+pub use muscle_actuator_core::sim::MAX_RATE_HZ;
 /// Longest `model` value, characters (a model name).
 pub const MAX_NAME_CHARS: usize = 64;
 /// Longest `config` and `record_dir` values, bytes (PATH_MAX).

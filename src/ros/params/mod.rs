@@ -89,7 +89,7 @@ impl NodeParams {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use muscle_actuator_core::physics::params::EnergyModel;
+    use muscle_actuator_core::physics::EnergyModel;
 
     #[test]
     fn rules() {

@@ -3,7 +3,7 @@
 use crate::ros::clock::ClockMode;
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::EnergyModel;
+use muscle_actuator_core::physics::EnergyModel;
 use muscle_actuator_core::sim::Actuator;
 
 /// Why the parameters give no actuator.

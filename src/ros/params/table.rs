@@ -13,7 +13,7 @@ use super::given::{Given, Kind};
 use super::limits::{DEFAULT_FOXGLOVE_PORT, MAX_RATE_HZ, MAX_REAL_TIME_FACTOR};
 use super::node_params::NodeParams;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::EnergyModel;
+use muscle_actuator_core::physics::EnergyModel;
 use ros2_client::ParameterValue;
 
 /// A default value (a constant, unlike [`ParameterValue`]).

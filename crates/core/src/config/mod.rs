@@ -29,11 +29,14 @@
 //! - `pair`: the antagonistic-pair form.
 //! - `parse`: built-in names, files and TOML text; `parse_error`: why TOML does not fit.
 //! - `validate`: the rules and the warnings.
-//! - [`overrides`]: single values set by dotted keys (`muscle.flexor.k_t`, `stepper.tolerance`).
+//! - `overrides`: single values set by dotted keys (`muscle.flexor.k_t`, `stepper.tolerance`;
+//!   [`with_overrides`]).
 //! - `stepper`: the `[stepper]` table, the adaptive sub-steps' accuracy, and the stepping of a
 //!   run.
+//!
+//! The files are the crate's modules; what other crates use of them is re-exported here.
 
-pub mod overrides;
+pub(crate) mod overrides;
 pub(crate) mod pair;
 pub(crate) mod parse;
 pub(crate) mod parse_error;
@@ -42,13 +45,16 @@ pub(crate) mod stepper;
 mod unknown_key;
 pub(crate) mod validate;
 
-use crate::physics::params::ParamError;
-pub use overrides::OverridesError;
-/// For src/main.rs, which quotes warnings with it; the text helpers are [`crate::text`]'s.
-pub use parse::BUILT_IN;
-pub use parse_error::ParseError;
-pub use schema::{ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_RADIUS};
-pub use stepper::{StepperConfig, StepperError};
+pub use self::{
+    overrides::{with_overrides, OverrideKeyError, OverridesError},
+    // BUILT_IN: the built-in configurations' names and texts (the text helpers that quote them
+    // are `crate::text`'s).
+    parse::BUILT_IN,
+    parse_error::ParseError,
+    schema::{ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_RADIUS},
+    stepper::{StepperConfig, StepperError},
+};
+use crate::physics::limb_params::ParamError;
 
 /// Why a configuration could not be used.
 #[derive(Debug, thiserror::Error)]
@@ -75,7 +81,7 @@ pub enum ConfigError {
     /// One or more parameters break their rules.
     #[error("{}", .0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"))]
     Invalid(Vec<ParamError>),
-    /// Overrides of single values ([`overrides`]) that cannot be applied, or that give a
+    /// Overrides of single values ([`with_overrides`]) that cannot be applied, or that give a
     /// configuration breaking its rules: one line (a caller may prefix it, e.g. with the sweep's
     /// instance).
     #[error("overrides: {0}")]

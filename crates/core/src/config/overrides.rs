@@ -11,7 +11,7 @@
 //! back as a file is: every override meets the rules and messages of the configuration file.
 
 use super::{ActuatorConfig, ConfigError, ParseError};
-use crate::physics::params::ParamError;
+use crate::physics::limb_params::ParamError;
 use crate::text::excerpt;
 
 /// Why overrides cannot be applied, on one line (the text of [`ConfigError::Overrides`]).

@@ -4,8 +4,8 @@
 
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig, DEFAULT_RADIUS};
 use super::{rule, ConfigError, ParseError};
+use crate::physics::limb_params::JointParams;
 use crate::physics::moment_arm::MomentArm;
-use crate::physics::params::JointParams;
 use crate::text::excerpt;
 use serde::Deserialize;
 

@@ -7,7 +7,7 @@ use super::stepper::StepperConfig;
 use super::unknown_key;
 use super::{ConfigError, ParseError};
 use crate::files::{read_regular_file, MAX_FILE_BYTES};
-use crate::physics::params::{JointParams, MuscleParams};
+use crate::physics::limb_params::{JointParams, MuscleParams};
 use crate::text::toml_error;
 use serde::Deserialize;
 use std::path::Path;

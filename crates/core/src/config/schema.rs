@@ -3,9 +3,9 @@
 //! describes.
 
 use super::stepper::{StepperConfig, StepperError};
+use crate::physics::limb_params::{EnergyModel, JointParams, MuscleParams};
 use crate::physics::models::ModelKind;
 use crate::physics::moment_arm::MomentArm;
-use crate::physics::params::{EnergyModel, JointParams, MuscleParams};
 use crate::physics::stepping::Stepping;
 use crate::physics::topology::{Anchor, MuscleSpec, Span, Topology};
 use serde::{Deserialize, Serialize};

@@ -14,8 +14,8 @@
 //! ([`StepperError`]) rather than ignore an accuracy it would not deliver.
 
 use super::rule;
+use crate::physics::limb_params::ParamError;
 use crate::physics::models::ModelKind;
-use crate::physics::params::ParamError;
 use crate::physics::stepping::{Stepping, MAX_SUBSTEPS};
 use serde::{Deserialize, Serialize};
 

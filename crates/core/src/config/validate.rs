@@ -6,8 +6,8 @@
 use super::schema::{ActuatorConfig, MuscleConfig, SpanConfig};
 use super::{rule, ConfigError};
 use crate::physics::curves::tabulated::{TabulatedCurve, TabulatedCurveError};
-use crate::physics::params::tabulated::{split, TabulatedCurves};
-use crate::physics::params::{JointParams, ParamError};
+use crate::physics::limb_params::tabulated_points::{split, TabulatedCurves};
+use crate::physics::limb_params::{JointParams, ParamError};
 use crate::text::excerpt;
 
 /// A name's rules (`at` names it): not empty, and not `taken` by an earlier one of its kind.

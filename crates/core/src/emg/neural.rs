@@ -153,7 +153,7 @@ impl NeuralParams {
 /// The delay in whole samples nearest `delay_s` at `sample_period_s`: `round(delay / T)`,
 /// halves away from zero. Refuses a delay outside `0, [`MAX_DELAY_S``] or over
 /// `MAX_DELAY_SAMPLES` samples.
-pub fn delay_samples(delay_s: f64, sample_period_s: f64) -> Result<usize, EmgError> {
+pub(crate) fn delay_samples(delay_s: f64, sample_period_s: f64) -> Result<usize, EmgError> {
     let period = check_period(sample_period_s)?;
     if !(0.0..=MAX_DELAY_S).contains(&delay_s) {
         return Err(EmgError::Delay {
@@ -202,7 +202,7 @@ impl NeuralActivation {
     }
 
     /// At rest, with the delay `delay_s` rounded to whole samples of `sample_period_s`
-    /// ([`delay_samples`]).
+    /// (`delay_samples`).
     pub fn with_delay_s(
         params: NeuralParams,
         delay_s: f64,

@@ -1,7 +1,7 @@
 //! A revolute joint (docs/model.md §8, §8b): an independent rotational inertia with viscous
 //! damping and stiff, damped end stops, driven by the muscles that span it.
 
-use crate::physics::params::JointParams;
+use crate::physics::limb_params::JointParams;
 
 /// End-stop torque: a stiff, damped spring beyond the range limits that only ever pushes back
 /// into the range, N m.

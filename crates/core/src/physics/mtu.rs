@@ -17,12 +17,12 @@ use crate::physics::energetics::metabolic::{
     mechanism_rates, MetabolicRates, MetabolicSample, MuscleProbe,
 };
 use crate::physics::energetics::probe::{ExcitationTerms, ProbeInputs};
+use crate::physics::limb_params::formulation::{FibreKind, TendonKind};
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::models::{CeInputs, ContractileModel};
 use crate::physics::models::{ModelBuildError, ModelKind};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
 use crate::physics::parallel_element::{damper_force, ParallelElement};
-use crate::physics::params::formulation::{FibreKind, TendonKind};
-use crate::physics::params::MuscleParams;
 use crate::physics::pennation::Pennation;
 use crate::physics::stiffness::{fibre_stiffness, series_stiffness};
 use crate::physics::tendon::Tendon;

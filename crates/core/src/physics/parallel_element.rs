@@ -4,7 +4,7 @@
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
 use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::spring::ExpLinearSpring;
 use std::sync::Arc;
 
@@ -65,7 +65,7 @@ pub enum ParallelElement {
         f_max: f64,
         /// Optimal fibre length l_opt, m.
         l_opt: f64,
-        /// The curve of l̃ ([`millard2012::passive_force_length_curve`]).
+        /// The curve of l̃ (`millard2012::passive_force_length_curve`).
         curve: Arc<SegmentedBezier>,
     },
     /// The muscle's own points, interpolated as CEINMS does; its energy from l_opt.

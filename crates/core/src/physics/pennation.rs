@@ -4,7 +4,7 @@
 //! `sin α = h / l_m`. The fibre's projection on the tendon's line is `l_m cos α =
 //! sqrt(l_m² - h²)`, and of its force only `F cos α` pulls on the tendon.
 
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 
 /// The least `cos α`: OpenSim's default `maximum_pennation_angle`, acos(0.1) (84.3°). Shorter
 /// fibres are taken at this angle, so the projection never vanishes.

@@ -21,10 +21,10 @@
 use crate::physics::energetics::metabolic::MetabolicSample;
 use crate::physics::energetics::probe::ExcitationTerms;
 use crate::physics::joint;
+use crate::physics::limb_params::JointParams;
 use crate::physics::models::{CeInputs, ModelBuildError, ModelKind};
 use crate::physics::mtu::{FibreState, Mechanics, Mtu, TendonEnd};
 use crate::physics::observables::{EnergeticsOutputs, MuscleSnapshot};
-use crate::physics::params::JointParams;
 use crate::physics::stiffness::add_muscle_joint_stiffness;
 use crate::physics::topology::{Anchor, Span, Topology};
 use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};

@@ -1,8 +1,8 @@
 //! The limb as data (docs/model.md §8b): joints, and muscles that each span one or more of them
 //! through a moment arm per spanned joint. Apart from the plant that steps it.
 
+use crate::physics::limb_params::{JointParams, MuscleParams};
 use crate::physics::moment_arm::MomentArm;
-use crate::physics::params::{JointParams, MuscleParams};
 
 /// A joint a muscle spans, and its moment arm there.
 #[derive(Debug, Clone, PartialEq)]

@@ -12,7 +12,9 @@
 use crate::config::ActuatorConfig;
 use crate::physics::models::ModelKind;
 use crate::physics::plant::{Inputs, Plant};
-use crate::sim::simulation::{SetupError, Simulation, StepError, Stepping};
+use crate::physics::stepping::Stepping;
+use crate::sim::setup_error::SetupError;
+use crate::sim::simulation::{Simulation, StepError};
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 
 /// A simulated limb: the joints and muscles of a configuration.

@@ -14,8 +14,8 @@
 use crate::emg::neural::{delay_samples, NeuralActivation, NeuralParams};
 use crate::emg::nonlinearity::{activation, ShapeFactor};
 use crate::emg::EmgError;
-use crate::physics::params::formulation::ActivationKind;
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::formulation::ActivationKind;
+use crate::physics::limb_params::MuscleParams;
 use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
 /// One muscle's recursion, its nonlinearity and the output computed for the tick being

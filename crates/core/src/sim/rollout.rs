@@ -8,7 +8,7 @@
 //! joint), or `stiffness_matrix` (joints × joints, row-major).
 
 use crate::sim::actuator::Actuator;
-use crate::sim::run::Record;
+use crate::sim::records::Record;
 use crate::sim::simulation::StepError;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot};
 

@@ -3,23 +3,24 @@
 //! `scenarios/example.toml`).
 
 use crate::config::ActuatorConfig;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::models::ModelKind;
-use crate::physics::params::MuscleParams;
 use crate::physics::plant::{Inputs, Plant};
+use crate::physics::stepping::Stepping;
 use crate::physics::topology::Topology;
 use crate::sim::schedule::Schedule;
 use crate::sim::setup_error::SetupError;
-use crate::sim::simulation::{Simulation, StepError, Stepping};
+use crate::sim::simulation::{Simulation, StepError};
 use crate::sim::snapshot::StateSnapshot;
 use serde::Deserialize;
 use std::path::Path;
 
-pub use crate::sim::run::{Record, RecordMismatch, Run};
-pub use crate::sim::scenario_error::{BadScenario, ScenarioError, ScenarioRunError};
-pub use crate::sim::scenario_kinds::{SetupKind, Signal};
+use crate::sim::records::{Record, RecordMismatch, Run};
+use crate::sim::scenario_error::{BadScenario, ScenarioError, ScenarioRunError};
+use crate::sim::scenario_kinds::{SetupKind, Signal};
 
 /// The built-in scenarios' names.
-pub const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
+pub(crate) const BUILT_IN: [&str; 3] = ["pulse", "energy-10hz", "energy-100hz"];
 
 /// Most memory the records of a run may take, bytes (1 GiB): a run keeps one record per tick
 /// (for the CSV and the summary), so duration × rate and the limb's size are bounded together.

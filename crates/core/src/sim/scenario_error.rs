@@ -2,7 +2,7 @@
 //! or not a scenario, a scenario breaking its rules) or run ([`ScenarioRunError`]: its size, the
 //! names its inputs give, its driven joints, the simulation's set-up, a failed tick).
 
-use crate::sim::run::RecordMismatch;
+use crate::sim::records::RecordMismatch;
 use crate::sim::scenario_kinds::{SetupKind, Signal};
 use crate::sim::schedule::ScheduleError;
 use crate::sim::setup_error::SetupError;
@@ -225,8 +225,8 @@ fn names_or_none(names: &[String]) -> String {
 mod tests {
     use super::*;
     use crate::config::ActuatorConfig;
+    use crate::physics::limb_params::MuscleParams;
     use crate::physics::models::ModelKind;
-    use crate::physics::params::MuscleParams;
     use crate::sim::scenario::Scenario;
     use crate::sim::simulation::default_stepping;
     use std::path::Path;

@@ -11,16 +11,16 @@ use crate::physics::plant::{Inputs, Plant};
 use crate::sim::energy::MuscleEnergy;
 use crate::sim::neural_drive::NeuralDrive;
 use crate::sim::part::Part;
-pub use crate::sim::setup_error::SetupError;
+use crate::sim::setup_error::SetupError;
 use crate::sim::snapshot::{JointSnapshot, MuscleSnapshot, StateSnapshot};
 use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 use rayon::prelude::*;
 use std::sync::Arc;
 
-pub use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS, MAX_SUBSTEPS};
+use crate::physics::stepping::Stepping;
 
 /// Most threads a simulation steps its parts on.
-pub const MAX_THREADS: usize = 256;
+pub(crate) const MAX_THREADS: usize = 256;
 
 /// Highest tick rate, Hz (a sanity bound: 100 kHz).
 pub const MAX_RATE_HZ: f64 = 100_000.0;

@@ -1,7 +1,7 @@
 //! What is observable after a tick: every muscle's and joint's fields (the one field list,
 //! [`crate::physics::observables`]) and the joint stiffness matrix.
 
-pub use crate::physics::observables::{
+pub(crate) use crate::physics::observables::{
     JointSnapshot, MuscleSnapshot, JOINT_FIELD_COUNT, MUSCLE_FIELD_COUNT,
 };
 

@@ -7,14 +7,16 @@
 //! and from it the energetics: the cross-bridge mechanism for the two Huxley models (§11.1–11.3),
 //! and every phenomenological model (§11.4) for every contractile model, given that force.
 
-use crate::physics::contractile::calibration::{calibrate_distribution_moment, calibrate_exact};
+use crate::physics::contractile::crossbridge_scale::{
+    calibrate_distribution_moment, calibrate_exact,
+};
 use crate::physics::contractile::distribution_moment::SteadyStateError;
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
-use crate::physics::energetics::steady::{
+use crate::physics::energetics::isovelocity::{
     dm_curve, exact_point, hill_steady_force, probe_point, SteadyPoint,
 };
+use crate::physics::limb_params::{EnergyModel, MuscleParams, ParamError};
 use crate::physics::models::ModelKind;
-use crate::physics::params::{EnergyModel, MuscleParams, ParamError};
 
 /// Velocities when none is given: every 0.05 vmax.
 pub const DEFAULT_POINTS: usize = 41;
@@ -262,7 +264,7 @@ fn bridge_points(
 }
 
 /// The velocity at which a continuation from v_s = 0 first fails, in the order the DM steady
-/// states are continued (`energetics::steady::dm_moments`: the side v_s ≥ 0 by rising |v_s|,
+/// states are continued (`energetics::isovelocity::dm_moments`: the side v_s ≥ 0 by rising |v_s|,
 /// then v_s < 0): the shortest failing prefix of each side, by bisection (a continuation is
 /// deterministic, so a prefix fails if and only if it reaches the failing velocity).
 fn first_failure(v_s: &[f64], fails: impl Fn(&[f64]) -> bool) -> Option<f64> {

@@ -1,8 +1,7 @@
 //! Small fixtures of the configuration and scenario tests.
 
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError};
-use muscle_actuator_core::sim::scenario::{Scenario, ScheduledInput, SetupKind, Signal};
-use muscle_actuator_core::sim::schedule::Schedule;
+use muscle_actuator_core::sim::{Scenario, Schedule, ScheduledInput, SetupKind, Signal};
 
 /// The message a two-muscle configuration is refused with whose flexor has the TOML lines
 /// `muscle_keys` (its tables, `[muscle.…]`, last); panics if it is accepted or refused for

@@ -6,10 +6,9 @@ pub mod fixtures;
 mod reference;
 
 use muscle_actuator_core::config::ActuatorConfig;
-use muscle_actuator_core::physics::activation::activation_rate;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::{Record, Scenario};
-use muscle_actuator_core::sim::simulation::Stepping;
+use muscle_actuator_core::physics::{activation_rate, Stepping};
+use muscle_actuator_core::sim::{Record, Scenario};
 
 /// Tick-by-tick comparison of the 1 kHz stepper with the Dop853 reference (tolerance 1e-10 on
 /// scaled variables), same inputs held over each tick. Returns the worst force and fibre-length

@@ -6,7 +6,7 @@
 //!   column names, times (s), values.
 //! - `trial`: a trial's folder: its EMG, muscle–tendon lengths, and per degree of freedom the
 //!   moment arms and the inverse-dynamics moment, cross-checked.
-//! - `subject`: CEINMS's subject file: per muscle–tendon unit its parameters, the shared
+//! - `ceinms_subject`: CEINMS's subject file: per muscle–tendon unit its parameters, the shared
 //!   curves (`curve`), the degrees of freedom and the units that span each.
 //! - `excitation_map`: how the recorded EMG channels drive the units (CEINMS's
 //!   `emgGenerator` file), and the units' excitations from a channel table.
@@ -20,20 +20,22 @@
 //! fails with a [`MeasuredError`] that names the file, then the line (and column or element)
 //! and what is wrong, on one line.
 
+pub(crate) mod ceinms_subject;
 pub(crate) mod curve;
 pub(crate) mod excitation_map;
 pub mod rating;
 pub mod resample;
-pub(crate) mod subject;
 pub(crate) mod table;
 pub(crate) mod trial;
 mod xml;
 
+pub use ceinms_subject::{
+    Calibration, Dof, Subject, SubjectCurves, SubjectError, Unit, UnitDefaults,
+};
 pub use curve::{Curve, CurveError};
 pub use excitation_map::{
     EntryError, Excitation, ExcitationMap, ExcitationMapError, UnitExcitation,
 };
-pub use subject::{Calibration, Dof, Subject, SubjectCurves, SubjectError, Unit, UnitDefaults};
 pub use table::{Table, TableError};
 pub use trial::{repeated_folder, Trial, TrialError};
 pub use xml::XmlError;

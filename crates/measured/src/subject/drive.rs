@@ -19,11 +19,10 @@ pub use super::error::DriveError;
 use super::limits::{HELD_REACH_FRACTION, MAX_FIBRE_LOPT};
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError, MuscleConfig, SpanConfig};
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::moment_arm::MomentArm;
-use muscle_actuator_core::physics::params::{JointParams, MuscleParams};
-use muscle_actuator_core::physics::plant::{Inputs, Plant};
-use muscle_actuator_core::physics::stepping::Stepping;
-use muscle_actuator_core::sim::simulation::Simulation;
+use muscle_actuator_core::physics::{
+    Inputs, JointParams, MomentArm, MuscleParams, Plant, Stepping,
+};
+use muscle_actuator_core::sim::Simulation;
 use muscle_actuator_core::text::excerpt;
 
 /// A unit's length coordinate is the joint named after it with this suffix.

@@ -4,9 +4,8 @@ use crate::measured::resample::ResampleError;
 use crate::measured::ExcitationMapError;
 use crate::subject::limits::MAX_FIBRE_LOPT;
 use muscle_actuator_core::physics::models::ModelBuildError;
-use muscle_actuator_core::physics::params::ParamError;
-use muscle_actuator_core::physics::plant::PlantError;
-use muscle_actuator_core::sim::simulation::{SetupError, StepError};
+use muscle_actuator_core::physics::{ParamError, PlantError};
+use muscle_actuator_core::sim::{SetupError, StepError};
 
 /// Why a trial cannot be driven.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

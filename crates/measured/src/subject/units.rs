@@ -22,12 +22,10 @@ use crate::subject::bounds::Bounds;
 use crate::subject::error::DriveError;
 use crate::subject::record::CalibrationRecord;
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError, MuscleConfig, SpanConfig};
-use muscle_actuator_core::physics::moment_arm::MomentArm;
-use muscle_actuator_core::physics::params::curve_set::CurveSet;
-use muscle_actuator_core::physics::params::formulation::{ActivationKind, FibreKind, TendonKind};
-use muscle_actuator_core::physics::params::tabulated::TabulatedCurves;
-use muscle_actuator_core::physics::params::JointParams;
-use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::physics::curves::CurveSet;
+use muscle_actuator_core::physics::{
+    ActivationKind, FibreKind, JointParams, MomentArm, MuscleParams, TabulatedCurves, TendonKind,
+};
 use muscle_actuator_core::text::excerpt;
 
 /// CEINMS's maximum contraction velocity, optimal fibre lengths per second.

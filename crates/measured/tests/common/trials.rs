@@ -5,7 +5,7 @@
 //! (`#[path = "common/trials.rs"] mod trials;`).
 #![allow(dead_code)]
 
-use muscle_actuator_core::physics::params::MuscleParams;
+use muscle_actuator_core::physics::MuscleParams;
 use muscle_actuator_measured::subject::calibrate::Bounds;
 use muscle_actuator_measured::subject::{SubjectModel, UnitModel};
 use std::fmt::Write as _;

@@ -21,7 +21,7 @@ pub(crate) mod type_hash;
 pub use header::Header;
 pub use time::Time;
 
-use muscle_actuator_core::sim::snapshot::StateSnapshot;
+use muscle_actuator_core::sim::StateSnapshot;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
 

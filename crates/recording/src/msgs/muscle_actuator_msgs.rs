@@ -1,7 +1,7 @@
 //! Types of the interface package `muscle_actuator_msgs` (`msg/`), field for field.
 
 use super::header::Header;
-use muscle_actuator_core::sim::snapshot::{
+use muscle_actuator_core::sim::{
     JointSnapshot, MuscleSnapshot, JOINT_FIELD_COUNT, MUSCLE_FIELD_COUNT,
 };
 use serde::de::{self, SeqAccess, Visitor};

@@ -9,7 +9,7 @@ use super::RunMeta;
 use crate::msgs::muscle_actuator_msgs::ActuatorState;
 use crate::recording::schema::field_names;
 use crate::recording::Recording;
-use muscle_actuator_core::sim::snapshot::{JointSnapshot, MuscleSnapshot};
+use muscle_actuator_core::sim::{JointSnapshot, MuscleSnapshot};
 use muscle_actuator_core::text::excerpt;
 
 /// Slack of the simulated span over the recorded one: a node's tick loop keeps to the wall

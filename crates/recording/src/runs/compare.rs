@@ -69,7 +69,7 @@ pub struct Comparison {
 }
 
 /// The muscle fields compared, by their names in the one field list
-/// ([`muscle_actuator_core::sim::snapshot::MuscleSnapshot::FIELDS`]).
+/// ([`muscle_actuator_core::sim::MuscleSnapshot::FIELDS`]).
 pub(crate) const MUSCLE_SIGNALS: [&str; 6] = [
     "force",
     "fiber_length",
@@ -78,7 +78,7 @@ pub(crate) const MUSCLE_SIGNALS: [&str; 6] = [
     "metabolic_energy",
     "phenomenological_energy",
 ];
-/// The joint fields compared ([`muscle_actuator_core::sim::snapshot::JointSnapshot::FIELDS`]).
+/// The joint fields compared ([`muscle_actuator_core::sim::JointSnapshot::FIELDS`]).
 pub(crate) const JOINT_SIGNALS: [&str; 3] = ["position", "torque", "stiffness"];
 
 /// (time, value) series of every compared signal of a run.

@@ -12,8 +12,7 @@ use muscle_actuator_core::config::StepperError;
 use muscle_actuator_core::csv::CsvWriteError;
 use muscle_actuator_core::files::OverwritesInput;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::{RecordMismatch, ScenarioError, ScenarioRunError};
-use muscle_actuator_core::sim::simulation::StepError;
+use muscle_actuator_core::sim::{RecordMismatch, ScenarioError, ScenarioRunError, StepError};
 use muscle_actuator_core::text::excerpt;
 use std::io;
 use std::path::PathBuf;
@@ -86,7 +85,7 @@ pub enum ExportError {
     Record {
         /// The state's tick.
         tick: u64,
-        /// Why ([`Run::push_parts`](muscle_actuator_core::sim::scenario::Run::push_parts)).
+        /// Why ([`Run::push_parts`](muscle_actuator_core::sim::Run::push_parts)).
         #[source]
         reason: RecordMismatch,
     },

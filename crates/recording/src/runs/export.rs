@@ -9,7 +9,7 @@
 
 use super::error::{ExportError, RunError};
 use super::{load_run, LoadedRun};
-use muscle_actuator_core::sim::scenario::Run;
+use muscle_actuator_core::sim::Run;
 use std::path::Path;
 
 /// The run a recording holds: its states as records (time = tick / rate), with the muscles,

@@ -2,11 +2,11 @@
 //! metadata): the tick rate and sub-steps as the node's parameters and the simulation allow
 //! them, and the length of a recorded run that replay may simulate.
 
-use muscle_actuator_core::physics::stepping::SteppingError;
-use muscle_actuator_core::sim::simulation::{Stepping, MAX_RATE_HZ};
+use muscle_actuator_core::physics::{Stepping, SteppingError};
+use muscle_actuator_core::sim::MAX_RATE_HZ;
 
 /// Most sub-steps per tick, fixed or as the adaptive maximum (as `Simulation::new` allows).
-pub(crate) use muscle_actuator_core::sim::simulation::MAX_SUBSTEPS;
+pub(crate) use muscle_actuator_core::physics::MAX_SUBSTEPS;
 
 /// Most ticks a recorded run may span: replay simulates every one of them (10^8: a day at
 /// 1 kHz).

@@ -6,11 +6,8 @@ use super::limits::{self, LimitError};
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError};
 use muscle_actuator_core::csv::SplitError;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::plant::PlantError;
-use muscle_actuator_core::physics::plant::{Inputs, Plant};
-use muscle_actuator_core::physics::topology::Topology;
-use muscle_actuator_core::sim::simulation::{Simulation, Stepping};
-use muscle_actuator_core::sim::SetupError;
+use muscle_actuator_core::physics::{Inputs, Plant, PlantError, Stepping, Topology};
+use muscle_actuator_core::sim::{SetupError, Simulation};
 use muscle_actuator_core::text::excerpt;
 use muscle_actuator_core::time::{iso8601, TimeBase};
 use std::collections::BTreeMap;
@@ -451,7 +448,7 @@ pub fn driven_motion(sim: &Simulation) -> Vec<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use muscle_actuator_core::sim::simulation::default_stepping;
+    use muscle_actuator_core::sim::default_stepping;
 
     /// The time base survives the metadata record, and a record without one is simulated time;
     /// so does the driven joints' initial motion, which must fit them.

@@ -12,8 +12,8 @@ use super::error::RunError;
 use super::limits;
 use super::metadata::{BuildError, RunMeta};
 use super::writer::RunWriter;
-use muscle_actuator_core::physics::plant::Inputs;
-use muscle_actuator_core::sim::simulation::Simulation;
+use muscle_actuator_core::physics::Inputs;
+use muscle_actuator_core::sim::Simulation;
 use std::path::Path;
 
 /// A recording fed tick by tick ([`ObservedRun::observe`]), under a temporary name until

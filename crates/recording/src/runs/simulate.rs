@@ -6,8 +6,8 @@ use super::metadata::{driven_motion, AttachmentMeta, RunMeta};
 use super::writer::RunWriter;
 use muscle_actuator_core::config::ActuatorConfig;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::sim::scenario::{Run, Scenario, SetupKind};
-use muscle_actuator_core::sim::simulation::Stepping;
+use muscle_actuator_core::physics::Stepping;
+use muscle_actuator_core::sim::{Run, Scenario, SetupKind};
 use muscle_actuator_core::time::{now_ns, TimeBase};
 use std::path::Path;
 

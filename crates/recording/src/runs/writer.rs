@@ -13,8 +13,8 @@ use crate::msgs::{state_messages, Header, JointState};
 use crate::recording::{self, Recorder, RecorderOptions, RecorderState};
 use muscle_actuator_core::files::AtomicFile;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::plant::Inputs;
-use muscle_actuator_core::sim::snapshot::StateSnapshot;
+use muscle_actuator_core::physics::Inputs;
+use muscle_actuator_core::sim::StateSnapshot;
 use muscle_actuator_core::time::tick_ns;
 use std::path::Path;
 

@@ -189,7 +189,7 @@ pub(crate) fn closure_keeping(
 
 /// Moment equations (12): `dQ_k/dt = r β_k - φ_k - k u Q_{k-1}`; `u` is the shortening rate in
 /// h/s (u > 0 shortening), `r` the attachment factor a·λ(l_m).
-pub fn moment_rates(rates: &Rates, q: &[f64; 3], r: f64, u: f64) -> [f64; 3] {
+pub(crate) fn moment_rates(rates: &Rates, q: &[f64; 3], r: f64, u: f64) -> [f64; 3] {
     moment_rates_keeping(rates, q, r, u, None)
 }
 
@@ -216,7 +216,7 @@ pub struct SteadyStateError(pub &'static str);
 
 /// The steady state `moment_rates = 0` at attachment factor r and shortening rate u, by damped
 /// Newton from `guess`.
-pub fn steady_state(
+pub(crate) fn steady_state(
     rates: &Rates,
     r: f64,
     u: f64,
@@ -267,7 +267,7 @@ pub fn steady_state(
 
 /// The isometric steady state at r = 1 (docs/model.md §6: (0.684179, 0.437663, 0.321696) with
 /// Huxley's rates).
-pub fn isometric_steady_state(rates: &Rates) -> Result<[f64; 3], SteadyStateError> {
+pub(crate) fn isometric_steady_state(rates: &Rates) -> Result<[f64; 3], SteadyStateError> {
     // The exact isometric distribution (f1/(f1+g1) on [0,1]) is a good start.
     let n = rates.f1 / (rates.f1 + rates.g1);
     steady_state(rates, 1.0, 0.0, [n, n / 2.0, n / 3.0])

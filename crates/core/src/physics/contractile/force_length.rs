@@ -1,7 +1,7 @@
 //! The force–length curve f(l_m) (paper eq. 3), shared by Hill (force factor) and Huxley
 //! (filament-overlap factor λ that scales attachment).
 
-use crate::physics::params::ForceLengthShape;
+use crate::physics::limb_params::ForceLengthShape;
 
 /// `f(l) = max(0, 1 - ((l/lopt - 1)/w)^2)` (parabola) or `exp(-((l/lopt - 1)/w)^2)` (Gaussian).
 pub fn force_length(l: f64, l_opt: f64, w: f64, shape: ForceLengthShape) -> f64 {

@@ -9,7 +9,7 @@ fn plateau(rates: &Rates, r: f64) -> f64 {
 }
 
 /// Isometric steady moments (Q0, Q1, Q2) = n∞ (1, 1/2, 1/3).
-pub fn isometric_moments(rates: &Rates, r: f64) -> [f64; 3] {
+pub(crate) fn isometric_moments(rates: &Rates, r: f64) -> [f64; 3] {
     let n = plateau(rates, r);
     [n, n / 2.0, n / 3.0]
 }
@@ -40,8 +40,10 @@ pub fn steady_q1(rates: &Rates, r: f64, u: f64) -> f64 {
 }
 
 /// Q1 during the isometric rise from n = 0 at constant r: with `b = (f1+g1) t`,
-/// `Q1 = n∞ [½ - (1 - (1+b) e^{-b}) / b²]`.
-pub fn isometric_rise_q1(rates: &Rates, r: f64, t: f64) -> f64 {
+/// `Q1 = n∞ [½ - (1 - (1+b) e^{-b}) / b²]`. The oracle of the grid's isometric rise (the
+/// tests').
+#[cfg(test)]
+pub(crate) fn isometric_rise_q1(rates: &Rates, r: f64, t: f64) -> f64 {
     let n = plateau(rates, r);
     let b = (rates.f1 + rates.g1) * t;
     if b < 1e-4 {
@@ -52,7 +54,7 @@ pub fn isometric_rise_q1(rates: &Rates, r: f64, t: f64) -> f64 {
 }
 
 /// Unloaded shortening rate (h/s): the root of `steady_q1(u) = 0`, by bisection.
-pub fn unloaded_shortening_rate(rates: &Rates) -> f64 {
+pub(crate) fn unloaded_shortening_rate(rates: &Rates) -> f64 {
     let (mut lo, mut hi) = (0.0, rates.f1 + rates.g1);
     while steady_q1(rates, 1.0, hi) > 0.0 {
         lo = hi;

@@ -233,14 +233,14 @@ impl SavedState for CrossBridgeGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::contractile::calibration;
-    use crate::physics::params::MuscleParams;
+    use crate::physics::contractile::crossbridge_scale;
+    use crate::physics::limb_params::MuscleParams;
 
     /// A grid after some motion comes back cell for cell; one moved off the attachment range,
     /// or with more cells than its room, is refused.
     #[test]
     fn a_saved_grid_comes_back_and_a_displaced_one_is_refused() {
-        let scale = calibration::calibrate_exact(&MuscleParams::default());
+        let scale = crossbridge_scale::calibrate_exact(&MuscleParams::default());
         let mut grid = CrossBridgeGrid::new(50, 4.0);
         for k in 0..40 {
             let shift = if k < 20 { -0.01 } else { 0.015 };

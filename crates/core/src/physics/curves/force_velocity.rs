@@ -5,7 +5,7 @@ use crate::physics::contractile::hill_equation::{force_velocity, force_velocity_
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
 use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 use std::sync::Arc;
 
 /// The fastest an equilibrium fibre moves, in units of vmax: where no velocity balances the
@@ -44,7 +44,7 @@ pub enum HillForceVelocity {
         /// Its shape (Af, Flen; OpenSim's extrapolation threshold).
         shape: thelen2003::ForceVelocityShape,
     },
-    /// Millard 2012's quintic Bézier curve ([`millard2012::force_velocity_curve`]).
+    /// Millard 2012's quintic Bézier curve (`millard2012::force_velocity_curve`).
     Millard2012 {
         /// vmax, m/s.
         v_max: f64,

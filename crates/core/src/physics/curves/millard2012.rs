@@ -18,8 +18,8 @@
 use super::quintic_bezier::{
     corner_control_points, scaled_curviness, ControlPoints, NotACorner, SegmentedBezier,
 };
-use crate::physics::params::formulation::{FibreKind, TendonKind};
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::formulation::{FibreKind, TendonKind};
+use crate::physics::limb_params::MuscleParams;
 
 /// `min_norm_active_fiber_length`: where the active curve leaves its floor.
 pub(crate) const ACTIVE_MIN_NORM_FIBER_LENGTH: f64 = 0.4441;
@@ -31,18 +31,18 @@ pub(crate) const ACTIVE_MAX_NORM_FIBER_LENGTH: f64 = 1.8123;
 pub(crate) const ACTIVE_SHALLOW_ASCENDING_SLOPE: f64 = 0.8616;
 /// `minimum_value`: the active curve's floor (never zero, so an equilibrium fibre always has
 /// some active force to balance with).
-pub const ACTIVE_MINIMUM_VALUE: f64 = 0.1;
+pub(crate) const ACTIVE_MINIMUM_VALUE: f64 = 0.1;
 /// The active curve's curviness, fixed by `ActiveForceLengthCurve` (not a property).
 pub(crate) const ACTIVE_CURVINESS: f64 = 1.0;
 
 /// `concentric_slope_at_vmax`.
-pub const FV_CONCENTRIC_SLOPE_AT_VMAX: f64 = 0.0;
+pub(crate) const FV_CONCENTRIC_SLOPE_AT_VMAX: f64 = 0.0;
 /// `concentric_slope_near_vmax`.
 pub(crate) const FV_CONCENTRIC_SLOPE_NEAR_VMAX: f64 = 0.25;
 /// `isometric_slope`.
 pub(crate) const FV_ISOMETRIC_SLOPE: f64 = 5.0;
 /// `eccentric_slope_at_vmax`.
-pub const FV_ECCENTRIC_SLOPE_AT_VMAX: f64 = 0.0;
+pub(crate) const FV_ECCENTRIC_SLOPE_AT_VMAX: f64 = 0.0;
 /// `eccentric_slope_near_vmax`.
 pub(crate) const FV_ECCENTRIC_SLOPE_NEAR_VMAX: f64 = 0.15;
 /// `max_eccentric_velocity_force_multiplier`.
@@ -57,7 +57,7 @@ pub(crate) const FV_NEAR_VMAX: f64 = 0.9;
 /// `strain_at_zero_force` of the passive curve.
 pub(crate) const PASSIVE_STRAIN_AT_ZERO_FORCE: f64 = 0.0;
 /// Default `strain_at_one_norm_force` of the passive curve.
-pub const DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE: f64 = 0.7;
+pub(crate) const DEFAULT_PASSIVE_STRAIN_AT_ONE_NORM_FORCE: f64 = 0.7;
 /// The passive curve's slope at low force, the default `stiffness_at_low_force`.
 pub(crate) const PASSIVE_STIFFNESS_AT_LOW_FORCE: f64 = 0.2;
 /// The passive curve's default stiffness at one normalised force, times its strain range:
@@ -67,7 +67,7 @@ pub(crate) const PASSIVE_STIFFNESS_TIMES_STRAIN: f64 = 2.0;
 pub(crate) const PASSIVE_CURVINESS: f64 = 0.75;
 
 /// Default `strain_at_one_norm_force` of the tendon curve.
-pub const DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE: f64 = 0.049;
+pub(crate) const DEFAULT_TENDON_STRAIN_AT_ONE_NORM_FORCE: f64 = 0.049;
 /// The tendon's default stiffness at one normalised force, times its strain: `1.375 / e0`
 /// ("agrees well with Maganaris and Paul (2002) …", TendonForceLengthCurve).
 pub(crate) const TENDON_STIFFNESS_TIMES_STRAIN: f64 = 1.375;
@@ -139,7 +139,7 @@ fn corners(
 /// `ACTIVE_MIN_NORM_FIBER_LENGTH` up the steep and the shallow ascending limbs to 1 at l̃ = 1,
 /// down to the floor at `ACTIVE_MAX_NORM_FIBER_LENGTH`; flat at the floor `ylow` outside
 /// (`createFiberActiveForceLengthCurve`).
-pub fn active_force_length_curve(ylow: f64) -> Result<SegmentedBezier, NotACorner> {
+pub(crate) fn active_force_length_curve(ylow: f64) -> Result<SegmentedBezier, NotACorner> {
     let (x0, x1, x2, x3) = (
         ACTIVE_MIN_NORM_FIBER_LENGTH,
         ACTIVE_TRANSITION_NORM_FIBER_LENGTH,
@@ -172,7 +172,10 @@ pub fn active_force_length_curve(ylow: f64) -> Result<SegmentedBezier, NotACorne
 /// The force–velocity curve f_V(ṽ): 0 at ṽ = −1, 1 at 0, the eccentric multiplier at 1, with
 /// knots at ∓`FV_NEAR_VMAX`; straight with the end slopes `dydx_c` (at ṽ = −1) and `dydx_e`
 /// (at 1) beyond ±1 (`createFiberForceVelocityCurve`).
-pub fn force_velocity_curve(dydx_c: f64, dydx_e: f64) -> Result<SegmentedBezier, NotACorner> {
+pub(crate) fn force_velocity_curve(
+    dydx_c: f64,
+    dydx_e: f64,
+) -> Result<SegmentedBezier, NotACorner> {
     let (dydx_near_c, dydx_near_e) = (FV_CONCENTRIC_SLOPE_NEAR_VMAX, FV_ECCENTRIC_SLOPE_NEAR_VMAX);
     let y_e = FV_MAX_ECCENTRIC_MULTIPLIER;
     // The inner knots on the average of the end's two slopes.
@@ -201,7 +204,7 @@ pub fn force_velocity_curve(dydx_c: f64, dydx_e: f64) -> Result<SegmentedBezier,
 /// to l̃ = 1, a foot of slope `PASSIVE_STIFFNESS_AT_LOW_FORCE`, then 1 at `1 + e1` with slope
 /// `2 / e1`, straight beyond (`createFiberForceLengthCurve`). Needs 0 < e1 < 5 (the foot's slope
 /// below the mean slope 1/e1).
-pub fn passive_force_length_curve(e1: f64) -> Result<SegmentedBezier, NotACorner> {
+pub(crate) fn passive_force_length_curve(e1: f64) -> Result<SegmentedBezier, NotACorner> {
     let e0 = PASSIVE_STRAIN_AT_ZERO_FORCE;
     let k_iso = PASSIVE_STIFFNESS_TIMES_STRAIN / (e1 - e0);
     let k_low = PASSIVE_STIFFNESS_AT_LOW_FORCE;
@@ -222,7 +225,7 @@ pub fn passive_force_length_curve(e1: f64) -> Result<SegmentedBezier, NotACorner
 /// The tendon force–length curve f_T(l̃_T) for a strain at one normalised force `e_iso`: zero
 /// when slack, a toe up to `TENDON_NORM_FORCE_AT_TOE_END`, then straight with slope
 /// `1.375 / e_iso` through 1 at `1 + e_iso` (`createTendonForceLengthCurve`).
-pub fn tendon_force_length_curve(e_iso: f64) -> Result<SegmentedBezier, NotACorner> {
+pub(crate) fn tendon_force_length_curve(e_iso: f64) -> Result<SegmentedBezier, NotACorner> {
     let k_iso = TENDON_STIFFNESS_TIMES_STRAIN / e_iso;
     let x_iso = 1.0 + e_iso;
     let y_toe = TENDON_NORM_FORCE_AT_TOE_END;

@@ -3,15 +3,16 @@
 //!
 //! - `paper`: the paper's force–length and force–velocity curves (§3), the default;
 //! - [`degroote2016`]: DeGrooteFregly2016Muscle's curves as OpenSim 4.6 computes them;
-//! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them;
-//! - [`millard2012`]: Millard2012EquilibriumMuscle's quintic Bézier curves as OpenSim 4.6 builds
-//!   them ([`quintic_bezier`]);
+//! - [`thelen2003`]: Thelen2003Muscle's curves as OpenSim 4.6 computes them (these two are
+//!   modules of their own: their functions share their names);
+//! - `millard2012`: Millard2012EquilibriumMuscle's quintic Bézier curves as OpenSim 4.6 builds
+//!   them (`quintic_bezier`: [`SegmentedBezier`]);
 //! - `rising_root`: the bracketed Newton solve the point-wise curves evaluate and invert with;
-//! - [`tabulated`]: curves given as points, by the cubic spline CEINMS interpolates its subject
-//!   files' curves with;
-//! - `overlap`, [`force_velocity`]: a muscle's active force–length and Hill force–velocity
-//!   relations of its set, in SI units (the tendon's and the parallel element's are
-//!   [`crate::physics::tendon::Tendon`] and [`crate::physics::parallel_element::ParallelElement`]).
+//! - `tabulated`: curves given as points ([`TabulatedCurve`]), by the cubic spline CEINMS
+//!   interpolates its subject files' curves with;
+//! - `overlap`, `force_velocity`: a muscle's active force–length and Hill force–velocity
+//!   ([`HillForceVelocity`]) relations of its set, in SI units (the tendon's and the parallel
+//!   element's are [`crate::physics::Tendon`] and `physics::parallel_element::ParallelElement`).
 //!
 //! A muscle names its set by the parameter `curves` ([`CurveSet`], defined with the parameters).
 //!
@@ -22,17 +23,25 @@
 //! OpenSim's own values of the three OpenSim sets (scripts/opensim_curves.py).
 
 pub mod degroote2016;
-pub mod force_velocity;
-pub mod millard2012;
-pub(crate) mod overlap;
-pub(crate) mod paper;
-pub mod quintic_bezier;
-pub(crate) mod rising_root;
-pub mod tabulated;
 pub mod thelen2003;
 
-pub use crate::physics::params::curve_set::{CurveSet, UnknownCurveSet};
-use crate::physics::params::MuscleParams;
+pub(crate) mod force_velocity;
+pub(crate) mod millard2012;
+pub(crate) mod overlap;
+pub(crate) mod paper;
+pub(crate) mod quintic_bezier;
+pub(crate) mod rising_root;
+pub(crate) mod tabulated;
+
+use crate::physics::limb_params::MuscleParams;
+pub use crate::physics::{
+    curves::{
+        force_velocity::HillForceVelocity,
+        quintic_bezier::SegmentedBezier,
+        tabulated::{TabulatedCurve, TabulatedCurveError},
+    },
+    limb_params::curve_set::{CurveSet, UnknownCurveSet},
+};
 
 /// One normalised curve of a set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -142,85 +151,4 @@ fn evaluate_millard2012(curve: Curve, x: f64) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use serde::{Deserialize, Serialize};
-
-    #[derive(Debug, Deserialize, Serialize, PartialEq)]
-    struct Muscle {
-        curves: CurveSet,
-    }
-
-    #[test]
-    fn names_parse_display_and_serialise_alike() {
-        for set in CurveSet::ALL {
-            assert_eq!(set.name().parse::<CurveSet>(), Ok(set));
-            assert_eq!(set.to_string(), set.name());
-            let text = format!("curves = \"{}\"\n", set.name());
-            assert_eq!(
-                toml::from_str::<Muscle>(&text).unwrap(),
-                Muscle { curves: set }
-            );
-            assert_eq!(toml::to_string(&Muscle { curves: set }).unwrap(), text);
-        }
-        assert_eq!(CurveSet::default(), CurveSet::Paper);
-    }
-
-    #[test]
-    fn an_unknown_name_lists_the_names() {
-        let err = "DeGroote2016".parse::<CurveSet>().unwrap_err();
-        assert_eq!(err, UnknownCurveSet("DeGroote2016".into()));
-        let message = err.to_string();
-        assert!(
-            message.contains("paper, degroote2016, thelen2003"),
-            "{message}"
-        );
-        assert!(toml::from_str::<Muscle>("curves = \"hill\"").is_err());
-    }
-
-    #[test]
-    fn every_set_is_one_at_optimal_length_and_isometric() {
-        // (A tabulated muscle's curves are its own points.)
-        for set in CurveSet::ALL
-            .into_iter()
-            .filter(|&s| s != CurveSet::Tabulated)
-        {
-            let fl = set.evaluate(Curve::ActiveForceLength, 1.0).unwrap();
-            assert!((fl - 1.0).abs() < 1e-15, "{set}: {fl}");
-            assert_eq!(
-                set.evaluate(Curve::ForceVelocity, -1.0)
-                    .map(|f| f.abs() < 1e-15),
-                Some(true)
-            );
-            let fv = set.evaluate(Curve::ForceVelocity, 0.0).unwrap();
-            assert!((fv - 1.0).abs() < 1e-15, "{set}: {fv}");
-        }
-    }
-
-    #[test]
-    fn the_opensim_sets_have_every_curve_and_the_paper_only_the_contractile_ones() {
-        for curve in Curve::ALL {
-            assert!(CurveSet::DeGroote2016.evaluate(curve, 1.02).is_some());
-            assert!(CurveSet::Thelen2003.evaluate(curve, 1.02).is_some());
-        }
-        assert_eq!(
-            CurveSet::Paper.evaluate(Curve::PassiveForceLength, 1.2),
-            None
-        );
-        assert_eq!(
-            CurveSet::Paper.evaluate(Curve::TendonForceLength, 1.02),
-            None
-        );
-        // Tendon force 1 at each OpenSim set's strain at one normalised force.
-        let dgf = CurveSet::DeGroote2016
-            .evaluate(Curve::TendonForceLength, 1.049)
-            .unwrap();
-        let thelen = CurveSet::Thelen2003
-            .evaluate(Curve::TendonForceLength, 1.04)
-            .unwrap();
-        assert!(
-            (dgf - 1.0).abs() < 1e-14 && (thelen - 1.0).abs() < 1e-14,
-            "{dgf} {thelen}"
-        );
-    }
-}
+mod tests;

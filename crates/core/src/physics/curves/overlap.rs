@@ -5,7 +5,7 @@ use crate::physics::contractile::force_length::{force_length, force_length_slope
 use crate::physics::curves::quintic_bezier::SegmentedBezier;
 use crate::physics::curves::tabulated::{self, TabulatedCurve};
 use crate::physics::curves::{degroote2016, millard2012, thelen2003, CurveSet};
-use crate::physics::params::{ForceLengthShape, MuscleParams};
+use crate::physics::limb_params::{ForceLengthShape, MuscleParams};
 use std::sync::Arc;
 
 /// A muscle's active force–length relation, the filament-overlap factor λ(l_m) every contractile

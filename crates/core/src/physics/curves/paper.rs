@@ -6,7 +6,7 @@
 //! has no passive or tendon curve here.
 
 use crate::physics::contractile::{force_length, hill_equation};
-use crate::physics::params::ForceLengthShape;
+use crate::physics::limb_params::ForceLengthShape;
 
 /// Force–length factor `f(l̃)`: the paper's eq. (3) with lopt = 1 (parabola or Gaussian of width
 /// `w`, [`force_length::force_length`]).

@@ -33,7 +33,7 @@ const BINOMIAL_4: [f64; 5] = [1.0, 4.0, 6.0, 4.0, 1.0];
 /// makes a C-shaped corner (OpenSim's `calcQuinticBezierCornerControlPoints` check).
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 #[error("the lines through ({x0}, {y0}) and ({x1}, {y1}) with slopes {dydx0} and {dydx1} do not form a corner")]
-pub struct NotACorner {
+pub(crate) struct NotACorner {
     /// First end point x.
     pub x0: f64,
     /// First end point y.

@@ -82,7 +82,7 @@ mod rising;
 mod tests;
 
 use crate::physics::curves::rising_root::rising_root;
-use crate::physics::params::tabulated::{split, Points};
+use crate::physics::limb_params::tabulated_points::{split, Points};
 use fmm::Cubic;
 use knot::Knot;
 use rising::RisingPart;

@@ -9,9 +9,9 @@
 //! the energy rate with shortening velocity matches Hill's (1938) heat coefficient,
 //! `dĖ/dV (V = 0) = P0 + a`, which gives `ε = (1 + a/P0) (f1 + g1) / f1`.
 
-use crate::physics::contractile::calibration::CrossBridgeScale;
+use crate::physics::contractile::crossbridge_scale::CrossBridgeScale;
 use crate::physics::energetics::bridge_flux::EnergyFluxes;
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 
 /// Avogadro's number, 1/mol (SI 2019, exact).
 pub(crate) const AVOGADRO_PER_MOL: f64 = 6.022_140_76e23;

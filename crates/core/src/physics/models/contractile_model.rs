@@ -16,7 +16,7 @@
 use crate::physics::contractile::distribution_moment::SteadyStateError;
 use crate::physics::energetics::bridge_flux::EnergyFluxes;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::stepping::Stepping;
 use crate::state_bytes::{StateError, StateReader, StateWriter};
 use std::fmt;

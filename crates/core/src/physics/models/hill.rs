@@ -4,13 +4,13 @@
 //! attached bridges implied by the Distribution-Moment calibration, `k_CE = a f(l_m) k_iso`
 //! (§8).
 
-use crate::physics::contractile::calibration;
+use crate::physics::contractile::crossbridge_scale;
 use crate::physics::contractile::hill_equation::hill_force;
 use crate::physics::curves::force_velocity::HillForceVelocity;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::models::contractile_model::{
     CeInputs, ContractileModel, ModelBuildError, ModelSpec,
 };
-use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
 /// The model's entry in [`crate::physics::models::MODELS`].
@@ -43,11 +43,11 @@ pub(crate) struct Hill {
 }
 
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
-    let dm = calibration::calibrate_distribution_moment(p)?;
+    let dm = crossbridge_scale::calibrate_distribution_moment(p)?;
     Ok(Box::new(Hill {
         f_max: p.f_max,
         force_velocity: HillForceVelocity::new(p),
-        k_iso: calibration::hill_isometric_stiffness(&dm),
+        k_iso: crossbridge_scale::hill_isometric_stiffness(&dm),
     }))
 }
 

@@ -5,16 +5,16 @@
 //! sub-step's slope (second order, no extra pass over the grid). Calibrated from its exact
 //! steady states.
 
-use crate::physics::contractile::calibration::{self, CrossBridgeScale};
+use crate::physics::contractile::crossbridge_scale::{self, CrossBridgeScale};
 use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
 use crate::physics::energetics::bridge_flux::{grid_fluxes, EnergyFluxes};
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
+use crate::physics::energetics::isovelocity::exact_isometric_bridge_w;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
-use crate::physics::energetics::steady::exact_isometric_bridge_w;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::models::contractile_model::{
     CeInputs, ContractileModel, ModelBuildError, ModelSpec, SubstepMotion,
 };
-use crate::physics::params::MuscleParams;
 use crate::physics::stepping::Stepping;
 use crate::state_bytes::{SavedState, StateError, StateReader, StateWriter};
 
@@ -69,7 +69,7 @@ pub(crate) struct HuxleyPde {
 }
 
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
-    let scale = calibration::calibrate_exact(p);
+    let scale = crossbridge_scale::calibrate_exact(p);
     let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
     let energetics = BridgeEnergetics::new(e, exact_isometric_bridge_w(&scale, &e));
     Ok(Box::new(HuxleyPde {

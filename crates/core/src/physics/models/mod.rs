@@ -1,13 +1,14 @@
 //! The contractile-element models: the interface each implements (`contractile_model`:
 //! `ContractileModel`, its `ModelSpec` and the [`ModelKind`] that names it), one file per
-//! model, and [`MODELS`], the one place where they are named. Adding a model is its file plus
-//! its line in [`MODELS`]. Everything that names models (the command line's help and default,
-//! the node's `model` parameter and its usage text, figures, the `MODEL_*` constants of
-//! `ActuatorState.msg`, checked by `crates/recording/tests/msg_definitions.rs`) reads this list.
+//! model, named by the model's name (`hill`, `huxley`, `huxley_pde`), and [`MODELS`], the one
+//! place where they are named. Adding a model is its file plus its line in [`MODELS`].
+//! Everything that names models (the command line's help and default, the node's `model`
+//! parameter and its usage text, figures, the `MODEL_*` constants of `ActuatorState.msg`,
+//! checked by `crates/recording/tests/msg_definitions.rs`) reads this list.
 
 pub(crate) mod contractile_model;
-pub(crate) mod distribution_moment;
 pub(crate) mod hill;
+pub(crate) mod huxley;
 pub(crate) mod huxley_pde;
 
 pub(crate) use contractile_model::{CeInputs, ContractileModel, ModelSpec, SubstepMotion};
@@ -16,14 +17,14 @@ use std::str::FromStr;
 
 /// Every model, from the simplest to the reference (the full Huxley model, docs/model.md §7).
 #[cfg(not(any(test, feature = "test-model")))]
-pub static MODELS: [&ModelSpec; 3] = [&hill::SPEC, &distribution_moment::SPEC, &huxley_pde::SPEC];
+pub static MODELS: [&ModelSpec; 3] = [&hill::SPEC, &huxley::SPEC, &huxley_pde::SPEC];
 
 /// Every model, and a fourth that only the tests know ([`test_model`]): whatever reads the list
 /// must reach it by its name.
 #[cfg(any(test, feature = "test-model"))]
 pub static MODELS: [&ModelSpec; 4] = [
     &hill::SPEC,
-    &distribution_moment::SPEC,
+    &huxley::SPEC,
     &huxley_pde::SPEC,
     &test_model::SPEC,
 ];
@@ -32,7 +33,7 @@ impl ModelKind {
     /// Hill-type: force–length × force–velocity × activation (docs/model.md §3).
     pub const HILL: ModelKind = ModelKind(&hill::SPEC);
     /// Huxley-type cross-bridges reduced by the Distribution-Moment approximation (§6).
-    pub const HUXLEY: ModelKind = ModelKind(&distribution_moment::SPEC);
+    pub const HUXLEY: ModelKind = ModelKind(&huxley::SPEC);
     /// The full Huxley model solved by the method of characteristics (§7).
     pub const HUXLEY_PDE: ModelKind = ModelKind(&huxley_pde::SPEC);
     /// The model used when none is named: on the command line and as the node's `model`
@@ -84,9 +85,9 @@ impl FromStr for ModelKind {
 /// checks that every reader of [`MODELS`] reaches it.
 #[cfg(any(test, feature = "test-model"))]
 pub mod test_model {
+    use crate::physics::limb_params::MuscleParams;
     use crate::physics::models::hill;
     use crate::physics::models::{CeInputs, ContractileModel, ModelBuildError, ModelSpec};
-    use crate::physics::params::MuscleParams;
     use crate::physics::stepping::Stepping;
 
     /// Its entry in [`super::MODELS`].

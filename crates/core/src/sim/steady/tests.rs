@@ -3,7 +3,7 @@
 //! state; the grid, the refusals, and a model that is none of the three.
 
 use super::*;
-use crate::physics::contractile::calibration::CrossBridgeScale;
+use crate::physics::contractile::crossbridge_scale::CrossBridgeScale;
 use crate::physics::contractile::distribution_moment::steady_curve;
 use crate::physics::contractile::hill_equation::force_velocity;
 use crate::physics::contractile::huxley_exact::steady_q1;

@@ -40,8 +40,7 @@ pub use crate::subject::bounds::Bounds;
 use crate::subject::drive::{DriveError, PreparedTrial};
 use crate::subject::units::SubjectModel;
 use muscle_actuator_core::physics::models::ModelKind;
-use muscle_actuator_core::physics::params::MuscleParams;
-use muscle_actuator_core::physics::stepping::Stepping;
+use muscle_actuator_core::physics::{MuscleParams, Stepping};
 use strengths::{best_strengths, Term};
 
 mod result;

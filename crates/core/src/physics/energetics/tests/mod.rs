@@ -4,10 +4,10 @@
 mod flux;
 mod hand;
 mod huxley;
+mod isovelocity;
 mod opensim;
 mod power;
 pub(crate) mod quadrature;
-mod steady;
 
 use crate::physics::contractile::crossbridge::Rates;
 

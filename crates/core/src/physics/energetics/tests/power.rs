@@ -2,12 +2,14 @@
 //! of the bridges, each term from its own source.
 
 use super::assert_rel;
-use crate::physics::contractile::calibration::{calibrate_distribution_moment, calibrate_exact};
+use crate::physics::contractile::crossbridge_scale::{
+    calibrate_distribution_moment, calibrate_exact,
+};
 use crate::physics::contractile::distribution_moment as dm;
 use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
 use crate::physics::energetics::bridge_flux::{gaussian_fluxes, grid_fluxes};
 use crate::physics::energetics::bridge_power::*;
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 
 /// Counting bridges gives the chemical power per unit flux `e N_hs B = ε/2 C L_h`: the energy
 /// per ATP cancels, and ε = 1.5387, k = 0.534 pN/nm with the defaults.

@@ -2,16 +2,18 @@
 //! with the default muscle (docs/model.md §1) and energy parameters.
 
 use super::assert_rel;
-use crate::physics::contractile::calibration::CrossBridgeScale;
-use crate::physics::contractile::calibration::{calibrate_distribution_moment, calibrate_exact};
+use crate::physics::contractile::crossbridge_scale::CrossBridgeScale;
+use crate::physics::contractile::crossbridge_scale::{
+    calibrate_distribution_moment, calibrate_exact,
+};
 use crate::physics::contractile::distribution_moment as dm;
 use crate::physics::energetics::bhargava::BhargavaOptions;
 use crate::physics::energetics::bridge_power::{BridgeEnergyParams, BridgeEnergyScale};
 use crate::physics::energetics::huxley_steady::energy_rate_ratio;
+use crate::physics::energetics::isovelocity::*;
 use crate::physics::energetics::phenomenological::PhenomenologicalModel;
-use crate::physics::energetics::steady::*;
 use crate::physics::energetics::umberger::UmbergerOptions;
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 
 struct Models {
     p: MuscleParams,

@@ -1,6 +1,6 @@
-//! What a muscle's energetics parameters (docs/model.md §11, docs/configuration.md; the data
-//! of the configuration's `[muscle.energetics]` table are `physics::params::energetics`,
-//! re-exported here) mean to the energetics: their defaults, the cross-bridge energetics'
+//! A muscle's energetics parameters as the energetics models' inputs (docs/model.md §11,
+//! docs/configuration.md; the data of the configuration's `[muscle.energetics]` table are
+//! `physics::limb_params::energetics_table`): their defaults, the cross-bridge energetics'
 //! parameters, the probes' view of the muscle, and each energy model with its options.
 
 use crate::physics::energetics::bhargava::BhargavaOptions;
@@ -10,8 +10,7 @@ use crate::physics::energetics::probe::{
     muscle_mass_kg, ProbeMuscle, MUSCLE_DENSITY_KG_M3, SLOW_TWITCH_RATIO, SPECIFIC_TENSION_PA,
 };
 use crate::physics::energetics::umberger::UmbergerOptions;
-pub use crate::physics::params::energetics::UnknownEnergyModel;
-pub(crate) use crate::physics::params::energetics::{EnergeticsParams, EnergyModel};
+pub(crate) use crate::physics::limb_params::energetics_table::{EnergeticsParams, EnergyModel};
 
 impl EnergyModel {
     /// The model with its options.

@@ -1,22 +1,22 @@
-//! Model parameters (docs/model.md §1, §6, §8), their embedded defaults and their validation;
-//! the energetics table's data (§11) in [`energetics`].
+//! A limb's parameters, of its muscles and its joints (docs/model.md §1, §6, §8), their embedded
+//! defaults and their validation; the energetics table's data (§11) in [`energetics_table`].
 //!
 //! Everything is SI: m, s, N, kg. The defaults are the paper's Appendix A, Table 1.
 
 use serde::{Deserialize, Serialize};
 
+mod activation_rules;
 mod curve_rules;
-pub mod curve_set;
-pub mod energetics;
-pub mod formulation;
-mod neural;
-pub mod tabulated;
+pub(crate) mod curve_set;
+pub(crate) mod energetics_table;
+pub(crate) mod formulation;
+pub(crate) mod tabulated_points;
 
 use curve_set::CurveSet;
 use formulation::{ActivationKind, FibreKind, TendonKind};
-use tabulated::TabulatedCurves;
+use tabulated_points::TabulatedCurves;
 
-pub use energetics::{EnergeticsParams, EnergyModel};
+pub(crate) use energetics_table::{EnergeticsParams, EnergyModel};
 
 /// Shape of the force–length curve f(l_m) (docs/model.md §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]

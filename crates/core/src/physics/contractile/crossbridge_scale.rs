@@ -1,9 +1,11 @@
-//! Start-up calibration of the cross-bridge models to the muscle's Fmax and vmax (docs/model.md §6–7).
+//! A cross-bridge model's scale ([`CrossBridgeScale`]): its rates, isometric moments and length
+//! per unit ξ, from the start-up calibration of the cross-bridge models to the muscle's Fmax and
+//! vmax (docs/model.md §6–7).
 
 use crate::physics::contractile::crossbridge::Rates;
 use crate::physics::contractile::distribution_moment::{self, SteadyStateError};
 use crate::physics::contractile::huxley_exact;
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 use std::sync::{Mutex, MutexGuard};
 
 /// Physical scaling of one cross-bridge model.

@@ -1,7 +1,7 @@
 //! The configuration's `[muscle.energetics]` table (docs/model.md §11, docs/configuration.md):
 //! the energy model by name and the energetics constants of one muscle, as data. What they
 //! mean to the energetics (their defaults, the cross-bridge parameters, the probes' muscle) is
-//! in `physics::energetics::params`, which reads this module; this module reads none of
+//! in `physics::energetics::model_inputs`, which reads this module; this module reads none of
 //! `physics`, so that the parameters of a muscle do not depend on the models that use them.
 
 use serde::{Deserialize, Serialize};
@@ -73,7 +73,7 @@ impl FromStr for EnergyModel {
 }
 
 /// Energetics parameters of one muscle (docs/model.md §11; SI). Their defaults are those of
-/// `physics::energetics` (`impl Default` in `physics::energetics::params`).
+/// `physics::energetics` (`impl Default` in `physics::energetics::model_inputs`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct EnergeticsParams {

@@ -5,13 +5,16 @@
 //! (Millard's derivatives and integrals within looser bounds, [`tolerance`], and the integrals
 //! also against an independent quadrature).
 
-use muscle_actuator_core::physics::curves::quintic_bezier::SegmentedBezier;
-use muscle_actuator_core::physics::curves::{
+use crate::physics::curves::quintic_bezier::SegmentedBezier;
+use crate::physics::curves::{
     degroote2016 as dgf, millard2012 as mil, thelen2003, Curve, CurveSet,
 };
 use std::collections::BTreeMap;
 
-const REFERENCE: &str = include_str!("reference/opensim_curves.csv");
+const REFERENCE: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/reference/opensim_curves.csv"
+));
 
 /// Allowed difference, relative to `max(|OpenSim's value|, FLOOR)`.
 const REL_TOL: f64 = 1e-12;

@@ -3,8 +3,8 @@
 //! chemical power, heat rate, work rate and efficiency, by the cross-bridge energetics (Huxley
 //! models) or a phenomenological model (any model, given its force).
 
-use crate::physics::contractile::calibration::CrossBridgeScale;
 use crate::physics::contractile::crossbridge::Rates;
+use crate::physics::contractile::crossbridge_scale::CrossBridgeScale;
 use crate::physics::contractile::distribution_moment::{self as dm, SteadyStateError};
 use crate::physics::contractile::hill_equation::hill_force;
 use crate::physics::contractile::huxley_exact;
@@ -16,7 +16,7 @@ use crate::physics::energetics::bridge_power::{
 use crate::physics::energetics::huxley_steady::{steady_atp_flux, steady_energy_fluxes};
 use crate::physics::energetics::phenomenological::PhenomenologicalModel;
 use crate::physics::energetics::probe::{ProbeInputs, ProbeMuscle};
-use crate::physics::params::MuscleParams;
+use crate::physics::limb_params::MuscleParams;
 
 /// One steady state.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

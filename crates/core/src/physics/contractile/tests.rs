@@ -2,14 +2,14 @@
 //! oracle of docs/model.md §7, and the Distribution-Moment model's published steady state,
 //! homogeneity and calibration (docs/model.md §6).
 
-use muscle_actuator_core::physics::contractile::calibration::{
+use crate::physics::contractile::crossbridge::Rates;
+use crate::physics::contractile::crossbridge_scale::{
     calibrate_distribution_moment, calibrate_exact,
 };
-use muscle_actuator_core::physics::contractile::crossbridge::Rates;
-use muscle_actuator_core::physics::contractile::distribution_moment as dm;
-use muscle_actuator_core::physics::contractile::huxley_exact as exact;
-use muscle_actuator_core::physics::contractile::huxley_grid::CrossBridgeGrid;
-use muscle_actuator_core::physics::params::MuscleParams;
+use crate::physics::contractile::distribution_moment as dm;
+use crate::physics::contractile::huxley_exact as exact;
+use crate::physics::contractile::huxley_grid::CrossBridgeGrid;
+use crate::physics::limb_params::MuscleParams;
 
 const HUXLEY: Rates = Rates {
     f1: 43.3,

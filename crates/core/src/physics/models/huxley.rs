@@ -1,18 +1,19 @@
-//! The Huxley-type contractile element reduced by Zahalak's Distribution-Moment approximation
-//! (docs/model.md §6, paper eqs. 9–12): state Q0, Q1, Q2, rates from eq. (12) with the Gaussian
-//! closure, calibrated from its own steady states.
+//! The model `huxley`: the Huxley-type contractile element reduced by Zahalak's
+//! Distribution-Moment approximation (docs/model.md §6, paper eqs. 9–12): state Q0, Q1, Q2, rates
+//! from eq. (12) with the Gaussian closure, calibrated from its own steady states. Its equations
+//! are `physics::contractile::distribution_moment`'s.
 
-use crate::physics::contractile::calibration::{self, CrossBridgeScale};
 use crate::physics::contractile::closure_limits::ClosureLimits;
+use crate::physics::contractile::crossbridge_scale::{self, CrossBridgeScale};
 use crate::physics::contractile::distribution_moment::moment_rates_keeping;
 use crate::physics::energetics::bridge_flux::{gaussian_fluxes_near, EnergyFluxes};
 use crate::physics::energetics::bridge_power::BridgeEnergyScale;
+use crate::physics::energetics::isovelocity::dm_isometric_bridge_w;
 use crate::physics::energetics::metabolic::BridgeEnergetics;
-use crate::physics::energetics::steady::dm_isometric_bridge_w;
+use crate::physics::limb_params::MuscleParams;
 use crate::physics::models::contractile_model::{
     CeInputs, ContractileModel, ModelBuildError, ModelSpec,
 };
-use crate::physics::params::MuscleParams;
 use crate::physics::stepping::{Stepping, DEFAULT_MAX_SUBSTEPS};
 
 /// The model's entry in [`crate::physics::models::MODELS`].
@@ -46,7 +47,7 @@ pub(crate) struct DistributionMoment {
 }
 
 fn build(p: &MuscleParams) -> Result<Box<dyn ContractileModel>, ModelBuildError> {
-    let scale = calibration::calibrate_distribution_moment(p)?;
+    let scale = crossbridge_scale::calibrate_distribution_moment(p)?;
     let e = BridgeEnergyScale::new(&scale, p, &p.energetics.bridge());
     let energetics = BridgeEnergetics::new(e, dm_isometric_bridge_w(&scale, &e));
     Ok(Box::new(DistributionMoment {
