@@ -4,8 +4,8 @@
 # to this checkout:
 #
 #   other_checkout COMMIT    TMP: a temporary directory, removed on exit; "$TMP/other": COMMIT
-#                            in a git worktree, with the patch OTHER_PATCH applied if set
-#                            (benches/without_energetics.patch: this tick without its energetics);
+#                            in a git worktree, built with the cargo features OTHER_FEATURES if
+#                            set (`without-energetics`: the tick without its energetics);
 #                            OTHER_TARGET_DIR: where to build it
 #   executable_of KIND       the last executable of KIND (bench, example) in cargo's JSON
 #                            messages on stdin
@@ -24,9 +24,8 @@ other_checkout() {
   TMP="$(mktemp -d)"
   trap 'git -C "$ROOT" worktree remove --force "$TMP/other" 2>/dev/null || true; rm -rf "$TMP"' EXIT
   git -C "$ROOT" worktree add --detach --quiet "$TMP/other" "$1"
-  if [ -n "${OTHER_PATCH:-}" ]; then
-    git -C "$TMP/other" apply "$(cd "$(dirname "$OTHER_PATCH")" && pwd)/$(basename "$OTHER_PATCH")"
-    echo "other: $1 with $(basename "$OTHER_PATCH") applied" >&2
+  if [ -n "${OTHER_FEATURES:-}" ]; then
+    echo "other: $1 with the features $OTHER_FEATURES" >&2
   fi
 }
 
@@ -35,23 +34,25 @@ executable_of() {
 }
 
 example_pair() { # NAME: this checkout's examples/NAME.rs built here and in the other checkout
-  built() { # the example's executable, built in the checkout $1
-    (cd "$1" && cargo build --release --example "$2" --message-format=json 2>/dev/null) |
-      executable_of example
+  built() { # the example's executable, built in the checkout $1 (with features $3)
+    (cd "$1" && cargo build --release --example "$2" ${3:+--features "$3"} \
+      --message-format=json 2>/dev/null) | executable_of example
   }
   # The other commit's own copy where it has one (its API may have other paths); else this one.
   [ -e "$TMP/other/examples/$1.rs" ] || cp "$ROOT/examples/$1.rs" "$TMP/other/examples/"
   cp "$(built "$ROOT" "$1")" "$TMP/this"
-  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1")" "$TMP/other_bin"
+  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1" "${OTHER_FEATURES:-}")" \
+    "$TMP/other_bin"
 }
 
 bench_pair() { # NAME: each checkout's own benches/NAME.rs, built in it
-  built() { # the benchmark's executable, built in the checkout $1
-    (cd "$1" && cargo bench --bench "$2" --no-run --message-format=json 2>/dev/null) |
-      executable_of bench
+  built() { # the benchmark's executable, built in the checkout $1 (with features $3)
+    (cd "$1" && cargo bench --bench "$2" --no-run ${3:+--features "$3"} \
+      --message-format=json 2>/dev/null) | executable_of bench
   }
   cp "$(built "$ROOT" "$1")" "$TMP/this"
-  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1")" "$TMP/other_bin"
+  cp "$(CARGO_TARGET_DIR="$OTHER_TARGET_DIR" built "$TMP/other" "$1" "${OTHER_FEATURES:-}")" \
+    "$TMP/other_bin"
 }
 
 steady_ticks_pair() {

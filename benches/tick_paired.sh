@@ -8,7 +8,7 @@
 # the median time per tick of each.
 #
 #   benches/tick_paired.sh COMMIT [ROUNDS] [TICKS]     (default 21 rounds of 200000 ticks)
-#   OTHER_PATCH=benches/without_energetics.patch benches/tick_paired.sh HEAD
+#   OTHER_FEATURES=without-energetics benches/tick_paired.sh HEAD
 #                                                      (this tick with and without its energetics)
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

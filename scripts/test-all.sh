@@ -10,7 +10,7 @@
 #      `test-topic` feature: a whole node with a DDS peer and a live-view client, in a
 #      loopback-only network namespace);
 #   2. the structure checks of every crate's sources (scripts/check-structure.py: file sizes,
-#      function lengths, import cycles), and that benches/without_energetics.patch applies;
+#      function lengths, import cycles);
 #   3. the ROS 2 tests: a real rclpy peer (ROS 2 kilted from PyPI, Fast DDS) against the node, in
 #      a loopback-only network namespace (scripts/test-ros.sh; it creates .venv and builds the
 #      message package for rclpy on first use);
@@ -40,8 +40,6 @@ python3 scripts/check-structure.py --src crates/core/src --crate-name muscle_act
 python3 scripts/check-structure.py --src crates/measured/src --crate-name muscle_actuator_measured
 python3 scripts/check-structure.py --src crates/recording/src --crate-name muscle_actuator_recording
 python3 scripts/check-structure.py --src python/src --crate-name _core
-echo "== benches/without_energetics.patch still applies (the tick without its energetics)" >&2
-git apply --check benches/without_energetics.patch
 echo "== ROS 2 tests (rclpy peer)" >&2
 MUSCLE_ACTUATOR_BUILT=1 bash scripts/test-ros.sh -q
 echo "== Python package (scripts/test-python.sh)" >&2

@@ -259,7 +259,7 @@ impl Simulation {
                 .par_iter_mut()
                 .map(|p| {
                     let ok = one(p);
-                    if ok {
+                    if ok && ENERGETICS {
                         p.compute_energy(energy);
                     }
                     ok
@@ -340,7 +340,7 @@ impl Simulation {
         let on_threads = self.parts_on_threads();
         for p in &self.parts {
             p.scatter(&mut self.y, &mut self.activation);
-            for (k, &i) in p.muscles().iter().enumerate() {
+            for (k, &i) in p.muscles().iter().enumerate().filter(|_| ENERGETICS) {
                 let e = &mut self.energy[i];
                 if on_threads {
                     e.commit(&p.tick_energy()[k], dt);
@@ -501,6 +501,10 @@ impl SavedState for Simulation {
     }
 }
 
+/// Whether the tick computes its energetics: always, but in the benchmarks' build that measures
+/// what they cost (feature `without-energetics`, docs/benchmarks.md).
+const ENERGETICS: bool = !cfg!(feature = "without-energetics");
+
 /// Muscle i's published state: the plant's outputs at state `y` and activations `activation`
 /// under `inputs`, with its energetics `e`.
 #[inline]
@@ -512,6 +516,9 @@ fn published(
     e: &MuscleEnergy,
     i: usize,
 ) -> MuscleSnapshot {
+    if !ENERGETICS {
+        return plant.outputs(y, activation, inputs, i, &EnergeticsOutputs::default());
+    }
     let r = &e.sample.rates;
     let energetics = EnergeticsOutputs {
         metabolic_power: r.metabolic_w,
