@@ -46,10 +46,22 @@ pub(super) fn prepare(
         Some(d) => d.to_vec(),
         None => trial.dofs().map(str::to_string).collect(),
     };
-    PreparedTrial::new(subject, map, &trial, &dofs).map_err(|error| SubjectError::Drive {
-        path: shown(dir),
-        error: Box::new(error),
-    })
+    let prepared =
+        PreparedTrial::new(subject, map, &trial, &dofs).map_err(|error| SubjectError::Drive {
+            path: shown(dir),
+            error: Box::new(error),
+        })?;
+    for (dof, units) in &prepared.unused_arms {
+        eprintln!(
+            "warning: {}: {}Ma.txt has moment arms of units the subject does not count on {}, \
+             left out of its moment: {}",
+            shown(dir),
+            excerpt(dof),
+            excerpt(dof),
+            excerpt(&units.join(", "))
+        );
+    }
+    Ok(prepared)
 }
 
 /// Writes `text` to `path` whole (nothing under the name unless all of it).

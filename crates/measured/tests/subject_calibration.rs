@@ -272,6 +272,20 @@ fn calibrated_on_three_trials_the_person_s_other_three_are_predicted() {
     }
 }
 
+/// A trial's moment arms of units the subject does not count on a degree of freedom are named
+/// for the caller to say, not left out in silence.
+#[test]
+fn moment_arms_the_subject_leaves_out_are_named() {
+    let subject = knee_subject(&["vaslat_r", "bicfemlh_r", "gasmed_r"]);
+    let t = prepared(&subject, &data().join("_FastWalking_"));
+    assert_eq!(t.unused_arms.len(), 1, "{:?}", t.unused_arms);
+    let (dof, units) = &t.unused_arms[0];
+    assert_eq!(dof, "R_knee_fe");
+    let has = |u: &str| units.iter().any(|x| x == u);
+    assert!(has("vasmed_r") && has("semiten_r"), "{units:?}");
+    assert!(!has("vaslat_r") && !has("gasmed_r"), "{units:?}");
+}
+
 /// A calibration makes at most the evaluations it is given: whole CMA-ES generations that fit
 /// (a budget below a generation's size makes that one generation smaller).
 #[test]

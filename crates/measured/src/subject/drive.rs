@@ -56,6 +56,10 @@ pub struct PreparedTrial {
     pub(super) arms: Vec<Vec<(usize, Vec<f64>)>>,
     /// Per degree of freedom, its inverse-dynamics moment at every kinematic sample, N m.
     pub measured: Vec<Vec<f64>>,
+    /// Per degree of freedom, the units of its moment-arm file with a moment arm (not zero
+    /// throughout) that the subject does not give it: left out of its moment, for the caller to
+    /// say.
+    pub unused_arms: Vec<(String, Vec<String>)>,
 }
 
 /// Lengths a prediction held at their unit's reach ([`PreparedTrial::hold_within_reach`]).
@@ -223,6 +227,7 @@ impl PreparedTrial {
             dofs: Vec::new(),
             arms: Vec::new(),
             measured: Vec::new(),
+            unused_arms: Vec::new(),
         }
     }
 

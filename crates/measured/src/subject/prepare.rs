@@ -65,6 +65,7 @@ impl PreparedTrial {
             length.push(resample::unit_length(trial, u, &held).map_err(resample_error)?);
         }
         let (arms, measured) = arms_of(subject, trial, dofs, &units)?;
+        let unused_arms = unused_arms(subject, trial, dofs);
         Ok(PreparedTrial {
             name,
             rate_hz,
@@ -77,8 +78,38 @@ impl PreparedTrial {
             dofs: dofs.to_vec(),
             arms,
             measured,
+            unused_arms,
         })
     }
+}
+
+/// Per degree of freedom, the columns of its moment-arm file with a moment arm somewhere
+/// (above 1 µm) whose unit the subject does not give that degree of freedom.
+fn unused_arms(
+    subject: &SubjectModel,
+    trial: &Trial,
+    dofs: &[String],
+) -> Vec<(String, Vec<String>)> {
+    let mut unused = Vec::new();
+    for dof in dofs {
+        let (Some(table), Some(spanning)) = (trial.moment_arms.get(dof), subject.dof_units(dof))
+        else {
+            continue;
+        };
+        let units: Vec<String> = (table.columns().iter().enumerate())
+            .filter(|(_, u)| !spanning.contains(u))
+            .filter(|(k, _)| {
+                table
+                    .column(*k)
+                    .is_some_and(|c| c.iter().any(|r| r.abs() > 1e-6))
+            })
+            .map(|(_, u)| u.clone())
+            .collect();
+        if !units.is_empty() {
+            unused.push((dof.clone(), units));
+        }
+    }
+    unused
 }
 
 /// The units that span `dofs`, in the subject's order, each one in the subject, the map and the
