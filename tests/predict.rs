@@ -96,6 +96,12 @@ fn bad_inputs_are_refused_cleanly() {
         lines[k] = edit(&lines[k]);
         lines.join("\n") + "\n"
     };
+    // An empty subject file, named .xml or not: neither form, said as such.
+    for name in ["empty.xml", "empty.toml"] {
+        let empty = dir.join(name);
+        std::fs::write(&empty, "\n").unwrap();
+        assert_clean_failure(&predict(&empty, &map, &trial), &[name, "the file is empty"]);
+    }
     // Times that go back.
     let t = broken("backwards", "lmt.txt", &|s| {
         row(s, 5, &|l| l.replacen("1.008", "1.0", 1))

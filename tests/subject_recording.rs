@@ -253,7 +253,8 @@ fn predict_out_records_the_run_and_plot_draws_it() {
 
 /// A predict that fails leaves no recording, no figure and no temporary: a negative EMG sample
 /// (refused before the drive), a measured moment that cannot be rated (after the drive, while
-/// the recording is still unnamed), and figures whose folder does not exist; an output naming
+/// the recording is still unnamed), and figures whose folder cannot be made (refused before
+/// the drive; a missing folder is made, as for the recording); an output naming
 /// an input is refused before anything is written.
 #[test]
 fn a_failing_predict_leaves_neither_recording_nor_figures() {
@@ -290,9 +291,11 @@ fn a_failing_predict_leaves_neither_recording_nor_figures() {
     // A constant measured moment: the drive runs, the rating fails.
     let files = write_files(&dir.join("constant"), &|_| 2.0);
     assert_nothing_written(&predict(&files, &dir, &args), &["d:"]);
-    // Figures into a folder that does not exist.
+    // Figures into a folder that cannot be made: a file is in its place.
     let files = write_files(&dir.join("good"), &swinging);
-    let nowhere = dir.join("missing").join("fig.png");
+    let blocker = dir.join("good").join("blocker");
+    std::fs::write(&blocker, "a file").unwrap();
+    let nowhere = blocker.join("fig.png");
     let o = predict(
         &files,
         &dir,
@@ -303,7 +306,7 @@ fn a_failing_predict_leaves_neither_recording_nor_figures() {
             nowhere.as_path(),
         ],
     );
-    assert_nothing_written(&o, &["fig_forces.png"]);
+    assert_nothing_written(&o, &["blocker/fig.png"]);
     // The recording over the subject file.
     let before = std::fs::read(&files.subject).unwrap();
     let o = predict(&files, &dir, &["--out".as_ref(), files.subject.as_path()]);

@@ -255,13 +255,19 @@ impl PreparedTrial {
         for ((u, p), l) in self.units.iter().zip(params).zip(&self.length) {
             let joint = format!("{u}{LENGTH_SUFFIX}");
             let nominal = p.l_opt + p.l_ts;
+            // Every field named: a new one must be decided here. A driven joint's inertia,
+            // damping and limit law are never used; they keep the defaults.
+            let d = JointParams::default();
             cfg.joints.push(JointParams {
                 name: joint.clone(),
                 driven: true,
                 initial_angle: l[0] - nominal,
                 min_angle: -MAX_STRETCH_M,
                 max_angle: MAX_STRETCH_M,
-                ..JointParams::default()
+                inertia: d.inertia,
+                damping: d.damping,
+                limit_stiffness: d.limit_stiffness,
+                limit_damping: d.limit_damping,
             });
             cfg.muscles.push(MuscleConfig {
                 name: u.clone(),

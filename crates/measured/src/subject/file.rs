@@ -100,7 +100,8 @@ struct FileOut<'a> {
 
 impl SubjectModel {
     /// Reads a subject: CEINMS's XML (a file whose first non-blank character is `<`) or the
-    /// project's TOML; checked (each muscle's parameters by the configuration's rules).
+    /// project's TOML; checked (each muscle's parameters by the configuration's rules). An empty
+    /// file is neither.
     pub fn read(path: &Path) -> Result<SubjectModel, SubjectFileError> {
         let shown: String = path.display().to_string().chars().take(200).collect();
         let fail = |reason: String| SubjectFileError {
@@ -113,6 +114,11 @@ impl SubjectModel {
             ..fail(e.to_string())
         })?;
         let text = String::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
+        if text.trim().is_empty() {
+            return Err(fail(
+                "the file is empty: a subject is CEINMS's XML or the project's TOML".into(),
+            ));
+        }
         if text.trim_start().starts_with('<') {
             let subject = Subject::parse(&text).map_err(|e| fail(e.to_string()))?;
             SubjectModel::of_ceinms(&subject).map_err(|e| fail(e.to_string()))

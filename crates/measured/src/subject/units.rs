@@ -97,6 +97,7 @@ impl SubjectModel {
         let mut cfg = ActuatorConfig {
             joints: vec![JointParams {
                 name: "check".into(),
+                // The other fields of a joint no unit's check reads.
                 ..JointParams::default()
             }],
             muscles: Vec::with_capacity(self.units.len()),
