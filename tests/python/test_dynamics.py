@@ -6,7 +6,7 @@ import time
 
 import pytest
 
-from helpers import Watch, muscle, finite_state
+from helpers import Watch, muscle, finite_state, wait_until
 
 NS = "/t_dyn"
 
@@ -114,21 +114,31 @@ def test_co_contraction_raises_joint_stiffness(fresh):
     assert abs(high.position[0]) < 0.05
 
 
-# A state within this many ticks of a reset is taken as one just after it: the keep-last
-# writer may overwrite the first ticks' states before a loaded reader takes them, and with no
-# input after a reset every state of the first ticks is the rest state.
-JUST_AFTER_RESET_TICKS = 200
+def state_after_reset(w, t_reset, what):
+    """The first state received after `t_reset` whose tick falls below the one before it: the
+    tick count starts again from 1 at a reset, so this is a state after the reset whichever of
+    the first ticks' states a loaded reader took (the keep-last writer may overwrite some)."""
+
+    def find():
+        before = None
+        for t, m in w.state.timed():
+            if before is not None and t >= t_reset and m.tick < before:
+                return m
+            before = m.tick
+        return None
+
+    return wait_until(find, 10.0, what=what)
 
 
 def test_reset_returns_to_the_initial_state(peer, node, watch):
     w = watch
+    w.state.wait(what="a state before the reset")
     # The clock starts before the request: the node may publish its first ticks after the
     # reset before the answer reaches us (a loaded machine), and those states count.
     t_reset = time.monotonic()
     r = peer.reset(node)
     assert r.success, r.message
-    initial = w.state.wait(lambda s: s.tick <= JUST_AFTER_RESET_TICKS, since=t_reset,
-                           what="a state just after reset")
+    initial = state_after_reset(w, t_reset, "a state just after reset")
     w.activation(flexor=0.9, extensor=0.2)
     w.load(1.0)
     moved = settled(w, 0.4)
@@ -136,8 +146,7 @@ def test_reset_returns_to_the_initial_state(peer, node, watch):
     t_reset = time.monotonic()
     r = peer.reset(node)
     assert r.success and "reset" in r.message
-    after = w.state.wait(lambda s: s.tick <= JUST_AFTER_RESET_TICKS, since=t_reset,
-                         what="a state after reset")
+    after = state_after_reset(w, t_reset, "a state after reset")
     assert after.tick < moved.tick
     assert abs(after.position[0] - initial.position[0]) < 1e-6
     assert muscle(after, "flexor").excitation == 0.0

@@ -8,25 +8,25 @@
 //! Adding an input: a file here with its [`Input`] constant and handler, and its row in the
 //! table, which names it (`src/tests_topic.rs` proves that this is all it takes).
 
-mod activation;
 mod activation_array;
+mod activation_command;
 mod clock_in;
 mod context;
 mod decode;
+mod external_load;
 mod joint_states_in;
-mod load;
 mod message;
 mod muscle_command;
 mod step_topic;
 #[cfg(feature = "test-topic")]
 pub(crate) mod test_excitation;
 
-pub(crate) use activation::ACTIVATION;
 pub(crate) use activation_array::ACTIVATION_ARRAY;
+pub(crate) use activation_command::ACTIVATION;
 pub(crate) use clock_in::CLOCK_IN;
 pub(crate) use context::InputContext;
+pub(crate) use external_load::LOAD;
 pub(crate) use joint_states_in::JOINT_STATES_IN;
-pub(crate) use load::LOAD;
 pub(crate) use message::InputMessage;
 pub(crate) use muscle_command::MUSCLE_COMMAND;
 pub(crate) use step_topic::STEP_TOPIC;

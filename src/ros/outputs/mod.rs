@@ -7,12 +7,12 @@
 //!
 //! Adding an output: a file here with its [`Producer`] constant, and its row in the table.
 
-mod clock;
+mod clock_out;
 mod joint_efforts;
 mod joint_states;
 mod state;
 
-pub(crate) use clock::CLOCK;
+pub(crate) use clock_out::CLOCK;
 pub(crate) use joint_efforts::JOINT_EFFORTS;
 pub(crate) use joint_states::JOINT_STATES;
 pub(crate) use state::STATE;

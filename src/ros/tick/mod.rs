@@ -19,7 +19,7 @@ mod messages;
 mod pacing;
 mod queue;
 mod realtime;
-mod schedule;
+mod stamped_inputs;
 mod stats;
 mod tick_loop;
 

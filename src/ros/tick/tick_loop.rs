@@ -19,7 +19,7 @@ use super::messages::{Applied, AppliedInput, Command, Event, Output, Sample};
 use super::pacing::{self, Deadlines, Pacing, LOCKSTEP_IDLE};
 use super::queue::{CommandReceiver, Drain, CONTROL_RESERVE};
 use super::realtime;
-use super::schedule::Schedule;
+use super::stamped_inputs::Schedule;
 use super::stats::{RunSummary, TickStats, Timing};
 use muscle_actuator_core::sim::Actuator;
 use muscle_actuator_core::time::TimeBase;

@@ -32,7 +32,7 @@
 
 use crate::measured::Subject;
 use crate::subject::bounds::Bounds;
-pub(crate) use crate::subject::record::CalibrationRecord;
+pub(crate) use crate::subject::calibration_record::CalibrationRecord;
 use crate::subject::units::{SubjectModel, UnitModel};
 use muscle_actuator_core::files::{read_regular_file, MAX_FILE_BYTES};
 use muscle_actuator_core::physics::{MuscleParams, TabulatedCurves};

@@ -16,12 +16,12 @@
 
 pub(crate) mod bounds;
 pub mod calibrate;
+pub(crate) mod calibration_record;
 pub mod drive;
 mod error;
 pub(crate) mod file;
 pub(crate) mod limits;
 mod prepare;
-pub(crate) mod record;
 pub(crate) mod units;
 
 pub use drive::{DriveError, Prediction, PreparedTrial};

@@ -19,8 +19,8 @@
 
 use crate::measured::{Subject, Unit};
 use crate::subject::bounds::Bounds;
+use crate::subject::calibration_record::CalibrationRecord;
 use crate::subject::error::DriveError;
-use crate::subject::record::CalibrationRecord;
 use muscle_actuator_core::config::{ActuatorConfig, ConfigError, MuscleConfig, SpanConfig};
 use muscle_actuator_core::physics::curves::CurveSet;
 use muscle_actuator_core::physics::{

@@ -2,7 +2,7 @@
 
 use super::search::{Outcome, Settings};
 use super::Problem;
-use crate::subject::record::CalibrationRecord;
+use crate::subject::calibration_record::CalibrationRecord;
 use crate::subject::units::SubjectModel;
 
 impl Problem {
