@@ -7,7 +7,7 @@
 //! - `messages`: what goes in and out ([`Command`], [`Output`], [`Sample`], [`Applied`],
 //!   [`Event`]);
 //! - `queue`: the command queue, which the loop never waits for;
-//! - `schedule`: inputs stamped ahead, waiting for their tick (simulated clocks);
+//! - `stamped_inputs`: inputs stamped ahead, waiting for their tick (simulated clocks);
 //! - `stats`: the counters shared with `/diagnostics`, the lateness histogram, the run summary;
 //! - `realtime`: the tick thread's timer slack and SCHED_FIFO request;
 //! - `pacing`: deadlines and the stamps' wall clock;
