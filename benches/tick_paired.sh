@@ -8,6 +8,7 @@
 # the median time per tick of each.
 #
 #   benches/tick_paired.sh COMMIT [ROUNDS] [TICKS]     (default 21 rounds of 200000 ticks)
+#   FORMULATION=rigid benches/tick_paired.sh COMMIT      (the elbow's muscles on rigid tendons)
 #   OTHER_FEATURES=without-energetics benches/tick_paired.sh HEAD
 #                                                      (this tick with and without its energetics)
 set -euo pipefail
@@ -15,18 +16,21 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 COMMIT="${1:?usage: benches/tick_paired.sh COMMIT [ROUNDS] [TICKS]}"
 ROUNDS="${2:-21}"
 TICKS="${3:-200000}"
+# The muscles' formulation (examples/steady_ticks.rs: massed, equilibrium, rigid); both commits'
+# examples must know it (436f057's and later do).
+FORMULATION="${FORMULATION:-massed}"
 source "$ROOT/benches/other_commit.sh"
 other_checkout "$COMMIT"
 steady_ticks_pair
 
-ns_of() { # wall time of `$1 MODEL TICKS`, ns
+ns_of() { # wall time of `$1 MODEL TICKS FORMULATION`, ns
   local t0 t1
   t0="$(date +%s%N)"
-  "$1" "$2" "$TICKS" >/dev/null
+  "$1" "$2" "$TICKS" "$FORMULATION" >/dev/null
   t1="$(date +%s%N)"
   echo $((t1 - t0))
 }
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "formulation: $FORMULATION; load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf '%-8s %12s %12s %8s %16s\n' model "this ns" "$COMMIT ns" ratio "ratio low-high"
 for model in hill huxley; do
   : >"$TMP/pairs"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# scripts/outputs.sh BIN OUTDIR: every offline output of the CLI for a fixed set of inputs (to
-# compare two builds: diff -r DIR1 DIR2). Recordings become canonical text (scripts/mcap_canon.py):
+# scripts/outputs.sh BIN OUTDIR: every offline output of the CLI for a fixed set of inputs, every
+# model, curve set, fibre, tendon and activation kind among them (to compare two builds:
+# diff -r DIR1 DIR2). Recordings become canonical text (scripts/mcap_canon.py):
 # the run's wall-clock start time masked, the chunk layout (the writer thread's timing) not compared.
 set -uo pipefail
 BIN="$(readlink -f "$1")"; OUT="$2"; REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,6 +20,27 @@ done
 for m in hill huxley; do
   run armco_$m simulate "$S/arm_cocontraction.toml" --model $m --config arm --csv armco_$m.csv --out armco_$m.mcap
   run armbi_$m simulate "$S/arm_biceps.toml" --model $m --config arm --csv armbi_$m.csv --out armbi_$m.mcap
+done
+# Every curve set and fibre and tendon kind of OpenSim's muscles (crates/core/tests/opensim/), the
+# elbow's other fibre, tendon and activation kinds (scripts/outputs/), and a person's units
+# (tabulated curves, Lloyd & Besier activation, driven lengths: `predict`).
+O="$REPO/crates/core/tests/opensim"
+for c in "$O"/*.config.toml; do
+  n=$(basename "$c" .config.toml)
+  for m in hill huxley; do
+    run os_${n}_$m simulate "$O/pulse.scenario.toml" --model $m --config "$c" --csv os_${n}_$m.csv
+  done
+done
+for c in equilibrium rigid lloyd_besier; do
+  for m in hill huxley; do
+    run elbow_${c}_$m simulate pulse --model $m --config "$REPO/scripts/outputs/$c.toml" \
+      --csv elbow_${c}_$m.csv --out elbow_${c}_$m.mcap
+  done
+done
+D="$REPO/data/ceinms"
+for m in hill huxley; do
+  run predict_$m predict --subject "$D/uncalibratedSubject.xml" --excitations "$D/emgGenerator-16To34.xml" \
+    --trial "$D/_FastWalking_" --model $m --csv predict_$m.csv --muscles-csv predict_units_$m.csv
 done
 run sub4 simulate pulse --model hill --substeps 4 --csv pulse_hill_sub4.csv
 run rate500 simulate pulse --model huxley --rate-hz 500 --csv pulse_huxley_500.csv
